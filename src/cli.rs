@@ -1,0 +1,272 @@
+//! The command line: clap derive structs whose doc comments are the help
+//! text, turned into validated configurations and handed to the library.
+
+use crate::geometry::AccelKind;
+use crate::interior::config::{self as icfg, InteriorConfig, SceneKind, SpecularOpacity};
+use crate::interior::{self, prompts};
+use anyhow::{bail, Context, Result};
+use clap::{Args, Parser, Subcommand};
+use std::path::PathBuf;
+
+#[derive(Parser, Debug)]
+#[command(name = "refract", version, about = "Rendering light through transparent objects: four student reports reproduced as an experiment harness.")]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+pub enum Command {
+    /// Report 004: a point light inside a translucent OFF mesh. With none of
+    /// the report's flags (--trace ... --ior) it asks the report's 13
+    /// questions on standard input.
+    Interior(InteriorArgs),
+    /// Write the meshes shipped in off/ (cube, colour cube, dodecahedron,
+    /// icosphere, torus) into DIR.
+    Meshes {
+        /// Folder to write into.
+        #[arg(default_value = "off")]
+        dir: PathBuf,
+    },
+    /// Benchmarks, measured in one run and printed as a table.
+    Bench {
+        #[command(subcommand)]
+        which: BenchCommand,
+    },
+}
+
+#[derive(Subcommand, Debug)]
+pub enum BenchCommand {
+    /// Rays per second per thread, BVH against the report's linear scan,
+    /// on icospheres of 1280, 20480 and 81920 triangles at 640x480.
+    Interior {
+        /// Smaller images and fewer repeats (a smoke run, not a measurement).
+        #[arg(long)]
+        quick: bool,
+    },
+}
+
+/// Flags of `refract interior`. The first group mirrors the report's
+/// prompts; giving any of them selects flag mode, where --off is required
+/// and the rest take the report's defaults.
+#[derive(Args, Debug)]
+pub struct InteriorArgs {
+    /// Maximum ray trace count: refracted/reflected rays followed after the first hit [default: 0]
+    #[arg(long, value_parser = icfg::trace_count)]
+    pub trace: Option<u32>,
+    /// Opacity of the object, 0-100 [default: 25]
+    #[arg(long, value_parser = icfg::opacity)]
+    pub opacity: Option<f32>,
+    /// Object colour R,G,B, integers 0-255 [default: 255,255,255]
+    #[arg(long, value_name = "R,G,B", value_parser = parse_rgb)]
+    pub color: Option<[u8; 3]>,
+    /// Output image: .png, anything else is written as binary PPM (P6) [default: results/interior.png]
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+    /// The OFF or COFF mesh to render (required in flag mode)
+    #[arg(long)]
+    pub off: Option<PathBuf>,
+    /// Use the colours stored in the OFF file (the report's "colour OFF" answer 1)
+    #[arg(long)]
+    pub coff: bool,
+    /// Scale factor: the mesh is normalised to radius 1, then scaled [default: 1]
+    #[arg(long, value_parser = icfg::scale)]
+    pub scale: Option<f32>,
+    /// Rotations X,Y,Z in degrees, applied X then Y then Z [default: 0,0,0]
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true)]
+    pub rot: Option<[f32; 3]>,
+    /// Refractive index of the object (> 0; below 1 acts like a mirror) [default: 1.4]
+    #[arg(long, value_parser = icfg::ior)]
+    pub ior: Option<f32>,
+
+    /// Shininess n in cos^n(alpha)
+    #[arg(long, default_value_t = 16.0)]
+    pub shininess: f32,
+    /// Distance attenuation constant c in 1/(1 + c d^2); 0 = none (the mesh has radius 1)
+    #[arg(long, default_value_t = 1.0)]
+    pub atten: f32,
+    /// Light position X,Y,Z in scene units [default: the mesh's centre, (0,0,-2)]
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true)]
+    pub light: Option<[f32; 3]>,
+    /// Ambient coefficient Ka
+    #[arg(long, default_value_t = 0.1)]
+    pub ka: f32,
+    /// Diffuse coefficient Kd
+    #[arg(long, default_value_t = 0.5)]
+    pub kd: f32,
+    /// Specular coefficient Ks
+    #[arg(long, default_value_t = 0.8)]
+    pub ks: f32,
+    /// Image size W,H in pixels
+    #[arg(long, value_name = "W,H", default_value = "401,401", value_parser = parse_size)]
+    pub size: [usize; 2],
+    /// Background colour R,G,B (0-255), seen where rays leave the scene
+    #[arg(long, value_name = "R,G,B", default_value = "0,0,0", value_parser = parse_rgb)]
+    pub background: [u8; 3],
+    /// How specular light is composited when the trace count is above 0: `report` (scaled by opacity) or `fixed` (the report's fix)
+    #[arg(long, value_enum, default_value_t = SpecularOpacity::Report)]
+    pub specular_opacity: SpecularOpacity,
+    /// Scene around the mesh
+    #[arg(long, value_enum, default_value_t = SceneKind::Mesh)]
+    pub scene: SceneKind,
+    /// Intersection back-end: `bvh` or the report's `linear` scan (identical images)
+    #[arg(long, value_enum, default_value_t = AccelKind::Bvh)]
+    pub accel: AccelKind,
+    /// Worker threads; 0 = all cores (the image is the same for any count)
+    #[arg(long, default_value_t = 0)]
+    pub threads: usize,
+    /// Samples per pixel: 1 = the pixel centre, as the report; more are jittered using --seed
+    #[arg(long, default_value_t = 1)]
+    pub spp: u32,
+    /// Seed of the sub-pixel jitter (used when --spp > 1)
+    #[arg(long, default_value_t = 0)]
+    pub seed: u64,
+    /// Distance a followed ray starts off its surface, in scene units
+    #[arg(long, default_value_t = 1e-4)]
+    pub offset: f32,
+    /// Append one timing row (mode, mesh, triangles, ..., rays_per_s) to this CSV
+    #[arg(long, value_name = "FILE")]
+    pub timing_csv: Option<PathBuf>,
+}
+
+fn parse_rgb(s: &str) -> Result<[u8; 3], String> {
+    icfg::triple(s, icfg::channel)
+}
+
+fn parse_vec3(s: &str) -> Result<[f32; 3], String> {
+    icfg::triple(s, icfg::finite)
+}
+
+fn parse_size(s: &str) -> Result<[usize; 2], String> {
+    let parts: Vec<&str> = s.split(',').collect();
+    let dim = |t: &str| t.trim().parse::<usize>().ok().filter(|v| (1..=16384).contains(v));
+    match parts.as_slice() {
+        [w, h] => match (dim(w), dim(h)) {
+            (Some(w), Some(h)) => Ok([w, h]),
+            _ => Err(format!("`{s}`: width and height must be whole numbers from 1 to 16384")),
+        },
+        _ => Err(format!("`{s}` is not W,H")),
+    }
+}
+
+impl InteriorArgs {
+    /// True when any of the report's prompt flags was given.
+    fn flag_mode(&self) -> bool {
+        self.trace.is_some()
+            || self.opacity.is_some()
+            || self.color.is_some()
+            || self.out.is_some()
+            || self.off.is_some()
+            || self.coff
+            || self.scale.is_some()
+            || self.rot.is_some()
+            || self.ior.is_some()
+    }
+
+    /// The configuration with the non-prompt settings from the flags.
+    fn base(&self) -> InteriorConfig {
+        let mut c = InteriorConfig::with_defaults(PathBuf::new(), PathBuf::from("results/interior.png"));
+        c.shininess = self.shininess;
+        c.atten = self.atten;
+        c.light = self.light.map(glam::Vec3::from);
+        c.ka = self.ka;
+        c.kd = self.kd;
+        c.ks = self.ks;
+        [c.width, c.height] = self.size;
+        c.background = self.background;
+        c.specular_opacity = self.specular_opacity;
+        c.scene = self.scene;
+        c.accel = self.accel;
+        c.threads = self.threads;
+        c.spp = self.spp;
+        c.seed = self.seed;
+        c.offset = self.offset;
+        c
+    }
+
+    /// Flag mode: the report's fields from flags or their defaults.
+    fn from_flags(&self) -> Result<InteriorConfig> {
+        let mut c = self.base();
+        let Some(off) = &self.off else {
+            bail!("--off FILE is required when any of the report's flags (--trace, --opacity, --color, --out, --coff, --scale, --rot, --ior) is given");
+        };
+        c.off = off.clone();
+        if let Some(v) = self.trace {
+            c.max_trace = v;
+        }
+        if let Some(v) = self.opacity {
+            c.opacity = v;
+        }
+        if let Some(v) = self.color {
+            c.color = v;
+        }
+        match &self.out {
+            Some(o) => c.out = icfg::out_path(&o.to_string_lossy()).map_err(|e| anyhow::anyhow!("--out: {e}"))?,
+            None => std::fs::create_dir_all("results").context("cannot create results/")?,
+        }
+        c.coff = self.coff;
+        if let Some(v) = self.scale {
+            c.scale = v;
+        }
+        if let Some(v) = self.rot {
+            c.rot = v.into();
+        }
+        if let Some(v) = self.ior {
+            c.ior = v;
+        }
+        Ok(c)
+    }
+}
+
+/// Runs the parsed command line.
+pub fn run(cli: Cli) -> Result<()> {
+    match cli.command {
+        Command::Interior(args) => run_interior(args),
+        Command::Meshes { dir } => write_meshes(&dir),
+        Command::Bench { which: BenchCommand::Interior { quick } } => {
+            print!("{}", crate::bench::interior(quick)?);
+            Ok(())
+        }
+    }
+}
+
+fn run_interior(args: InteriorArgs) -> Result<()> {
+    let cfg = if args.flag_mode() {
+        args.from_flags()?
+    } else {
+        let stdin = std::io::stdin();
+        let mut input = stdin.lock();
+        let mut out = std::io::stdout();
+        prompts::ask_all(&mut input, &mut out, args.base())?
+    };
+    cfg.validate().map_err(anyhow::Error::msg)?;
+    let report = interior::run(&cfg)?;
+    for n in &report.notes {
+        eprintln!("note: {n}");
+    }
+    if let Some(path) = &args.timing_csv {
+        interior::append_timing(path, &cfg, &report)?;
+    }
+    eprintln!(
+        "wrote {} ({}x{}, {} triangles, {:.3} s render, {:.2} M rays/s on {} threads)",
+        cfg.out.display(),
+        cfg.width,
+        cfg.height,
+        report.triangles,
+        report.render_s,
+        report.rays as f64 / report.render_s.max(1e-9) / 1e6,
+        report.threads
+    );
+    Ok(())
+}
+
+fn write_meshes(dir: &std::path::Path) -> Result<()> {
+    std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    for (name, what, mesh) in crate::mesh::generate::shipped() {
+        let path = dir.join(name);
+        let text = mesh.to_off(&format!("{what}\nmade by `refract meshes {}`", dir.display()));
+        crate::image_io::atomic_write(&path, |f| Ok(std::io::Write::write_all(f, text.as_bytes())?))?;
+        eprintln!("wrote {}", path.display());
+    }
+    Ok(())
+}

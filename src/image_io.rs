@@ -1,0 +1,100 @@
+//! Writing images: binary PPM (P6, as report 004 writes) or PNG, always to a
+//! temporary file in the target folder that is renamed into place, so an
+//! interrupted run never leaves a half-written image.
+
+use crate::color::Rgb;
+use anyhow::{Context, Result};
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+/// An RGB image in linear [0, 1] colour, row-major from the top row.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Image {
+    pub width: usize,
+    pub height: usize,
+    pub pixels: Vec<Rgb>,
+}
+
+impl Image {
+    pub fn new(width: usize, height: usize) -> Self {
+        Image { width, height, pixels: vec![Rgb::BLACK; width * height] }
+    }
+
+    pub fn get(&self, x: usize, y: usize) -> Rgb {
+        self.pixels[y * self.width + x]
+    }
+
+    /// Pixels that are NaN or infinite (they are written as black).
+    pub fn non_finite_count(&self) -> usize {
+        self.pixels.iter().filter(|p| !p.is_finite()).count()
+    }
+
+    /// 8-bit RGB bytes; values are clamped (report 004 clamps colours to
+    /// [0, 1] before scaling to 0-255) and NaN is written as 0.
+    pub fn to_rgb8(&self) -> Vec<u8> {
+        self.pixels.iter().flat_map(|p| p.to_u8()).collect()
+    }
+}
+
+/// Writes `bytes` (8-bit RGB) as PNG if the name ends in `.png`, else PPM.
+pub fn write_rgb8(path: &Path, width: usize, height: usize, bytes: &[u8]) -> Result<()> {
+    let png = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("png"));
+    atomic_write(path, |file| {
+        if png {
+            let enc = image::codecs::png::PngEncoder::new(file);
+            image::ImageEncoder::write_image(enc, bytes, width as u32, height as u32, image::ExtendedColorType::Rgb8)?;
+        } else {
+            write!(file, "P6\n{width} {height}\n255\n")?;
+            file.write_all(bytes)?;
+        }
+        Ok(())
+    })
+}
+
+pub fn write_image(path: &Path, img: &Image) -> Result<()> {
+    write_rgb8(path, img.width, img.height, &img.to_rgb8())
+}
+
+/// Creates `path` through a temporary sibling file and a rename.
+pub fn atomic_write(path: &Path, fill: impl FnOnce(&mut std::io::BufWriter<std::fs::File>) -> Result<()>) -> Result<()> {
+    let tmp = temp_sibling(path);
+    let result = (|| {
+        let file = std::fs::File::create(&tmp).with_context(|| format!("cannot create {}", tmp.display()))?;
+        let mut w = std::io::BufWriter::new(file);
+        fill(&mut w)?;
+        w.flush()?;
+        w.into_inner().map_err(|e| e.into_error())?.sync_all()?;
+        std::fs::rename(&tmp, path).with_context(|| format!("cannot move the output into place at {}", path.display()))
+    })();
+    if result.is_err() {
+        let _ = std::fs::remove_file(&tmp);
+    }
+    result.with_context(|| format!("writing {}", path.display()))
+}
+
+fn temp_sibling(path: &Path) -> PathBuf {
+    let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+    path.with_file_name(format!(".{name}.{}.tmp", std::process::id()))
+}
+
+/// Reads a P6 PPM (used by tests and to compare runs).
+pub fn read_ppm(path: &Path) -> Result<(usize, usize, Vec<u8>)> {
+    let data = std::fs::read(path).with_context(|| format!("cannot read {}", path.display()))?;
+    let mut fields = Vec::new();
+    let mut i = 0;
+    while fields.len() < 4 && i < data.len() {
+        while i < data.len() && data[i].is_ascii_whitespace() {
+            i += 1;
+        }
+        let start = i;
+        while i < data.len() && !data[i].is_ascii_whitespace() {
+            i += 1;
+        }
+        fields.push(String::from_utf8_lossy(&data[start..i]).into_owned());
+    }
+    anyhow::ensure!(fields.len() == 4 && fields[0] == "P6" && fields[3] == "255", "{}: not an 8-bit P6 PPM", path.display());
+    let (w, h): (usize, usize) = (fields[1].parse()?, fields[2].parse()?);
+    let body = &data[i + 1..];
+    anyhow::ensure!(body.len() == w * h * 3, "{}: expected {} bytes of pixels, found {}", path.display(), w * h * 3, body.len());
+    Ok((w, h, body.to_vec()))
+}

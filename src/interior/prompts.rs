@@ -1,0 +1,88 @@
+//! Report 004's input format: thirteen answers on standard input, asked in
+//! the report's order. A bad answer is asked again with a one-line reason;
+//! input that ends early is an error naming the unanswered prompt.
+
+use super::config::{self, InteriorConfig};
+use std::io::{BufRead, Write};
+
+#[derive(Debug, thiserror::Error)]
+pub enum PromptError {
+    #[error("input ended before an answer to \"{0}\"")]
+    EndOfInput(String),
+    #[error("reading standard input: {0}")]
+    Io(#[from] std::io::Error),
+}
+
+/// Asks one prompt until `parse` accepts the answer.
+fn ask<T>(input: &mut dyn BufRead, out: &mut dyn Write, prompt: &str, parse: impl Fn(&str) -> Result<T, String>) -> Result<T, PromptError> {
+    loop {
+        write!(out, "{prompt}: ")?;
+        out.flush()?;
+        let mut line = String::new();
+        if input.read_line(&mut line)? == 0 {
+            writeln!(out)?;
+            return Err(PromptError::EndOfInput(prompt.to_string()));
+        }
+        match parse(line.trim_end_matches(['\n', '\r'])) {
+            Ok(v) => return Ok(v),
+            Err(reason) => writeln!(out, "\n{prompt}: {reason}; please answer again")?,
+        }
+    }
+}
+
+/// Fills the report's thirteen fields of `base` from the answers; the other
+/// settings (shininess, size, ...) stay as `base` has them.
+pub fn ask_all(input: &mut dyn BufRead, out: &mut dyn Write, base: InteriorConfig) -> Result<InteriorConfig, PromptError> {
+    let mut c = base;
+    c.max_trace = ask(input, out, "Maximum ray trace count", config::trace_count)?;
+    c.opacity = ask(input, out, "Opacity of object (0-100)", config::opacity)?;
+    writeln!(out, "RGB color of object, int in [0,255]")?;
+    let r = ask(input, out, "R", config::channel)?;
+    let g = ask(input, out, "G", config::channel)?;
+    let b = ask(input, out, "B", config::channel)?;
+    c.color = [r, g, b];
+    c.out = ask(input, out, "File name of output file", config::out_path)?;
+    c.off = ask(input, out, "File name of .off file", config::in_path)?;
+    c.coff = ask(input, out, "Is entered .off file in color off format? (0 = No, 1 = Yes)", config::yes_no)?;
+    c.scale = ask(input, out, "Scale Factor", config::scale)?;
+    let x = ask(input, out, "X rotation (degrees)", config::finite)?;
+    let y = ask(input, out, "Y rotation (degrees)", config::finite)?;
+    let z = ask(input, out, "Z rotation (degrees)", config::finite)?;
+    c.rot = glam::Vec3::new(x, y, z);
+    c.ior = ask(input, out, "Refractive Index", config::ior)?;
+    Ok(c)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::path::PathBuf;
+
+    fn base() -> InteriorConfig {
+        InteriorConfig::with_defaults(PathBuf::new(), PathBuf::new())
+    }
+
+    #[test]
+    fn reasks_bad_answers_and_reports_early_end() {
+        let off = concat!(env!("CARGO_MANIFEST_DIR"), "/off/cube.off");
+        let text = format!("x\n-2\n3\n150\n25\n255\n999\n0\n0\nout.ppm\n/no/such.off\n{off}\n2\n1\n0\n1.5\n10\n20\n-30\nzero\n1.4\n");
+        let mut out = Vec::new();
+        let c = ask_all(&mut text.as_bytes(), &mut out, base()).unwrap();
+        assert_eq!((c.max_trace, c.opacity, c.color, c.coff), (3, 25.0, [255, 0, 0], true));
+        assert_eq!((c.scale, c.rot, c.ior), (1.5, glam::Vec3::new(10.0, 20.0, -30.0), 1.4));
+        let shown = String::from_utf8(out).unwrap();
+        for reason in [
+            "`x` is not a whole number",
+            "opacity 150 is outside 0-100",
+            "999 is outside 0-255",
+            "no such file",
+            "`2` is not 0 (no) or 1 (yes)",
+            "scale 0 must be > 0",
+            "`zero` is not a number",
+        ] {
+            assert!(shown.contains(reason), "missing `{reason}` in:\n{shown}");
+        }
+        let e = ask_all(&mut "0\n25\n".as_bytes(), &mut Vec::new(), base()).unwrap_err();
+        assert_eq!(e.to_string(), "input ended before an answer to \"R\"");
+    }
+}

@@ -1,0 +1,16 @@
+//! `refract`: the thin binary. Parses the command line and hands it to the
+//! library; errors are printed as one line and exit with status 1.
+
+use clap::Parser;
+use std::process::ExitCode;
+
+fn main() -> ExitCode {
+    let cli = refract::cli::Cli::parse();
+    match refract::cli::run(cli) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(err) => {
+            eprintln!("refract: error: {err:#}");
+            ExitCode::FAILURE
+        }
+    }
+}
