@@ -52,13 +52,13 @@ pub enum BenchCommand {
 #[derive(Args, Debug)]
 pub struct InteriorArgs {
     /// Maximum ray trace count: refracted/reflected rays followed after the first hit [default: 0]
-    #[arg(long, value_parser = icfg::trace_count)]
+    #[arg(long, value_parser = icfg::trace_count, allow_negative_numbers = true)]
     pub trace: Option<u32>,
     /// Opacity of the object, 0-100 [default: 25]
-    #[arg(long, value_parser = icfg::opacity)]
+    #[arg(long, value_parser = icfg::opacity, allow_negative_numbers = true)]
     pub opacity: Option<f32>,
     /// Object colour R,G,B, integers 0-255 [default: 255,255,255]
-    #[arg(long, value_name = "R,G,B", value_parser = parse_rgb)]
+    #[arg(long, value_name = "R,G,B", value_parser = parse_rgb, allow_hyphen_values = true)]
     pub color: Option<[u8; 3]>,
     /// Output image: .png, anything else is written as binary PPM (P6) [default: results/interior.png]
     #[arg(long)]
@@ -70,32 +70,32 @@ pub struct InteriorArgs {
     #[arg(long)]
     pub coff: bool,
     /// Scale factor: the mesh is normalised to radius 1, then scaled [default: 1]
-    #[arg(long, value_parser = icfg::scale)]
+    #[arg(long, value_parser = icfg::scale, allow_negative_numbers = true)]
     pub scale: Option<f32>,
     /// Rotations X,Y,Z in degrees, applied X then Y then Z [default: 0,0,0]
     #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true)]
     pub rot: Option<[f32; 3]>,
     /// Refractive index of the object (> 0; below 1 acts like a mirror) [default: 1.4]
-    #[arg(long, value_parser = icfg::ior)]
+    #[arg(long, value_parser = icfg::ior, allow_negative_numbers = true)]
     pub ior: Option<f32>,
 
     /// Shininess n in cos^n(alpha)
-    #[arg(long, default_value_t = 16.0)]
+    #[arg(long, default_value_t = 16.0, allow_negative_numbers = true)]
     pub shininess: f32,
     /// Distance attenuation constant c in 1/(1 + c d^2); 0 = none (the mesh has radius 1)
-    #[arg(long, default_value_t = 1.0)]
+    #[arg(long, default_value_t = 1.0, allow_negative_numbers = true)]
     pub atten: f32,
     /// Light position X,Y,Z in scene units [default: the mesh's centre, (0,0,-2)]
     #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true)]
     pub light: Option<[f32; 3]>,
     /// Ambient coefficient Ka
-    #[arg(long, default_value_t = 0.1)]
+    #[arg(long, default_value_t = 0.1, allow_negative_numbers = true)]
     pub ka: f32,
     /// Diffuse coefficient Kd
-    #[arg(long, default_value_t = 0.5)]
+    #[arg(long, default_value_t = 0.5, allow_negative_numbers = true)]
     pub kd: f32,
     /// Specular coefficient Ks
-    #[arg(long, default_value_t = 0.8)]
+    #[arg(long, default_value_t = 0.8, allow_negative_numbers = true)]
     pub ks: f32,
     /// Image size W,H in pixels
     #[arg(long, value_name = "W,H", default_value = "401,401", value_parser = parse_size)]
@@ -122,7 +122,7 @@ pub struct InteriorArgs {
     #[arg(long, default_value_t = 0)]
     pub seed: u64,
     /// Distance a followed ray starts off its surface, in scene units
-    #[arg(long, default_value_t = 1e-4)]
+    #[arg(long, default_value_t = 1e-4, allow_negative_numbers = true)]
     pub offset: f32,
     /// Append one timing row (mode, mesh, triangles, ..., rays_per_s) to this CSV
     #[arg(long, value_name = "FILE")]
@@ -240,6 +240,9 @@ fn run_interior(args: InteriorArgs) -> Result<()> {
         prompts::ask_all(&mut input, &mut out, args.base())?
     };
     cfg.validate().map_err(anyhow::Error::msg)?;
+    if let Some(path) = &args.timing_csv {
+        crate::timing::check_header(path, &interior::TIMING_HEADER)?;
+    }
     let report = interior::run(&cfg)?;
     for n in &report.notes {
         eprintln!("note: {n}");

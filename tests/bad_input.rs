@@ -1,0 +1,98 @@
+use crate::common::*;
+
+/// (file content, text the one-line error must contain, with the line).
+const CASES: &[(&[u8], &str)] = &[
+    (b"", "bad.off:1: expected the keyword OFF or COFF"),
+    (b"PLY\n", "bad.off:1: expected the keyword OFF or COFF, found `PLY`"),
+    (b"OFFX 1 0 0\n", "bad.off:1: expected the keyword"),
+    (b"NOFF\n3 1 0\n", "bad.off:1: unsupported OFF variant `NOFF`"),
+    (b"OFF BINARY\n", "bad.off:1: unsupported OFF variant"),
+    (b"4OFF\n", "bad.off:1: unsupported"),
+    (b"OFF\n3 1\n", "bad.off:2: file ends early: expected edge count"),
+    (b"OFF\n3 1 0\n0 0 0\n1 0 0\n", "bad.off:4: file ends early: expected x of vertex 3 of 3"),
+    (b"OFF\n3 2 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", "bad.off:6: file ends early: expected face 2 of 2"),
+    (b"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n3 0 1 2\n", "bad.off:7: extra data"),
+    (b"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 9\n", "bad.off:6: face 1 refers to vertex 9, but the file has 3 vertices"),
+    (b"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 -1 2\n", "bad.off:6: face 1 refers to vertex -1"),
+    (b"OFF\n1 0 0\n0 NaN 0\n", "bad.off:3: y of vertex 1 of 1 `NaN` is not a finite number"),
+    (b"OFF\n1 0 0\n0 0 -inf\n", "bad.off:3: z of vertex 1 of 1 `-inf` is not a finite"),
+    (b"OFF\n1 0 0\n1e300 0 0\n", "bad.off:3: x of vertex 1 of 1 `1e300` is not a finite"),
+    (b"OFF\n1 0 0\n0 0 1x\n", "bad.off:3: expected z of vertex 1 of 1 (a number), found `1x`"),
+    (b"OFF\n2000000000 2000000000 0\n0 0 0\n", "bad.off:3: file ends early"),
+    (b"OFF\n\x00\x01\x02\x03", "bad.off:2: non-text data"),
+    (b"OFF\n3 1 0\n\x89PNG", "bad.off:3: non-text data"),
+    (b"COFF\n1 0 0\n0 0 0 1 2\n", "bad.off:3: COFF vertex 1 of 1 needs 3 or 4 colour components"),
+];
+
+#[test]
+fn malformed_off_files_fail_cleanly_with_no_output() {
+    let dir = tempfile::tempdir().unwrap();
+    for (i, (content, needle)) in CASES.iter().enumerate() {
+        std::fs::write(dir.path().join("bad.off"), content).unwrap();
+        let out = format!("out{i}.ppm");
+        let o = run(&["interior", "--off", "bad.off", "--out", &out, "--size", "8,8"], "", dir.path());
+        assert_clean_failure(&o, needle);
+        assert!(!dir.path().join(&out).exists(), "case {i} left an output file");
+    }
+    // Nothing half-written either: no temporary files left behind.
+    let left: Vec<_> = std::fs::read_dir(dir.path()).unwrap().map(|e| e.unwrap().file_name()).collect();
+    assert_eq!(left, vec![std::ffi::OsString::from("bad.off")]);
+}
+
+#[test]
+fn impossible_parameters_name_the_flag() {
+    let dir = tempfile::tempdir().unwrap();
+    let cube = repo("off/cube.off");
+    let c = cube.to_str().unwrap();
+    for (args, needle) in [
+        (vec!["--ior", "0"], "refractive index 0 must be > 0"),
+        (vec!["--ior", "nan"], "`nan` is not a finite number"),
+        (vec!["--opacity", "120"], "opacity 120 is outside 0-100"),
+        (vec!["--color", "1,2"], "`1,2` is not three comma-separated values"),
+        (vec!["--size", "0,10"], "width and height must be whole numbers"),
+        (vec!["--scale", "-1"], "scale -1 must be > 0"),
+        (vec!["--atten", "-1"], "--atten: -1 must be a finite number >= 0"),
+        (vec!["--spp", "0"], "--spp: 0 is not between 1 and 4096"),
+        (vec!["--out", "no/such/dir/x.ppm"], "--out: folder no/such/dir does not exist"),
+    ] {
+        let mut full = vec!["interior", "--off", c];
+        if !args.contains(&"--size") {
+            full.extend(["--size", "8,8"]);
+        }
+        full.extend(args.iter().copied());
+        let o = run(&full, "", dir.path());
+        assert!(!o.status.success(), "{args:?} should fail");
+        let err = stderr(&o);
+        assert!(err.contains(needle) && !err.contains("panicked"), "{args:?}: {err}");
+    }
+    let o = run(&["interior", "--ior", "1.5"], "", dir.path());
+    assert_clean_failure(&o, "--off FILE is required");
+    let o = run(&["interior", "--off", "nowhere.off"], "", dir.path());
+    assert_clean_failure(&o, "nowhere.off: cannot read the file");
+}
+
+#[test]
+fn files_from_other_tools_load() {
+    // Quirks seen in the wild: comments before the keyword, counts glued to
+    // it (ModelNet), CRLF, every number on its own line, int colours + alpha.
+    let dir = tempfile::tempdir().unwrap();
+    let modelnet = "# exported\r\nOFF8 6 0\r\n-1 -1 -1\r\n1 -1 -1\r\n-1 1 -1\r\n1 1 -1\r\n-1 -1 1\r\n1 -1 1\r\n-1 1 1\r\n1 1 1\r\n4 0 2 3 1\r\n4 4 5 7 6\r\n4 0 1 5 4\r\n4 2 6 7 3\r\n4 0 4 6 2\r\n4 1 3 7 5\r\n";
+    let own_lines: String = std::fs::read_to_string(repo("off/cube.off"))
+        .unwrap()
+        .lines()
+        .filter(|l| !l.starts_with('#'))
+        .flat_map(|l| l.split_whitespace().map(|t| format!("{t}\n")).collect::<Vec<_>>())
+        .collect();
+    let coloured = "OFF\n4 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2 255 0 0 255\n3 0 2 3 0 0 255 128\n";
+    let mut images = Vec::new();
+    for (name, text, extra) in [("modelnet.off", modelnet, None), ("own.off", own_lines.as_str(), None), ("col.off", coloured, Some("--coff"))] {
+        std::fs::write(dir.path().join(name), text).unwrap();
+        let out = format!("{name}.ppm");
+        let mut args = vec!["interior", "--off", name, "--out", &out, "--size", "32,32"];
+        args.extend(extra);
+        let o = run(&args, "", dir.path());
+        assert!(o.status.success(), "{name}: {}", stderr(&o));
+        images.push(ppm(&dir.path().join(&out)));
+    }
+    assert_eq!(images[0], images[1], "the same cube, written two ways, renders the same");
+}

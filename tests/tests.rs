@@ -1,0 +1,18 @@
+//! Whole-program tests: each module runs the built `refract` binary or the
+//! library as the binary does.
+
+// Helpers: run the binary, temp folders, read images.
+mod common;
+
+// Report 004's stdin prompts against the same run by flags.
+mod cli_prompts;
+// Malformed OFF files and impossible parameters: one line, non-zero, no output.
+mod bad_input;
+// The BVH and the report's linear scan give the same pixels.
+mod bvh_vs_linear;
+// Same seed, same image, whatever the thread count.
+mod determinism;
+// The rendered image against closed-form optics (the TIR circle).
+mod interior_optics;
+// Random and mutated OFF text never panics the reader.
+mod off_fuzz;
