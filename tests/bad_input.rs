@@ -96,3 +96,15 @@ fn files_from_other_tools_load() {
     }
     assert_eq!(images[0], images[1], "the same cube, written two ways, renders the same");
 }
+
+#[test]
+fn empty_and_single_point_meshes_render_the_background() {
+    let dir = tempfile::tempdir().unwrap();
+    for (name, text) in [("empty.off", "OFF\n0 0 0\n"), ("point.off", "OFF\n1 1 0\n1 2 3\n1 0\n"), ("flat.off", "OFF\n3 1 0\n0 0 0\n1 1 1\n2 2 2\n3 0 1 2\n")] {
+        std::fs::write(dir.path().join(name), text).unwrap();
+        let o = run(&["interior", "--off", name, "--out", "o.ppm", "--size", "8,8", "--background", "10,20,30", "--trace", "3"], "", dir.path());
+        assert!(o.status.success(), "{name}: {}", stderr(&o));
+        let (_, _, px) = ppm(&dir.path().join("o.ppm"));
+        assert!(px.chunks(3).all(|c| c == [10, 20, 30]), "{name}: expected only background");
+    }
+}

@@ -72,21 +72,6 @@ impl Mesh {
             *p = f(*p);
         }
     }
-
-    /// Moves the triangles of `other` into `self` (colours become
-    /// per-triangle, `None` where a part had none).
-    pub fn append(&mut self, other: Mesh) {
-        let base = self.positions.len() as u32;
-        let mut mine = self.per_triangle_colors();
-        mine.extend(other.per_triangle_colors());
-        self.positions.extend(other.positions);
-        self.triangles.extend(other.triangles.iter().map(|t| t.map(|i| i + base)));
-        self.colors = if mine.iter().all(Option::is_none) { MeshColors::None } else { MeshColors::PerTriangle(mine) };
-    }
-
-    fn per_triangle_colors(&self) -> Vec<Option<Rgb>> {
-        (0..self.triangles.len()).map(|i| self.color_at(i, 1.0 / 3.0, 1.0 / 3.0)).collect()
-    }
 }
 
 /// An error reading a mesh file: displays as `path:line: message`.
