@@ -4,6 +4,10 @@
 use crate::geometry::AccelKind;
 use crate::interior::config::{self as icfg, InteriorConfig, SceneKind, SpecularOpacity};
 use crate::interior::{self, prompts};
+use crate::optics::glass;
+use crate::optics::ior::{IorKind, IorModel};
+use crate::spectrum::cie::{cmf, srgb_encode_odd, Xyz};
+use crate::spectrum::Spectrum;
 use anyhow::{bail, Context, Result};
 use clap::{Args, Parser, Subcommand};
 use std::path::PathBuf;
@@ -28,6 +32,13 @@ pub enum Command {
         #[arg(default_value = "off")]
         dir: PathBuf,
     },
+    /// Spectra and colour: the CIE locus, illuminants, the accuracy report.
+    Spectrum {
+        #[command(subcommand)]
+        which: SpectrumCommand,
+    },
+    /// Index of refraction of a catalogue glass by a chosen model, as CSV.
+    Glass(GlassArgs),
     /// Benchmarks, measured in one run and printed as a table.
     Bench {
         #[command(subcommand)]
@@ -44,6 +55,53 @@ pub enum BenchCommand {
         #[arg(long)]
         quick: bool,
     },
+}
+
+#[derive(Subcommand, Debug)]
+pub enum SpectrumCommand {
+    /// CSV of a unit monochromatic stimulus, 380-780 nm in 5 nm steps:
+    /// wavelength_nm, X, Y, Z, r_lin, g_lin, b_lin (linear sRGB, unclipped).
+    Locus,
+    /// XYZ, chromaticity, linear and encoded sRGB of a light normalised to
+    /// Y = 1 (5 nm sum over 380-780 nm; lines integrated exactly).
+    Illuminant {
+        /// E, D65, FL1..FL12, FL3.1..FL3.15, blackbody:K, cfl-lines, laser:NM
+        name: String,
+    },
+    /// Every IOR model against Sellmeier and every wavelength-to-colour map
+    /// against CIE: CSVs and plots.
+    Accuracy {
+        /// Glass whose models are compared
+        #[arg(long, default_value = "N-BK7")]
+        glass: String,
+        /// Output folder
+        #[arg(long, default_value = "results/spectral")]
+        out: PathBuf,
+    },
+}
+
+#[derive(Args, Debug)]
+pub struct GlassArgs {
+    /// Glass name (see --list), e.g. N-BK7
+    #[arg(required_unless_present = "list")]
+    pub name: Option<String>,
+    /// IOR model
+    #[arg(long, value_enum, default_value_t = IorKind::Sellmeier)]
+    pub model: IorKind,
+    /// Wavelengths in nm, comma-separated [default: the C, d and F lines]
+    #[arg(long, value_delimiter = ',', value_parser = parse_wavelength, default_value = "656.2725,587.5618,486.1327")]
+    pub wavelengths: Vec<f64>,
+    /// List the catalogue: name, n_d, Abbe number, source
+    #[arg(long)]
+    pub list: bool,
+}
+
+fn parse_wavelength(s: &str) -> Result<f64, String> {
+    let v: f64 = s.trim().parse().map_err(|_| format!("`{s}` is not a wavelength in nm"))?;
+    if !(200.0..=2500.0).contains(&v) {
+        return Err(format!("{v} nm is outside the models' range of 200-2500 nm"));
+    }
+    Ok(v)
 }
 
 /// Flags of `refract interior`. The first group mirrors the report's
@@ -223,10 +281,9 @@ pub fn run(cli: Cli) -> Result<()> {
     match cli.command {
         Command::Interior(args) => run_interior(args),
         Command::Meshes { dir } => write_meshes(&dir),
-        Command::Bench { which: BenchCommand::Interior { quick } } => {
-            print!("{}", crate::bench::interior(quick)?);
-            Ok(())
-        }
+        Command::Spectrum { which } => run_spectrum(which),
+        Command::Glass(args) => run_glass(args),
+        Command::Bench { which: BenchCommand::Interior { quick } } => write_stdout(&crate::bench::interior(quick)?),
     }
 }
 
@@ -272,4 +329,78 @@ fn write_meshes(dir: &std::path::Path) -> Result<()> {
         eprintln!("wrote {}", path.display());
     }
     Ok(())
+}
+
+/// Appends a line to the output string (formatting into a String cannot fail).
+macro_rules! outln {
+    ($o:expr, $($t:tt)*) => {{
+        use std::fmt::Write as _;
+        let _ = writeln!($o, $($t)*);
+    }};
+}
+
+/// Writes to standard output; a closed pipe (`| head`) is not an error.
+fn write_stdout(text: &str) -> Result<()> {
+    use std::io::Write;
+    match std::io::stdout().lock().write_all(text.as_bytes()) {
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
+        r => Ok(r?),
+    }
+}
+
+fn run_spectrum(which: SpectrumCommand) -> Result<()> {
+    let mut o = String::new();
+    match which {
+        SpectrumCommand::Locus => {
+            outln!(o, "wavelength_nm,X,Y,Z,r_lin,g_lin,b_lin");
+            for l in (380..=780).step_by(5) {
+                let xyz = Xyz(cmf(l as f64));
+                let rgb = xyz.to_linear_srgb().0;
+                outln!(o, "{l},{:.9},{:.9},{:.9},{:.9},{:.9},{:.9}", xyz.0.x, xyz.0.y, xyz.0.z, rgb.x, rgb.y, rgb.z);
+            }
+        }
+        SpectrumCommand::Illuminant { name } => {
+            let s = Spectrum::light(&name)?;
+            let xyz = s.to_xyz().normalised();
+            let (x, y) = xyz.xy();
+            let rgb = xyz.to_linear_srgb().0;
+            outln!(o, "name,X,Y,Z,x,y,r_lin,g_lin,b_lin,r_srgb,g_srgb,b_srgb");
+            outln!(
+                o,
+                "{name},{:.8},{:.8},{:.8},{x:.8},{y:.8},{:.8},{:.8},{:.8},{:.8},{:.8},{:.8}",
+                xyz.0.x,
+                xyz.0.y,
+                xyz.0.z,
+                rgb.x,
+                rgb.y,
+                rgb.z,
+                srgb_encode_odd(rgb.x),
+                srgb_encode_odd(rgb.y),
+                srgb_encode_odd(rgb.z)
+            );
+        }
+        SpectrumCommand::Accuracy { glass: name, out } => {
+            let g = glass::by_name(&name)?;
+            o = crate::experiment::spectral::write_report(&out, g)?;
+        }
+    }
+    write_stdout(&o)
+}
+
+fn run_glass(args: GlassArgs) -> Result<()> {
+    let mut o = String::new();
+    if args.list {
+        outln!(o, "glass,n_d,abbe_nu_d,source");
+        for g in glass::catalogue() {
+            outln!(o, "{},{:.6},{:.3},\"{}\"", g.name, g.sellmeier(glass::lines::LD), g.abbe(), g.source);
+        }
+        return write_stdout(&o);
+    }
+    let name = args.name.as_deref().unwrap_or_default();
+    let model = IorModel::for_glass(glass::by_name(name)?, args.model);
+    outln!(o, "wavelength_nm,n");
+    for l in &args.wavelengths {
+        outln!(o, "{l},{:.7}", model.n(*l));
+    }
+    write_stdout(&o)
 }

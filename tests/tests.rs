@@ -16,3 +16,5 @@ mod determinism;
 mod interior_optics;
 // Random and mutated OFF text never panics the reader.
 mod off_fuzz;
+// The spectral core against the CIE and glass reference tables.
+mod spectral_oracles;

@@ -1,0 +1,55 @@
+//! Reference tables embedded in the binary, each CSV with its `#` source
+//! lines (see `data/README.md`), and a reader for them.
+
+pub const CMF_1931: &str = include_str!("../data/cie1931_2deg_cmf.csv");
+pub const D65: &str = include_str!("../data/cie_d65.csv");
+pub const FL: &str = include_str!("../data/cie_fl.csv");
+pub const FL3: &str = include_str!("../data/cie_fl3.csv");
+pub const GLASSES: &str = include_str!("../data/glasses.csv");
+pub const CFL_LINES: &str = include_str!("../data/cfl_lines.csv");
+pub const FRAUNHOFER: &str = include_str!("../data/fraunhofer_lines.csv");
+
+/// A CSV table with `#` comment lines: its header and rows of fields.
+pub struct Table {
+    pub header: Vec<String>,
+    pub rows: Vec<Vec<String>>,
+}
+
+impl Table {
+    /// Parses embedded CSV text. The tables are part of the build, so a
+    /// malformed one is a programming error caught by the unit tests.
+    pub fn parse(text: &str) -> Table {
+        let mut r = csv::ReaderBuilder::new().comment(Some(b'#')).flexible(true).from_reader(text.as_bytes());
+        let header = r.headers().expect("embedded table has a header").iter().map(str::to_string).collect();
+        let rows = r.records().map(|rec| rec.expect("embedded table parses").iter().map(|s| s.trim().to_string()).collect()).collect();
+        Table { header, rows }
+    }
+
+    pub fn column(&self, name: &str) -> Option<usize> {
+        self.header.iter().position(|h| h == name)
+    }
+
+    /// Column `name` as numbers (NaN where a cell is not a number).
+    pub fn numbers(&self, name: &str) -> Option<Vec<f64>> {
+        let c = self.column(name)?;
+        Some(self.rows.iter().map(|r| r.get(c).and_then(|v| v.parse().ok()).unwrap_or(f64::NAN)).collect())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_embedded_table_parses_with_numbers() {
+        let cmf = Table::parse(CMF_1931);
+        assert_eq!(cmf.rows.len(), 471);
+        assert!(cmf.numbers("ybar").unwrap().iter().all(|v| v.is_finite()));
+        assert_eq!(Table::parse(D65).rows.len(), 97);
+        assert_eq!(Table::parse(FL).header.len(), 13);
+        assert_eq!(Table::parse(FL3).header.len(), 16);
+        assert_eq!(Table::parse(GLASSES).rows.len(), 9);
+        assert!(Table::parse(CFL_LINES).numbers("wavelength_nm").unwrap().iter().all(|v| (400.0..720.0).contains(v)));
+        assert!(Table::parse(FRAUNHOFER).rows.len() > 20);
+    }
+}

@@ -1,0 +1,4 @@
+//! The harness: accuracy reports, plots and (later) sweeps.
+
+pub mod plot;
+pub mod spectral;

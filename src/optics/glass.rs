@@ -1,0 +1,107 @@
+//! The glass catalogue: Sellmeier coefficients from `data/glasses.csv`
+//! (SCHOTT optical glass catalogue 2018 via PyPI opticalglass 1.1.1; fused
+//! silica from Malitson, JOSA 55, 1205 (1965)).
+
+use crate::data::{Table, GLASSES};
+use std::sync::OnceLock;
+
+/// Glass-industry line wavelengths, nm (SCHOTT TIE-29).
+pub mod lines {
+    pub const C: f64 = 656.2725;
+    pub const D: f64 = 589.294;
+    pub const LD: f64 = 587.5618;
+    pub const E: f64 = 546.074;
+    pub const F: f64 = 486.1327;
+    pub const G_HG: f64 = 435.8343;
+    /// Fraunhofer B and G (solar), used by report 001's model.
+    pub const B_SOLAR: f64 = 686.719;
+    pub const G_SOLAR: f64 = 430.79;
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Glass {
+    pub name: String,
+    pub b: [f64; 3],
+    /// C1..C3 in um^2.
+    pub c: [f64; 3],
+    /// The table's own n_C, n_d, n_F and Abbe number nu_d (for checks).
+    pub table_n_c: f64,
+    pub table_n_d: f64,
+    pub table_n_f: f64,
+    pub table_nu_d: f64,
+    pub source: String,
+}
+
+impl Glass {
+    /// Sellmeier: n^2 = 1 + sum B_i l^2 / (l^2 - C_i), l in um.
+    pub fn sellmeier(&self, nm: f64) -> f64 {
+        let l2 = (nm * 1e-3).powi(2);
+        let n2 = 1.0 + (0..3).map(|i| self.b[i] * l2 / (l2 - self.c[i])).sum::<f64>();
+        n2.max(0.0).sqrt()
+    }
+
+    /// Abbe number nu_d = (n_d - 1) / (n_F - n_C).
+    pub fn abbe(&self) -> f64 {
+        (self.sellmeier(lines::LD) - 1.0) / (self.sellmeier(lines::F) - self.sellmeier(lines::C))
+    }
+}
+
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("unknown glass `{name}`; valid: {valid}")]
+pub struct UnknownGlass {
+    pub name: String,
+    pub valid: String,
+}
+
+pub fn catalogue() -> &'static [Glass] {
+    static G: OnceLock<Vec<Glass>> = OnceLock::new();
+    G.get_or_init(|| {
+        let t = Table::parse(GLASSES);
+        let col = |n: &str| t.column(n).unwrap_or_else(|| panic!("glasses.csv lacks {n}"));
+        let num = |r: &Vec<String>, n: &str| r[col(n)].parse::<f64>().unwrap_or(f64::NAN);
+        t.rows
+            .iter()
+            .map(|r| Glass {
+                name: r[col("glass")].replace('_', " "),
+                b: [num(r, "B1"), num(r, "B2"), num(r, "B3")],
+                c: [num(r, "C1"), num(r, "C2"), num(r, "C3")],
+                table_n_c: num(r, "n_C"),
+                table_n_d: num(r, "n_d"),
+                table_n_f: num(r, "n_F"),
+                table_nu_d: num(r, "nu_d"),
+                source: r[col("source")..].join(", "),
+            })
+            .collect()
+    })
+}
+
+/// A glass by name, ignoring case, spaces, `-` and `_` (`n-bk7`, `NBK7`,
+/// `fused silica`).
+pub fn by_name(name: &str) -> Result<&'static Glass, UnknownGlass> {
+    let key = |s: &str| s.chars().filter(|c| c.is_ascii_alphanumeric()).collect::<String>().to_ascii_uppercase();
+    catalogue().iter().find(|g| key(&g.name) == key(name)).ok_or_else(|| UnknownGlass { name: name.to_string(), valid: names().join(", ") })
+}
+
+pub fn names() -> Vec<&'static str> {
+    catalogue().iter().map(|g| g.name.as_str()).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sellmeier_matches_the_table_for_every_glass() {
+        assert_eq!(catalogue().len(), 9);
+        for g in catalogue() {
+            for (nm, want) in [(lines::C, g.table_n_c), (lines::LD, g.table_n_d), (lines::F, g.table_n_f)] {
+                assert!((g.sellmeier(nm) - want).abs() < 1e-5, "{} at {nm}: {} vs {want}", g.name, g.sellmeier(nm));
+            }
+            assert!((g.abbe() - g.table_nu_d).abs() < 0.01, "{}: abbe {}", g.name, g.abbe());
+        }
+        assert!((by_name("n-bk7").unwrap().sellmeier(lines::LD) - 1.5168).abs() < 1e-6);
+        assert!(by_name("fused silica").is_ok());
+        let e = by_name("BK8").unwrap_err().to_string();
+        assert!(e.contains("N-BK7") && e.contains("N-SF11"), "{e}");
+    }
+}

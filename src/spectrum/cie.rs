@@ -1,0 +1,222 @@
+//! CIE 1931 colour: spectrum to XYZ with the 2-degree colour-matching
+//! functions (embedded from `data/cie1931_2deg_cmf.csv`, CIE 015:2018 via
+//! colour-science 0.4.7), XYZ to linear sRGB (IEC 61966-2-1), gamut mapping,
+//! exposure and the sRGB transfer function (PHYSICS.md §5).
+
+use crate::data::{Table, CMF_1931};
+use glam::{DMat3, DVec3};
+use std::sync::OnceLock;
+
+#[derive(Copy, Clone, Debug, PartialEq, Default)]
+pub struct Xyz(pub DVec3);
+
+/// Linear sRGB (D65 white), unclipped: negative where out of gamut.
+#[derive(Copy, Clone, Debug, PartialEq, Default)]
+pub struct LinearRgb(pub DVec3);
+
+/// IEC 61966-2-1 XYZ to linear sRGB, the 4-decimal form the oracles use.
+pub const XYZ_TO_SRGB: DMat3 = DMat3::from_cols_array(&[3.2406, -0.9689, 0.0557, -1.5372, 1.8758, -0.2040, -0.4986, 0.0415, 1.0570]);
+
+/// Relative luminance weights of linear sRGB (the Y row of the inverse).
+pub const SRGB_LUMA: DVec3 = DVec3::new(0.2126, 0.7152, 0.0722);
+
+fn cmf_table() -> &'static Vec<[f64; 3]> {
+    static T: OnceLock<Vec<[f64; 3]>> = OnceLock::new();
+    T.get_or_init(|| {
+        let t = Table::parse(CMF_1931);
+        let (l, x, y, z) = (t.numbers("wavelength_nm").unwrap(), t.numbers("xbar").unwrap(), t.numbers("ybar").unwrap(), t.numbers("zbar").unwrap());
+        debug_assert!(l.iter().enumerate().all(|(i, v)| *v == 360.0 + i as f64));
+        (0..l.len()).map(|i| [x[i], y[i], z[i]]).collect()
+    })
+}
+
+/// Colour-matching functions at `nm` (linear between the 1 nm samples, zero
+/// outside 360-830 nm).
+pub fn cmf(nm: f64) -> DVec3 {
+    let t = cmf_table();
+    let f = nm - 360.0;
+    if !(f >= 0.0 && f <= (t.len() - 1) as f64) {
+        return DVec3::ZERO;
+    }
+    let i = (f as usize).min(t.len() - 2);
+    let w = f - i as f64;
+    DVec3::from(t[i]) * (1.0 - w) + DVec3::from(t[i + 1]) * w
+}
+
+/// Integral of ybar over 360-830 nm (1 nm sum): the Y of a unit equal-energy
+/// spectrum, used to normalise sampled estimates.
+pub fn cie_y_integral() -> f64 {
+    static Y: OnceLock<f64> = OnceLock::new();
+    *Y.get_or_init(|| cmf_table().iter().map(|c| c[1]).sum())
+}
+
+/// XYZ by the oracles' method: S(l) cmf(l) 5 nm summed at l = 380, 385, ..., 780.
+pub fn xyz_sum_5nm(s: impl Fn(f64) -> f64) -> Xyz {
+    Xyz((0..=80).map(|i| 380.0 + 5.0 * i as f64).map(|l| s(l) * cmf(l) * 5.0).sum())
+}
+
+/// XYZ integrated at 1 nm over the tables' whole range (360-830 nm).
+pub fn xyz_sum_1nm(s: impl Fn(f64) -> f64) -> Xyz {
+    Xyz((360..=830).map(|l| l as f64).map(|l| s(l) * cmf(l)).sum())
+}
+
+impl Xyz {
+    pub fn to_linear_srgb(self) -> LinearRgb {
+        LinearRgb(XYZ_TO_SRGB * self.0)
+    }
+
+    /// Scaled so Y = 1 (Y = 0 stays black).
+    pub fn normalised(self) -> Xyz {
+        if self.0.y > 0.0 {
+            Xyz(self.0 / self.0.y)
+        } else {
+            Xyz(DVec3::ZERO)
+        }
+    }
+
+    /// Chromaticity (x, y).
+    pub fn xy(self) -> (f64, f64) {
+        let s = self.0.x + self.0.y + self.0.z;
+        if s > 0.0 {
+            (self.0.x / s, self.0.y / s)
+        } else {
+            (0.0, 0.0)
+        }
+    }
+
+    /// CIELAB against the D65 white of Y = 1.
+    pub fn to_lab(self) -> DVec3 {
+        let white = DVec3::new(0.95047, 1.0, 1.08883);
+        let f = |t: f64| {
+            let d: f64 = 6.0 / 29.0;
+            if t > d * d * d {
+                t.cbrt()
+            } else {
+                t / (3.0 * d * d) + 4.0 / 29.0
+            }
+        };
+        let v = self.0 / white;
+        let (fx, fy, fz) = (f(v.x), f(v.y), f(v.z));
+        DVec3::new(116.0 * fy - 16.0, 500.0 * (fx - fy), 200.0 * (fy - fz))
+    }
+}
+
+impl LinearRgb {
+    pub fn to_xyz(self) -> Xyz {
+        Xyz(XYZ_TO_SRGB.inverse() * self.0)
+    }
+
+    pub fn luminance(self) -> f64 {
+        SRGB_LUMA.dot(self.0)
+    }
+}
+
+/// The sRGB transfer function (IEC 61966-2-1) for c >= 0.
+pub fn srgb_encode(c: f64) -> f64 {
+    if c <= 0.0031308 {
+        12.92 * c
+    } else {
+        1.055 * c.powf(1.0 / 2.4) - 0.055
+    }
+}
+
+/// Its inverse, for colours given as display (encoded) sRGB values.
+pub fn srgb_decode(v: f64) -> f64 {
+    if v <= 0.04045 {
+        v / 12.92
+    } else {
+        ((v + 0.055) / 1.055).powf(2.4)
+    }
+}
+
+/// Encoding extended to negative values by odd symmetry (the oracles'
+/// convention for out-of-gamut colours).
+pub fn srgb_encode_odd(c: f64) -> f64 {
+    c.signum() * srgb_encode(c.abs())
+}
+
+/// How colours outside the sRGB gamut are brought into the image.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum GamutMap {
+    /// Clamp each channel to [0, 1]: hue shifts toward the primaries, so a
+    /// spectrum collapses into a few saturated bands.
+    Clip,
+    /// Keep luminance and hue: mix with the grey of the same luminance until
+    /// no channel is negative, then, if a channel exceeds 1, scale the whole
+    /// colour down (never clip one channel alone).
+    Desaturate,
+}
+
+impl GamutMap {
+    /// Maps linear sRGB into [0, 1]^3. NaN and infinity become black.
+    pub fn apply(self, c: LinearRgb) -> DVec3 {
+        let v = c.0;
+        if !v.is_finite() {
+            return DVec3::ZERO;
+        }
+        match self {
+            GamutMap::Clip => v.clamp(DVec3::ZERO, DVec3::ONE),
+            GamutMap::Desaturate => {
+                let y = SRGB_LUMA.dot(v);
+                if y <= 0.0 {
+                    return DVec3::ZERO;
+                }
+                let min = v.min_element();
+                let v = if min < 0.0 {
+                    // Move toward grey (y, y, y) just far enough that min = 0.
+                    let t = y / (y - min);
+                    DVec3::splat(y) + t * (v - DVec3::splat(y))
+                } else {
+                    v
+                };
+                let max = v.max_element();
+                if max > 1.0 {
+                    v / max
+                } else {
+                    v
+                }
+            }
+        }
+    }
+}
+
+/// Linear sRGB to 8-bit display values: exposure, gamut map, encode.
+pub fn to_srgb8(c: LinearRgb, exposure: f64, map: GamutMap) -> [u8; 3] {
+    let v = map.apply(LinearRgb(c.0 * exposure));
+    let q = |x: f64| (srgb_encode(x.clamp(0.0, 1.0)) * 255.0 + 0.5) as u8;
+    [q(v.x), q(v.y), q(v.z)]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn desaturate_keeps_luminance_and_lands_in_gamut() {
+        for nm in (400..=700).step_by(10) {
+            let c = Xyz(cmf(nm as f64)).to_linear_srgb();
+            let m = GamutMap::Desaturate.apply(LinearRgb(c.0 / c.0.max_element().max(1e-9) * 0.5));
+            assert!(m.min_element() >= -1e-12 && m.max_element() <= 1.0 + 1e-12, "{nm}: {m:?}");
+        }
+        let c = LinearRgb(DVec3::new(0.6, -0.1, 0.2));
+        let m = GamutMap::Desaturate.apply(c);
+        assert!((SRGB_LUMA.dot(m) - c.luminance()).abs() < 1e-12);
+        assert!(m.min_element().abs() < 1e-12);
+        assert_eq!(GamutMap::Clip.apply(LinearRgb(DVec3::new(f64::NAN, 0.0, 0.0))), DVec3::ZERO);
+    }
+
+    #[test]
+    fn transfer_function_round_trips() {
+        for i in 0..=100 {
+            let c = i as f64 / 100.0;
+            assert!((srgb_decode(srgb_encode(c)) - c).abs() < 1e-12);
+        }
+        assert_eq!(srgb_encode_odd(-0.5), -srgb_encode(0.5));
+    }
+
+    #[test]
+    fn matrix_inverse_maps_white_to_d65() {
+        let w = LinearRgb(DVec3::ONE).to_xyz();
+        assert!((w.0 - DVec3::new(0.9505, 1.0, 1.089)).abs().max_element() < 2e-3);
+    }
+}
