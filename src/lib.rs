@@ -15,5 +15,8 @@ pub mod image_io;
 pub mod interior;
 pub mod mesh;
 pub mod optics;
+pub mod photon;
+pub mod prism;
+pub mod sampling;
 pub mod spectrum;
 pub mod timing;

@@ -18,3 +18,5 @@ mod interior_optics;
 mod off_fuzz;
 // The spectral core against the CIE and glass reference tables.
 mod spectral_oracles;
+// Prism scenes against closed-form deviation and the Amici oracle.
+mod prism_optics;

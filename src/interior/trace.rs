@@ -138,13 +138,6 @@ impl<'a> Tracer<'a> {
 
 /// A sub-pixel offset in [0, 1)^2 from (seed, pixel, sample) alone.
 fn jitter(seed: u64, pixel: u64, sample: u32) -> (f32, f32) {
-    let h = splitmix(seed ^ splitmix(pixel ^ splitmix(sample as u64)));
-    ((h >> 40) as f32 / (1u64 << 24) as f32, ((h >> 16) & 0xff_ffff) as f32 / (1u64 << 24) as f32)
-}
-
-fn splitmix(mut z: u64) -> u64 {
-    z = z.wrapping_add(0x9e37_79b9_7f4a_7c15);
-    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-    z ^ (z >> 31)
+    let mut r = crate::sampling::Rng::new(seed, pixel, sample as u64);
+    (r.f32(), r.f32())
 }

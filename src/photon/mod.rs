@@ -1,0 +1,2 @@
+//! Photon mapping: the light pass, the two photon maps (the report's
+//! per-object buffer and a kd-tree) and density estimation with filters.

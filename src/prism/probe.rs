@@ -1,0 +1,68 @@
+//! `refract prism trace`: one ray per wavelength through the scene's prism
+//! with the renderer's own optics, always taking the transmitted branch,
+//! until it is back in air: exit direction, signed deviation and the
+//! Fresnel transmittance (prod Ts + prod Tp) / 2 along the way.
+
+use super::scene::{PrismScene, Surface};
+use super::trace::cross;
+use glam::DVec3;
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct ProbeRay {
+    pub nm: f64,
+    /// Where the ray leaves the last glass face (or its start, with no prism).
+    pub exit_point: DVec3,
+    pub exit_dir: DVec3,
+    /// Angle from the entry direction to the exit direction in the xy plane,
+    /// degrees, counter-clockwise positive (toward +y, the crown apices).
+    pub deviation_deg: f64,
+    pub transmittance: f64,
+    /// Total internal reflection stopped the ray inside the glass.
+    pub tir: bool,
+    /// Faces crossed.
+    pub faces: usize,
+}
+
+pub fn probe(scene: &PrismScene, nm: f64) -> ProbeRay {
+    let (mut o, d0) = scene.probe;
+    let mut d = d0;
+    let (mut ts, mut tp) = (1.0, 1.0);
+    let mut medium = 0;
+    let mut skip = None;
+    let mut faces = 0;
+    let mut tir = false;
+    for _ in 0..64 {
+        let Some(hit) = scene.intersect(o, d, skip) else { break };
+        if !matches!(scene.faces[hit.face].surface, Surface::Interface { .. }) {
+            break;
+        }
+        let c = cross(scene, hit.face, d, Some(nm)).expect("a wavelength is given");
+        debug_assert_eq!(c.from, medium, "media must be consistent along the ray");
+        o += hit.t * d;
+        skip = Some(hit.face);
+        faces += 1;
+        match c.refracted {
+            Some(t) => {
+                ts *= 1.0 - c.fresnel.rs;
+                tp *= 1.0 - c.fresnel.rp;
+                d = t;
+                medium = c.to;
+            }
+            None => {
+                tir = true;
+                break;
+            }
+        }
+        if medium == 0 {
+            break;
+        }
+    }
+    let angle = |v: DVec3| v.y.atan2(v.x);
+    let mut dev = (angle(d) - angle(d0)).to_degrees();
+    if dev > 180.0 {
+        dev -= 360.0;
+    } else if dev <= -180.0 {
+        dev += 360.0;
+    }
+    ProbeRay { nm, exit_point: o, exit_dir: d, deviation_deg: dev, transmittance: if tir { 0.0 } else { 0.5 * (ts + tp) }, tir, faces }
+}

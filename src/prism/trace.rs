@@ -1,0 +1,72 @@
+//! What a ray (a photon or an eye path) does at a smooth interface: Snell's
+//! law at its wavelength, Fresnel reflectance for its polarisation, total
+//! internal reflection. Shared by the light pass, the eye pass and the probe,
+//! so all three follow the same optics.
+
+use super::scene::{PrismScene, Surface};
+use crate::optics::{snell::reflect_f64, snell::refract_f64, Fresnel};
+use glam::DVec3;
+
+/// Polarisation a path keeps from light to screen: through a prism train
+/// (faces sharing one plane of incidence) s and p stay separate, and the
+/// average of the two gives the unpolarised answer (PHYSICS.md §2).
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub enum Polarisation {
+    S,
+    P,
+}
+
+/// The outcome at an interface, for one wavelength.
+#[derive(Copy, Clone, Debug)]
+pub struct Crossing {
+    /// Medium on the far side.
+    pub to: usize,
+    /// Medium the ray is in.
+    pub from: usize,
+    pub n1: f64,
+    pub n2: f64,
+    pub fresnel: Fresnel,
+    /// `None` under total internal reflection.
+    pub refracted: Option<DVec3>,
+    pub reflected: DVec3,
+}
+
+impl Crossing {
+    /// Reflectance for a polarisation (1 under total internal reflection).
+    pub fn reflectance(&self, pol: Polarisation) -> f64 {
+        if self.refracted.is_none() {
+            return 1.0;
+        }
+        match pol {
+            Polarisation::S => self.fresnel.rs,
+            Polarisation::P => self.fresnel.rp,
+        }
+    }
+}
+
+/// The ray is white but a medium here disperses: it must pick a wavelength.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct NeedsWavelength;
+
+/// Crossing of interface face `face` by direction `d` at wavelength `nm`
+/// (`None` = white, allowed only where no medium here disperses).
+pub fn cross(scene: &PrismScene, face: usize, d: DVec3, nm: Option<f64>) -> Result<Crossing, NeedsWavelength> {
+    let f = &scene.faces[face];
+    let Surface::Interface { front, back } = f.surface else {
+        panic!("cross() on a face that is not an interface: {}", f.name);
+    };
+    // Coming from the front side (against the normal) means entering `back`.
+    let (from, to) = if d.dot(f.normal) < 0.0 { (front, back) } else { (back, front) };
+    let n1 = scene.media[from].n(nm).ok_or(NeedsWavelength)?;
+    let n2 = scene.media[to].n(nm).ok_or(NeedsWavelength)?;
+    let cos_i = d.dot(f.normal).abs();
+    Ok(Crossing {
+        to,
+        from,
+        n1,
+        n2,
+        fresnel: Fresnel::dielectric(cos_i, n1, n2),
+        refracted: refract_f64(d, f.normal, n1 / n2).map(|t| t.normalize()),
+        reflected: reflect_f64(d, f.normal),
+    })
+}
