@@ -6,6 +6,11 @@ use crate::interior::config::{self as icfg, InteriorConfig, SceneKind, SpecularO
 use crate::interior::{self, prompts};
 use crate::optics::glass;
 use crate::optics::ior::{IorKind, IorModel};
+use crate::photon::gather::Filter;
+use crate::photon::map::MapKind;
+use crate::prism::render::EyeMode;
+use crate::prism::scenes::{SceneKind as PrismSceneKind, SceneOptions};
+use crate::spectrum::cie::GamutMap;
 use crate::spectrum::cie::{cmf, srgb_encode_odd, Xyz};
 use crate::spectrum::Spectrum;
 use anyhow::{bail, Context, Result};
@@ -32,6 +37,9 @@ pub enum Command {
         #[arg(default_value = "off")]
         dir: PathBuf,
     },
+    /// Report 000: white light dispersed by an Amici prism, by photon
+    /// mapping. `refract prism trace` probes the optics ray by ray.
+    Prism(PrismArgs),
     /// Spectra and colour: the CIE locus, illuminants, the accuracy report.
     Spectrum {
         #[command(subcommand)]
@@ -55,6 +63,138 @@ pub enum BenchCommand {
         #[arg(long)]
         quick: bool,
     },
+}
+
+#[derive(Args, Debug)]
+#[command(args_conflicts_with_subcommands = true)]
+pub struct PrismArgs {
+    #[command(subcommand)]
+    pub probe: Option<PrismCommand>,
+    #[command(flatten)]
+    pub scene: PrismSceneArgs,
+    #[command(flatten)]
+    pub render: PrismRenderArgs,
+}
+
+#[derive(Subcommand, Debug)]
+pub enum PrismCommand {
+    /// One ray per wavelength through the scene's prism with the renderer's
+    /// own optics: CSV of wavelength_nm, exit direction x,y,z, deviation_deg
+    /// (counter-clockwise positive, toward the crown apices), transmittance.
+    Trace {
+        #[command(flatten)]
+        scene: PrismSceneArgs,
+        /// Wavelengths in nm, comma-separated
+        #[arg(long, value_delimiter = ',', value_parser = parse_visible_nm, default_value = "486.1327,587.5618,656.2725")]
+        wavelengths: Vec<f64>,
+    },
+}
+
+/// What shapes the prism scene (shared by rendering and the probe).
+#[derive(Args, Debug, Clone)]
+pub struct PrismSceneArgs {
+    /// Scene: amici-screen (rainbow strip), amici-lamp (a CFL seen through the prism), single-prism (60 degrees)
+    #[arg(long, value_enum, default_value_t = PrismSceneKind::AmiciScreen)]
+    pub scene: PrismSceneKind,
+    /// Crown glass (the single prism's glass); see `refract glass --list`
+    #[arg(long, default_value = "N-BK7")]
+    pub glass: String,
+    /// Flint glass of the Amici prism
+    #[arg(long, default_value = "N-SF11")]
+    pub flint: String,
+    /// Flint apex angle in degrees (the crown apex is then solved for no deviation at the d line)
+    #[arg(long, default_value_t = 90.0)]
+    pub flint_apex: f64,
+    /// Index-of-refraction model of the glasses
+    #[arg(long, value_enum, default_value_t = IorKind::Sellmeier)]
+    pub ior_model: IorKind,
+    /// Angle of incidence on the first face, degrees [default: the design: along the Amici's axis; minimum deviation at d for the single prism]
+    #[arg(long, allow_negative_numbers = true)]
+    pub incidence: Option<f64>,
+    /// Leave the prism out (report 000's "image before dispersion")
+    #[arg(long)]
+    pub no_prism: bool,
+    /// Hold the index at n_d for every wavelength ("image with no dispersion effect")
+    #[arg(long)]
+    pub no_dispersion: bool,
+}
+
+#[derive(Args, Debug)]
+pub struct PrismRenderArgs {
+    /// Light spectrum: d65, e, fl1..fl12, fl3.1..fl3.15, cfl-lines, blackbody:K, laser:NM [default: d65 beams, cfl-lines lamp]
+    #[arg(long)]
+    pub light: Option<String>,
+    /// Photons traced in the light pass
+    #[arg(long, default_value_t = 1_000_000)]
+    pub photons: u64,
+    /// Photon map: the report's per-object buffer or a kd-tree
+    #[arg(long, value_enum, default_value_t = MapKind::Kdtree)]
+    pub map: MapKind,
+    /// Density-estimation filter
+    #[arg(long, value_enum, default_value_t = Filter::Cone)]
+    pub filter: Filter,
+    /// Gather radius in metres [default: two pixels' footprint on the screen]
+    #[arg(long)]
+    pub radius: Option<f64>,
+    /// Gather the k nearest photons instead of a fixed radius (kd-tree only)
+    #[arg(long)]
+    pub k: Option<usize>,
+    /// Image size W,H in pixels
+    #[arg(long, value_name = "W,H", default_value = "640,240", value_parser = parse_size)]
+    pub size: [usize; 2],
+    /// Samples per pixel of the eye pass
+    #[arg(long, default_value_t = 4)]
+    pub spp: u32,
+    /// Seed of every random choice (same seed, same image, any thread count)
+    #[arg(long, default_value_t = 0)]
+    pub seed: u64,
+    /// Worker threads; 0 = all cores
+    #[arg(long, default_value_t = 0)]
+    pub threads: usize,
+    /// Eye rays at a dispersive face: one hero wavelength goes on, or split into --split rays (report 001)
+    #[arg(long, value_enum, default_value_t = EyeMode::Hero)]
+    pub eye: EyeMode,
+    /// Monochromatic rays per split with --eye split
+    #[arg(long, default_value_t = 8)]
+    pub split: u32,
+    /// Exposure multiplier [default: automatic, the 99.5th percentile at full scale]
+    #[arg(long)]
+    pub exposure: Option<f64>,
+    /// Out-of-gamut colours: desaturate at equal luminance, or clip each channel
+    #[arg(long, value_enum, default_value_t = GamutMap::Desaturate)]
+    pub gamut: GamutMap,
+    /// Output image: .png, .ppm (display) or .pfm (linear sRGB)
+    #[arg(long, default_value = "results/prism.png")]
+    pub out: PathBuf,
+    /// Append one timing row to this CSV
+    #[arg(long, value_name = "FILE")]
+    pub timing_csv: Option<PathBuf>,
+}
+
+fn parse_visible_nm(s: &str) -> Result<f64, String> {
+    let v: f64 = s.trim().parse().map_err(|_| format!("`{s}` is not a wavelength in nm"))?;
+    if !(360.0..=830.0).contains(&v) {
+        return Err(format!("{v} nm is outside 360-830 nm"));
+    }
+    Ok(v)
+}
+
+impl PrismSceneArgs {
+    fn options(&self, size: [usize; 2], light: Option<String>) -> SceneOptions {
+        SceneOptions {
+            kind: self.scene,
+            crown: self.glass.clone(),
+            flint: self.flint.clone(),
+            flint_apex_deg: self.flint_apex,
+            ior: self.ior_model,
+            light,
+            incidence_deg: self.incidence,
+            no_prism: self.no_prism,
+            no_dispersion: self.no_dispersion,
+            width: size[0],
+            height: size[1],
+        }
+    }
 }
 
 #[derive(Subcommand, Debug)]
@@ -281,6 +421,7 @@ pub fn run(cli: Cli) -> Result<()> {
     match cli.command {
         Command::Interior(args) => run_interior(args),
         Command::Meshes { dir } => write_meshes(&dir),
+        Command::Prism(args) => run_prism(args),
         Command::Spectrum { which } => run_spectrum(which),
         Command::Glass(args) => run_glass(args),
         Command::Bench { which: BenchCommand::Interior { quick } } => write_stdout(&crate::bench::interior(quick)?),
@@ -403,4 +544,63 @@ fn run_glass(args: GlassArgs) -> Result<()> {
         outln!(o, "{l},{:.7}", model.n(*l));
     }
     write_stdout(&o)
+}
+
+fn run_prism(args: PrismArgs) -> Result<()> {
+    if let Some(PrismCommand::Trace { scene, wavelengths }) = args.probe {
+        let built = crate::prism::scenes::build(&scene.options([64, 64], None))?;
+        let mut o = String::new();
+        outln!(o, "wavelength_nm,exit_x,exit_y,exit_z,deviation_deg,transmittance");
+        for nm in wavelengths {
+            let p = crate::prism::probe::probe(&built, nm);
+            if p.tir {
+                outln!(o, "{nm},nan,nan,nan,nan,0");
+            } else {
+                outln!(o, "{nm},{:.9},{:.9},{:.9},{:.6},{:.6}", p.exit_dir.x, p.exit_dir.y, p.exit_dir.z, p.deviation_deg, p.transmittance);
+            }
+        }
+        return write_stdout(&o);
+    }
+    let r = args.render;
+    let mut cfg = crate::prism::PrismConfig::new(args.scene.options(r.size, r.light.clone()), r.out.clone());
+    cfg.photons = r.photons;
+    cfg.map = r.map;
+    cfg.filter = r.filter;
+    cfg.radius = r.radius;
+    cfg.k = r.k;
+    cfg.spp = r.spp;
+    cfg.seed = r.seed;
+    cfg.threads = r.threads;
+    cfg.eye = r.eye;
+    cfg.split = r.split;
+    cfg.exposure = r.exposure;
+    cfg.gamut = r.gamut;
+    if let Some(parent) = cfg.out.parent() {
+        if cfg.out.starts_with("results") && !parent.as_os_str().is_empty() {
+            std::fs::create_dir_all(parent).with_context(|| format!("cannot create {}", parent.display()))?;
+        } else if !parent.as_os_str().is_empty() && !parent.is_dir() {
+            bail!("--out: folder {} does not exist", parent.display());
+        }
+    }
+    if let Some(path) = &r.timing_csv {
+        crate::timing::check_header(path, &crate::prism::TIMING_HEADER)?;
+    }
+    let report = crate::prism::run(&cfg)?;
+    if let Some(path) = &r.timing_csv {
+        crate::prism::append_timing(path, &cfg, &report)?;
+    }
+    let s = &report.render.stats;
+    eprintln!(
+        "wrote {} ({}x{}): {} photons, {} stored, {:.2} s light pass ({:.2} M photons/s), {:.2} s eye pass, exposure {:.3e}",
+        cfg.out.display(),
+        cfg.scene.width,
+        cfg.scene.height,
+        s.emitted,
+        s.stored,
+        report.render.trace_s,
+        s.emitted as f64 / report.render.trace_s.max(1e-9) / 1e6,
+        report.render.render_s,
+        report.exposure
+    );
+    Ok(())
 }

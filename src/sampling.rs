@@ -42,15 +42,27 @@ pub fn van_der_corput(i: u64, scramble: u64) -> f64 {
     ((i.reverse_bits() ^ scramble) >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
 }
 
-/// Radical inverse in base 3 (second Halton dimension).
-pub fn halton3(mut i: u64) -> f64 {
+/// Radical inverse of `i` in a prime `base` (a Halton dimension).
+pub fn radical_inverse(mut i: u64, base: u64) -> f64 {
+    let inv = 1.0 / base as f64;
     let (mut f, mut r) = (1.0, 0.0);
     while i > 0 {
-        f /= 3.0;
-        r += f * (i % 3) as f64;
-        i /= 3;
+        f *= inv;
+        r += f * (i % base) as f64;
+        i /= base;
     }
     r
+}
+
+/// `u` shifted by `offset` modulo 1 (Cranley-Patterson rotation): a
+/// randomised low-discrepancy point keeps its stratification.
+pub fn rotate(u: f64, offset: f64) -> f64 {
+    let v = u + offset;
+    if v >= 1.0 {
+        v - 1.0
+    } else {
+        v
+    }
 }
 
 #[cfg(test)]
@@ -70,6 +82,6 @@ mod tests {
             bins[(van_der_corput(i, 0) * 8.0) as usize] += 1;
         }
         assert_eq!(bins, [1; 8]);
-        assert!((halton3(1) - 1.0 / 3.0).abs() < 1e-15 && (halton3(4) - 4.0 / 9.0).abs() < 1e-15);
+        assert!((radical_inverse(1, 3) - 1.0 / 3.0).abs() < 1e-15 && (radical_inverse(4, 3) - 4.0 / 9.0).abs() < 1e-15);
     }
 }

@@ -4,7 +4,196 @@
 //! matte surfaces, an eye pass without Phong reads the colour back.
 
 pub mod amici;
+pub mod film;
 pub mod probe;
+pub mod render;
 pub mod scene;
 pub mod scenes;
 pub mod trace;
+
+use crate::photon::gather::{Filter, Lookup};
+use crate::photon::map::MapKind;
+use crate::spectrum::cie::GamutMap;
+use anyhow::{bail, Result};
+use render::{EyeMode, PrismRender, RenderOptions};
+use scenes::SceneOptions;
+use std::path::{Path, PathBuf};
+
+/// A whole `refract prism` run: scene, passes and output.
+#[derive(Clone, Debug)]
+pub struct PrismConfig {
+    pub scene: SceneOptions,
+    pub photons: u64,
+    pub map: MapKind,
+    pub filter: Filter,
+    /// Gather radius in metres; `None` = two pixels' footprint on the screen.
+    pub radius: Option<f64>,
+    /// k nearest photons instead of a fixed radius (kd-tree only).
+    pub k: Option<usize>,
+    pub spp: u32,
+    pub seed: u64,
+    pub threads: usize,
+    pub eye: EyeMode,
+    pub split: u32,
+    /// `None` = automatic (99.5th percentile at full scale).
+    pub exposure: Option<f64>,
+    pub gamut: GamutMap,
+    pub out: PathBuf,
+}
+
+impl PrismConfig {
+    pub fn new(scene: SceneOptions, out: PathBuf) -> Self {
+        PrismConfig {
+            scene,
+            photons: 1_000_000,
+            map: MapKind::Kdtree,
+            filter: Filter::Cone,
+            radius: None,
+            k: None,
+            spp: 4,
+            seed: 0,
+            threads: 0,
+            eye: EyeMode::Hero,
+            split: 8,
+            exposure: None,
+            gamut: GamutMap::Desaturate,
+            out,
+        }
+    }
+
+    /// Rejects impossible combinations, naming the flag.
+    pub fn validate(&self) -> Result<()> {
+        if self.photons == 0 || self.photons > 2_000_000_000 {
+            bail!("--photons: {} is not between 1 and 2e9", self.photons);
+        }
+        if let Some(r) = self.radius {
+            if !(r.is_finite() && r > 0.0) {
+                bail!("--radius: {r} must be a positive distance in metres");
+            }
+        }
+        match self.k {
+            Some(0) => bail!("--k: must be at least 1"),
+            Some(_) if self.map == MapKind::Buffer => bail!("--k needs --map kdtree: the buffer holds texels, not photons"),
+            Some(_) if self.radius.is_some() => bail!("--k and --radius exclude each other"),
+            _ => {}
+        }
+        if self.spp == 0 || self.spp > 65536 {
+            bail!("--spp: {} is not between 1 and 65536", self.spp);
+        }
+        if self.split == 0 || self.split > 1024 {
+            bail!("--split: {} is not between 1 and 1024", self.split);
+        }
+        if let Some(e) = self.exposure {
+            if !(e.is_finite() && e > 0.0) {
+                bail!("--exposure: {e} must be a positive number");
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Everything a run measured.
+pub struct PrismReport {
+    pub render: PrismRender,
+    pub exposure: f64,
+    pub radius: f64,
+    pub threads: usize,
+    pub peak_mem_mb: f64,
+}
+
+/// Builds the scene, renders, writes the image.
+pub fn run(cfg: &PrismConfig) -> Result<PrismReport> {
+    cfg.validate()?;
+    let scene = scenes::build(&cfg.scene)?;
+    let radius = cfg.radius.unwrap_or_else(|| default_radius(&scene));
+    let lookup = match cfg.k {
+        Some(k) => Lookup::Nearest(k),
+        None => Lookup::Radius(radius),
+    };
+    let opts = RenderOptions { photons: cfg.photons, map: cfg.map, filter: cfg.filter, lookup, spp: cfg.spp, seed: cfg.seed, eye: cfg.eye, split: cfg.split };
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(cfg.threads).build()?;
+    let bars = indicatif::MultiProgress::new();
+    let render = pool.install(|| render::render(&scene, &opts, &bars));
+    let exposure = cfg.exposure.unwrap_or_else(|| render.image.auto_exposure());
+    render.image.write(&cfg.out, exposure, cfg.gamut)?;
+    Ok(PrismReport { render, exposure, radius: lookup.radius(), threads: pool.current_num_threads(), peak_mem_mb: peak_memory_mb() })
+}
+
+/// Two pixels' footprint on the first matte surface (1 mm without one).
+pub fn default_radius(scene: &scene::PrismScene) -> f64 {
+    scene
+        .maps
+        .first()
+        .and_then(|&f| scene.faces[f].frame)
+        .map(|(c, eu, _)| {
+            let dist = (c + eu / 2.0 - scene.camera.pos).length();
+            2.0 * dist * (scene.camera.vfov / 2.0).tan() * 2.0 / scene.camera.height as f64
+        })
+        .unwrap_or(1e-3)
+}
+
+/// Peak resident memory of this process in MB (Linux; 0 elsewhere).
+pub fn peak_memory_mb() -> f64 {
+    std::fs::read_to_string("/proc/self/status")
+        .ok()
+        .and_then(|s| s.lines().find(|l| l.starts_with("VmHWM:")).and_then(|l| l.split_whitespace().nth(1)).and_then(|v| v.parse::<f64>().ok()))
+        .map_or(0.0, |kb| kb / 1024.0)
+}
+
+/// Columns of the prism mode's timing CSV.
+pub const TIMING_HEADER: [&str; 20] = [
+    "mode",
+    "scene",
+    "light",
+    "photons",
+    "stored",
+    "width",
+    "height",
+    "spp",
+    "map",
+    "filter",
+    "radius_m",
+    "k",
+    "eye",
+    "threads",
+    "trace_s",
+    "build_s",
+    "render_s",
+    "photons_per_s",
+    "bytes_per_photon",
+    "peak_mem_mb",
+];
+
+pub fn timing_row(cfg: &PrismConfig, r: &PrismReport) -> Vec<String> {
+    use crate::timing::cell;
+    let s = &r.render.stats;
+    vec![
+        "prism".into(),
+        cfg.scene.kind.name().into(),
+        cfg.scene.light.clone().unwrap_or_else(|| "default".into()),
+        s.emitted.to_string(),
+        s.stored.to_string(),
+        cfg.scene.width.to_string(),
+        cfg.scene.height.to_string(),
+        cfg.spp.to_string(),
+        cfg.map.name().into(),
+        cfg.filter.name().into(),
+        cell(r.radius),
+        cfg.k.map_or(String::new(), |k| k.to_string()),
+        match cfg.eye {
+            EyeMode::Hero => "hero".into(),
+            EyeMode::Split => format!("split{}", cfg.split),
+        },
+        r.threads.to_string(),
+        cell(r.render.trace_s),
+        cell(r.render.build_s),
+        cell(r.render.render_s),
+        cell(if r.render.trace_s > 0.0 { s.emitted as f64 / r.render.trace_s } else { 0.0 }),
+        cell(if s.stored > 0 { r.render.map_bytes as f64 / s.stored as f64 } else { 0.0 }),
+        cell(r.peak_mem_mb),
+    ]
+}
+
+pub fn append_timing(path: &Path, cfg: &PrismConfig, r: &PrismReport) -> Result<()> {
+    crate::timing::append_row(path, &TIMING_HEADER, &timing_row(cfg, r))
+}

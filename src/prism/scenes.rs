@@ -238,7 +238,7 @@ fn single_prism(o: &SceneOptions) -> Result<PrismScene> {
     let out = d_line.exit_dir;
     let centre = d_line.exit_point + out * 4.0;
     let (width, high) = (0.24, 0.24 * o.height as f64 / o.width as f64);
-    let u = DVec3::Z.cross(out).normalize(); // in the xy plane, across the strip
+    let u = out.cross(DVec3::Z).normalize(); // in the xy plane, across the strip
     let corner = centre - u * (width / 2.0) - DVec3::Z * (high / 2.0);
     // Normal u x z = -out: facing the prism.
     scene.faces.push(Face::rect("screen", corner, u * width, DVec3::Z * high, Surface::Diffuse { albedo: 0.8, map: 0 }));

@@ -157,18 +157,7 @@ impl GamutMap {
         match self {
             GamutMap::Clip => v.clamp(DVec3::ZERO, DVec3::ONE),
             GamutMap::Desaturate => {
-                let y = SRGB_LUMA.dot(v);
-                if y <= 0.0 {
-                    return DVec3::ZERO;
-                }
-                let min = v.min_element();
-                let v = if min < 0.0 {
-                    // Move toward grey (y, y, y) just far enough that min = 0.
-                    let t = y / (y - min);
-                    DVec3::splat(y) + t * (v - DVec3::splat(y))
-                } else {
-                    v
-                };
+                let v = desaturate(v);
                 let max = v.max_element();
                 if max > 1.0 {
                     v / max
@@ -177,6 +166,23 @@ impl GamutMap {
                 }
             }
         }
+    }
+}
+
+/// Moves a colour toward the grey of its own luminance just far enough
+/// that no channel is negative (black if its luminance is not positive).
+/// Scale-invariant: exposure can be chosen after it.
+pub fn desaturate(v: DVec3) -> DVec3 {
+    let y = SRGB_LUMA.dot(v);
+    if !(y > 0.0) || !v.is_finite() {
+        return DVec3::ZERO;
+    }
+    let min = v.min_element();
+    if min < 0.0 {
+        let t = y / (y - min);
+        DVec3::splat(y) + t * (v - DVec3::splat(y))
+    } else {
+        v
     }
 }
 

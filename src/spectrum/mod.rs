@@ -5,6 +5,7 @@ pub mod cie;
 pub mod colormap;
 pub mod rgb_fit;
 pub mod sampled;
+pub mod sampler;
 pub mod spectra;
 
 pub use cie::{LinearRgb, Xyz};

@@ -1,0 +1,197 @@
+//! The light pass (report 000's "light ray-tracing"): photons leave every
+//! light, cross the prism's faces by Snell's law with Fresnel reflection
+//! chosen by Russian roulette (s or p polarisation kept along the path),
+//! reflect totally where they must, and are stored where they land on a
+//! matte surface.
+//!
+//! A photon is white (it carries the light's whole spectrum as XYZ) until
+//! it meets a medium whose index varies with wavelength; there it takes one
+//! wavelength, sampled in proportion to the light's spectrum and stratified
+//! over the photons, and carries cmf(lambda) from then on. So a prism with a
+//! constant index leaves the colour exactly white, and spectral work is
+//! done only where something disperses.
+
+use super::map::Photon;
+use crate::prism::scene::{Emission, PrismScene, Surface};
+use crate::prism::trace::{cross, Polarisation};
+use crate::sampling::{radical_inverse, rotate, Rng};
+use crate::spectrum::cie::cmf;
+use crate::spectrum::sampler::WavelengthSampler;
+use glam::{DVec2, DVec3};
+use rayon::prelude::*;
+
+/// Counts from the light pass.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct LightStats {
+    pub emitted: u64,
+    pub stored: u64,
+    /// Photons that took a wavelength at a dispersive face.
+    pub dispersed: u64,
+    /// Total internal reflections met.
+    pub tir: u64,
+    /// Power emitted and stored, W.
+    pub emitted_power: f64,
+    pub stored_power: f64,
+}
+
+impl LightStats {
+    fn add(&mut self, o: &LightStats) {
+        self.emitted += o.emitted;
+        self.stored += o.stored;
+        self.dispersed += o.dispersed;
+        self.tir += o.tir;
+        self.emitted_power += o.emitted_power;
+        self.stored_power += o.stored_power;
+    }
+}
+
+/// Photons per matte surface (in `scene.maps` order) and the counts.
+pub struct LightPass {
+    pub photons: Vec<Vec<Photon>>,
+    pub stats: LightStats,
+}
+
+const MAX_BOUNCES: usize = 100;
+const CHUNK: u64 = 8192;
+
+/// Traces `total` photons, shared among the lights by power. The result
+/// depends only on the scene, `total` and `seed`, not on thread count.
+pub fn light_pass(scene: &PrismScene, total: u64, seed: u64, progress: &indicatif::ProgressBar) -> LightPass {
+    let mut out = LightPass { photons: vec![Vec::new(); scene.maps.len()], stats: LightStats::default() };
+    let power: f64 = scene.lights.iter().map(|l| l.power).sum();
+    if scene.maps.is_empty() || power <= 0.0 {
+        return out;
+    }
+    for (li, light) in scene.lights.iter().enumerate() {
+        let n = ((total as f64 * light.power / power).round() as u64).max(1);
+        let sampler = WavelengthSampler::new(&light.spectrum);
+        let white = sampler.mean_cmf();
+        let per_photon = light.power / n as f64;
+        let mut key = Rng::new(seed, li as u64, 0xfeed);
+        let offsets = [key.f64(), key.f64(), key.f64()];
+        let chunks: Vec<(u64, u64)> = (0..n.div_ceil(CHUNK)).map(|c| (c * CHUNK, ((c + 1) * CHUNK).min(n))).collect();
+        let results: Vec<(Vec<Vec<Photon>>, LightStats)> = chunks
+            .par_iter()
+            .map(|&(a, b)| {
+                let mut maps = vec![Vec::new(); scene.maps.len()];
+                let mut stats = LightStats::default();
+                for i in a..b {
+                    let u = [rotate(radical_inverse(i, 3), offsets[0]), rotate(radical_inverse(i, 5), offsets[1]), rotate(radical_inverse(i, 2), offsets[2])];
+                    let mut rng = Rng::new(seed, i, 1 + li as u64);
+                    let (o, d) = emit(scene, &light.emission, u[0], u[1], &mut rng);
+                    trace_photon(scene, o, d, per_photon, white, &sampler, u[2], &mut rng, &mut maps, &mut stats);
+                }
+                progress.inc(b - a);
+                (maps, stats)
+            })
+            .collect();
+        for (maps, stats) in results {
+            for (dst, src) in out.photons.iter_mut().zip(maps) {
+                dst.extend(src);
+            }
+            out.stats.add(&stats);
+        }
+    }
+    out
+}
+
+/// Start point and direction of a photon from two stratified numbers (and
+/// the photon's own stream where a direction is random too).
+fn emit(scene: &PrismScene, e: &Emission, a: f64, b: f64, rng: &mut Rng) -> (DVec3, DVec3) {
+    match e {
+        Emission::Beam { centre, dir, u, v, half, disc } => {
+            let p = if *disc { concentric_disc(a, b) } else { DVec2::new(2.0 * a - 1.0, 2.0 * b - 1.0) };
+            (*centre + *u * (p.x * half.x) + *v * (p.y * half.y), *dir)
+        }
+        Emission::Point { pos } => {
+            let z = 1.0 - 2.0 * a;
+            let r = (1.0 - z * z).max(0.0).sqrt();
+            let phi = 2.0 * std::f64::consts::PI * b;
+            (*pos, DVec3::new(r * phi.cos(), r * phi.sin(), z))
+        }
+        Emission::Area { face } => {
+            let f = &scene.faces[*face];
+            let (c, eu, ev) = f.frame.expect("area lights are parallelograms");
+            // Position from (a, b); direction cosine-weighted (Malley's method).
+            let d = concentric_disc(rng.f64(), rng.f64());
+            let z = (1.0 - d.length_squared()).max(0.0).sqrt();
+            let (t, s) = (eu.normalize(), f.normal.cross(eu.normalize()));
+            (c + a * eu + b * ev + f.normal * 1e-9, t * d.x + s * d.y + f.normal * z)
+        }
+    }
+}
+
+/// Shirley and Chiu's concentric map of the square onto the unit disc.
+pub fn concentric_disc(a: f64, b: f64) -> DVec2 {
+    let (x, y) = (2.0 * a - 1.0, 2.0 * b - 1.0);
+    if x == 0.0 && y == 0.0 {
+        return DVec2::ZERO;
+    }
+    let (r, t) =
+        if x.abs() > y.abs() { (x, std::f64::consts::FRAC_PI_4 * (y / x)) } else { (y, std::f64::consts::FRAC_PI_2 - std::f64::consts::FRAC_PI_4 * (x / y)) };
+    DVec2::new(r * t.cos(), r * t.sin())
+}
+
+#[allow(clippy::too_many_arguments)]
+fn trace_photon(
+    scene: &PrismScene,
+    mut o: DVec3,
+    mut d: DVec3,
+    power: f64,
+    white: DVec3,
+    sampler: &WavelengthSampler,
+    u_lambda: f64,
+    rng: &mut Rng,
+    maps: &mut [Vec<Photon>],
+    stats: &mut LightStats,
+) {
+    stats.emitted += 1;
+    stats.emitted_power += power;
+    let pol = if rng.f64() < 0.5 { Polarisation::S } else { Polarisation::P };
+    let mut nm: Option<f64> = None;
+    let mut xyz = white * power;
+    let mut skip = None;
+    for _ in 0..MAX_BOUNCES {
+        let Some(hit) = scene.intersect(o, d, skip) else { return };
+        let face = &scene.faces[hit.face];
+        let p = o + hit.t * d;
+        match face.surface {
+            Surface::Interface { .. } => {
+                let c = match cross(scene, hit.face, d, nm) {
+                    Ok(c) => c,
+                    Err(_) => {
+                        let (l, _pdf) = sampler.sample(u_lambda);
+                        nm = Some(l);
+                        // Sampled in proportion to the spectrum: the flux of
+                        // one watt at l is cmf(l) (see `mean_cmf`).
+                        xyz = cmf(l) * power;
+                        stats.dispersed += 1;
+                        cross(scene, hit.face, d, nm).expect("a wavelength is set")
+                    }
+                };
+                if c.refracted.is_none() {
+                    stats.tir += 1;
+                }
+                d = match c.refracted {
+                    Some(t) if rng.f64() >= c.reflectance(pol) => t,
+                    _ => c.reflected,
+                };
+            }
+            Surface::Diffuse { map, .. } => {
+                if d.dot(face.normal) < 0.0 {
+                    let (_, eu, ev) = face.frame.expect("matte surfaces are parallelograms");
+                    if let Some(uv) = face.uv(p) {
+                        let pos = [(uv.x * eu.length()) as f32, (uv.y * ev.length()) as f32];
+                        maps[map].push(Photon { pos, xyz: [xyz.x as f32, xyz.y as f32, xyz.z as f32] });
+                        stats.stored += 1;
+                        stats.stored_power += power;
+                    }
+                }
+                return;
+            }
+            Surface::Emitter { .. } => return,
+        }
+        o = p;
+        skip = Some(hit.face);
+    }
+}

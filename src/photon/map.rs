@@ -1,0 +1,271 @@
+//! Photon storage on a flat matte surface, two ways:
+//! - `buffer`: report 000's per-object 2-D photon map buffer, texels over
+//!   the surface's (u, v), each summing the flux of the photons that land
+//!   in it (no memory per photon);
+//! - `kdtree`: every photon kept (20 bytes: u, v in metres and XYZ flux as
+//!   f32) in an implicit, balanced 2-D kd-tree for radius or k-nearest
+//!   queries.
+//! Both answer the same question: irradiance (XYZ per m^2) at a point,
+//! estimated with a filter kernel (box, cone or Gaussian, see `gather`).
+
+use super::gather::{Filter, Lookup};
+use glam::{DVec2, DVec3};
+use std::collections::BinaryHeap;
+
+/// One stored photon: position on the surface (m) and XYZ flux (W-weighted
+/// colour-matching values).
+#[derive(Copy, Clone, Debug, PartialEq)]
+#[repr(C)]
+pub struct Photon {
+    pub pos: [f32; 2],
+    pub xyz: [f32; 3],
+}
+
+#[derive(Copy, Clone, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum MapKind {
+    /// The report's per-object 2-D buffer of texels.
+    Buffer,
+    /// A kd-tree of individual photons.
+    Kdtree,
+}
+
+impl MapKind {
+    pub fn name(self) -> &'static str {
+        match self {
+            MapKind::Buffer => "buffer",
+            MapKind::Kdtree => "kdtree",
+        }
+    }
+}
+
+pub enum SurfaceMap {
+    Buffer { size: DVec2, nu: usize, nv: usize, flux: Vec<[f32; 3]> },
+    Kd { photons: Vec<Photon> },
+}
+
+impl SurfaceMap {
+    /// Builds a map of the surface of `size` (m) from its photons. The
+    /// buffer's texels are `texel` metres wide (at most 4096 per side).
+    pub fn build(kind: MapKind, size: DVec2, photons: Vec<Photon>, texel: f64) -> SurfaceMap {
+        match kind {
+            MapKind::Buffer => {
+                let nu = ((size.x / texel).ceil() as usize).clamp(1, 4096);
+                let nv = ((size.y / texel).ceil() as usize).clamp(1, 4096);
+                let mut flux = vec![[0f32; 3]; nu * nv];
+                for p in &photons {
+                    let iu = ((p.pos[0] as f64 / size.x * nu as f64) as usize).min(nu - 1);
+                    let iv = ((p.pos[1] as f64 / size.y * nv as f64) as usize).min(nv - 1);
+                    let t = &mut flux[iv * nu + iu];
+                    for k in 0..3 {
+                        t[k] += p.xyz[k];
+                    }
+                }
+                SurfaceMap::Buffer { size, nu, nv, flux }
+            }
+            MapKind::Kdtree => {
+                let mut photons = photons;
+                balance(&mut photons, 0);
+                SurfaceMap::Kd { photons }
+            }
+        }
+    }
+
+    /// Bytes held per stored photon (the buffer holds texels, not photons).
+    pub fn bytes(&self) -> usize {
+        match self {
+            SurfaceMap::Buffer { flux, .. } => flux.len() * std::mem::size_of::<[f32; 3]>(),
+            SurfaceMap::Kd { photons } => photons.len() * std::mem::size_of::<Photon>(),
+        }
+    }
+
+    /// Irradiance (XYZ per m^2) at `x` (m, in the surface's frame).
+    pub fn irradiance(&self, x: DVec2, filter: Filter, lookup: Lookup) -> DVec3 {
+        match self {
+            SurfaceMap::Buffer { size, nu, nv, flux } => {
+                let r = lookup.radius();
+                let (tu, tv) = (size.x / *nu as f64, size.y / *nv as f64);
+                let (u0, u1) = (((x.x - r) / tu).floor().max(0.0) as usize, (((x.x + r) / tu).ceil().max(0.0) as usize).min(*nu));
+                let (v0, v1) = (((x.y - r) / tv).floor().max(0.0) as usize, (((x.y + r) / tv).ceil().max(0.0) as usize).min(*nv));
+                let (mut sum, mut wsum) = (DVec3::ZERO, 0.0);
+                for iv in v0..v1 {
+                    for iu in u0..u1 {
+                        let c = DVec2::new((iu as f64 + 0.5) * tu, (iv as f64 + 0.5) * tv);
+                        let w = filter.weight((c - x).length(), r);
+                        if w > 0.0 {
+                            let f = flux[iv * nu + iu];
+                            sum += w * DVec3::new(f[0] as f64, f[1] as f64, f[2] as f64);
+                            wsum += w;
+                        }
+                    }
+                }
+                // Normalised by the discrete kernel sum: exact for uniform
+                // light, and no darkening at the surface's edges.
+                if wsum > 0.0 {
+                    sum / (wsum * tu * tv)
+                } else {
+                    // Radius smaller than a texel: the texel under x alone.
+                    let iu = ((x.x / tu) as usize).min(nu - 1);
+                    let iv = ((x.y / tv) as usize).min(nv - 1);
+                    let f = flux[iv * nu + iu];
+                    DVec3::new(f[0] as f64, f[1] as f64, f[2] as f64) / (tu * tv)
+                }
+            }
+            SurfaceMap::Kd { photons } => {
+                let (found, r) = match lookup {
+                    Lookup::Radius(r) => {
+                        let mut found = Vec::new();
+                        radius_query(photons, 0, photons.len(), 0, x, r * r, &mut found);
+                        (found, r)
+                    }
+                    Lookup::Nearest(k) => knn_query(photons, x, k),
+                };
+                if r <= 0.0 {
+                    return DVec3::ZERO;
+                }
+                let mut sum = DVec3::ZERO;
+                for (i, d2) in found {
+                    let p = &photons[i];
+                    sum += filter.weight(d2.sqrt(), r) * DVec3::new(p.xyz[0] as f64, p.xyz[1] as f64, p.xyz[2] as f64);
+                }
+                sum * filter.norm(r)
+            }
+        }
+    }
+}
+
+/// Orders `p` as an implicit kd-tree: the median of each range on the
+/// axis of its depth (u, v, u, ...) sits at the range's middle.
+fn balance(p: &mut [Photon], depth: usize) {
+    if p.len() <= 1 {
+        return;
+    }
+    let mid = p.len() / 2;
+    let axis = depth % 2;
+    p.select_nth_unstable_by(mid, |a, b| a.pos[axis].total_cmp(&b.pos[axis]));
+    let (l, r) = p.split_at_mut(mid);
+    balance(l, depth + 1);
+    balance(&mut r[1..], depth + 1);
+}
+
+fn dist2(p: &Photon, x: DVec2) -> f64 {
+    let (du, dv) = (p.pos[0] as f64 - x.x, p.pos[1] as f64 - x.y);
+    du * du + dv * dv
+}
+
+fn radius_query(p: &[Photon], lo: usize, hi: usize, depth: usize, x: DVec2, r2: f64, out: &mut Vec<(usize, f64)>) {
+    if lo >= hi {
+        return;
+    }
+    let mid = lo + (hi - lo) / 2;
+    let d2 = dist2(&p[mid], x);
+    if d2 <= r2 {
+        out.push((mid, d2));
+    }
+    let axis = depth % 2;
+    let delta = x[axis] - p[mid].pos[axis] as f64;
+    let (near, far) = if delta < 0.0 { ((lo, mid), (mid + 1, hi)) } else { ((mid + 1, hi), (lo, mid)) };
+    radius_query(p, near.0, near.1, depth + 1, x, r2, out);
+    if delta * delta <= r2 {
+        radius_query(p, far.0, far.1, depth + 1, x, r2, out);
+    }
+}
+
+/// The k nearest photons and the distance to the farthest of them.
+fn knn_query(p: &[Photon], x: DVec2, k: usize) -> (Vec<(usize, f64)>, f64) {
+    #[derive(PartialEq)]
+    struct Item(f64, usize);
+    impl Eq for Item {}
+    impl PartialOrd for Item {
+        fn partial_cmp(&self, o: &Self) -> Option<std::cmp::Ordering> {
+            Some(self.cmp(o))
+        }
+    }
+    impl Ord for Item {
+        fn cmp(&self, o: &Self) -> std::cmp::Ordering {
+            self.0.total_cmp(&o.0).then(self.1.cmp(&o.1))
+        }
+    }
+    fn rec(p: &[Photon], lo: usize, hi: usize, depth: usize, x: DVec2, k: usize, heap: &mut BinaryHeap<Item>) {
+        if lo >= hi {
+            return;
+        }
+        let mid = lo + (hi - lo) / 2;
+        let d2 = dist2(&p[mid], x);
+        if heap.len() < k {
+            heap.push(Item(d2, mid));
+        } else if d2 < heap.peek().map_or(f64::INFINITY, |t| t.0) {
+            heap.pop();
+            heap.push(Item(d2, mid));
+        }
+        let axis = depth % 2;
+        let delta = x[axis] - p[mid].pos[axis] as f64;
+        let (near, far) = if delta < 0.0 { ((lo, mid), (mid + 1, hi)) } else { ((mid + 1, hi), (lo, mid)) };
+        rec(p, near.0, near.1, depth + 1, x, k, heap);
+        let worst = if heap.len() < k { f64::INFINITY } else { heap.peek().map_or(f64::INFINITY, |t| t.0) };
+        if delta * delta < worst {
+            rec(p, far.0, far.1, depth + 1, x, k, heap);
+        }
+    }
+    let mut heap = BinaryHeap::with_capacity(k + 1);
+    if k > 0 {
+        rec(p, 0, p.len(), 0, x, k, &mut heap);
+    }
+    let r = heap.peek().map_or(0.0, |t| t.0.sqrt());
+    (heap.into_iter().map(|Item(d2, i)| (i, d2)).collect(), r)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sampling::Rng;
+
+    fn cloud(n: usize) -> Vec<Photon> {
+        let mut r = Rng::new(5, 0, 0);
+        (0..n).map(|_| Photon { pos: [r.f32(), r.f32() * 0.5], xyz: [1.0, 2.0, 3.0] }).collect()
+    }
+
+    #[test]
+    fn photon_is_20_bytes() {
+        assert_eq!(std::mem::size_of::<Photon>(), 20);
+    }
+
+    #[test]
+    fn kdtree_queries_equal_brute_force() {
+        let photons = cloud(5000);
+        let map = SurfaceMap::build(MapKind::Kdtree, DVec2::new(1.0, 0.5), photons.clone(), 0.01);
+        let SurfaceMap::Kd { photons: tree } = &map else { unreachable!() };
+        let mut r = Rng::new(9, 0, 0);
+        for _ in 0..200 {
+            let x = DVec2::new(r.f64(), r.f64() * 0.5);
+            let mut got = Vec::new();
+            radius_query(tree, 0, tree.len(), 0, x, 0.03 * 0.03, &mut got);
+            let want = photons.iter().filter(|p| dist2(p, x) <= 0.03 * 0.03).count();
+            assert_eq!(got.len(), want);
+            let (nn, rk) = knn_query(tree, x, 20);
+            let mut d: Vec<f64> = photons.iter().map(|p| dist2(p, x)).collect();
+            d.sort_by(f64::total_cmp);
+            assert_eq!(nn.len(), 20);
+            assert!((rk - d[19].sqrt()).abs() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn uniform_light_gives_its_irradiance_with_every_map_and_filter() {
+        // 400k photons of flux 1/400k over 1 x 0.5 m: irradiance 2 per m^2.
+        let n = 400_000;
+        let mut photons = cloud(n);
+        photons.iter_mut().for_each(|p| p.xyz = [1.0 / n as f32; 3]);
+        for kind in [MapKind::Buffer, MapKind::Kdtree] {
+            let map = SurfaceMap::build(kind, DVec2::new(1.0, 0.5), photons.clone(), 0.01);
+            for filter in [Filter::Box, Filter::Cone, Filter::Gaussian] {
+                for lookup in [Lookup::Radius(0.03), Lookup::Nearest(400)] {
+                    if kind == MapKind::Buffer && matches!(lookup, Lookup::Nearest(_)) {
+                        continue;
+                    }
+                    let e = map.irradiance(DVec2::new(0.5, 0.25), filter, lookup).x;
+                    assert!((e - 2.0).abs() < 0.15, "{kind:?} {filter:?} {lookup:?}: {e}");
+                }
+            }
+        }
+    }
+}

@@ -1,0 +1,67 @@
+//! The prism renders' film: XYZ per pixel, turned into an image by the
+//! spectral core's pipeline (linear sRGB, exposure, gamut map, encoding).
+//! PNG and PPM are display images; PFM keeps linear sRGB for measurement.
+
+use crate::image_io::{atomic_write, write_rgb8};
+use crate::spectrum::cie::{desaturate, to_srgb8, GamutMap, Xyz};
+use anyhow::Result;
+use glam::DVec3;
+use std::io::Write;
+use std::path::Path;
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct XyzImage {
+    pub width: usize,
+    pub height: usize,
+    pub xyz: Vec<DVec3>,
+}
+
+impl XyzImage {
+    pub fn linear_srgb(&self, i: usize) -> DVec3 {
+        Xyz(self.xyz[i]).to_linear_srgb().0
+    }
+
+    /// Exposure that puts the 99.5th percentile of the brightest channel
+    /// (after the hue-preserving gamut map) at 1; 1 for a black image.
+    pub fn auto_exposure(&self) -> f64 {
+        let mut m: Vec<f64> = (0..self.xyz.len()).map(|i| desaturate(self.linear_srgb(i)).max_element()).filter(|v| *v > 0.0 && v.is_finite()).collect();
+        if m.is_empty() {
+            return 1.0;
+        }
+        let k = ((m.len() as f64 * 0.995) as usize).min(m.len() - 1);
+        let (_, v, _) = m.select_nth_unstable_by(k, f64::total_cmp);
+        1.0 / *v
+    }
+
+    pub fn to_srgb8(&self, exposure: f64, gamut: GamutMap) -> Vec<u8> {
+        (0..self.xyz.len()).flat_map(|i| to_srgb8(crate::spectrum::LinearRgb(self.linear_srgb(i)), exposure, gamut)).collect()
+    }
+
+    /// Non-finite pixels (written as black).
+    pub fn non_finite(&self) -> usize {
+        self.xyz.iter().filter(|v| !v.is_finite()).count()
+    }
+
+    /// Writes .png/.ppm (display) or .pfm (linear sRGB times exposure).
+    pub fn write(&self, path: &Path, exposure: f64, gamut: GamutMap) -> Result<()> {
+        let ext = path.extension().map(|e| e.to_string_lossy().to_ascii_lowercase()).unwrap_or_default();
+        if ext == "pfm" {
+            // Portable float map: little-endian, rows bottom to top.
+            atomic_write(path, |f| {
+                write!(f, "PF\n{} {}\n-1.0\n", self.width, self.height)?;
+                for y in (0..self.height).rev() {
+                    for x in 0..self.width {
+                        let c = self.linear_srgb(y * self.width + x) * exposure;
+                        for v in [c.x, c.y, c.z] {
+                            let v = if v.is_finite() { v as f32 } else { 0.0 };
+                            f.write_all(&v.to_le_bytes())?;
+                        }
+                    }
+                }
+                Ok(())
+            })
+        } else {
+            write_rgb8(path, self.width, self.height, &self.to_srgb8(exposure, gamut))
+        }
+    }
+}

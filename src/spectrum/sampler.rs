@@ -1,0 +1,89 @@
+//! Sampling wavelengths in proportion to a spectrum (inverse CDF over
+//! 0.1 nm bins, 360-830 nm), so photons and eye paths spend their samples
+//! where the light has power: a line spectrum needs no luck to be found.
+
+use super::{Spectrum, LAMBDA_MAX, LAMBDA_MIN};
+
+const BIN_NM: f64 = 0.1;
+
+#[derive(Clone, Debug)]
+pub struct WavelengthSampler {
+    /// Cumulative distribution at bin edges, 0 to 1.
+    cdf: Vec<f64>,
+    /// Integral of the spectrum over 360-830 nm (nm times its unit).
+    integral: f64,
+}
+
+impl WavelengthSampler {
+    pub fn new(s: &Spectrum) -> Self {
+        let n = ((LAMBDA_MAX - LAMBDA_MIN) / BIN_NM).round() as usize;
+        let mut cdf = Vec::with_capacity(n + 1);
+        cdf.push(0.0);
+        let mut acc = 0.0;
+        for i in 0..n {
+            let v = s.eval(LAMBDA_MIN + (i as f64 + 0.5) * BIN_NM).max(0.0);
+            acc += if v.is_finite() { v * BIN_NM } else { 0.0 };
+            cdf.push(acc);
+        }
+        if acc <= 0.0 {
+            // A dark spectrum: sample uniformly so nothing divides by zero.
+            for (i, c) in cdf.iter_mut().enumerate() {
+                *c = i as f64 / n as f64;
+            }
+        } else {
+            cdf.iter_mut().for_each(|c| *c /= acc);
+        }
+        WavelengthSampler { cdf, integral: acc }
+    }
+
+    /// A wavelength for `u` in [0, 1) and its pdf (per nm).
+    pub fn sample(&self, u: f64) -> (f64, f64) {
+        let u = u.clamp(0.0, 1.0 - 1e-12);
+        // First edge with cdf > u; the bin before it holds u.
+        let i = self.cdf.partition_point(|&c| c <= u).clamp(1, self.cdf.len() - 1) - 1;
+        let (c0, c1) = (self.cdf[i], self.cdf[i + 1]);
+        let frac = if c1 > c0 { (u - c0) / (c1 - c0) } else { 0.5 };
+        let nm = LAMBDA_MIN + (i as f64 + frac) * BIN_NM;
+        (nm, (c1 - c0) / BIN_NM)
+    }
+
+    pub fn pdf(&self, nm: f64) -> f64 {
+        let f = (nm - LAMBDA_MIN) / BIN_NM;
+        if !(f >= 0.0 && f < (self.cdf.len() - 1) as f64) {
+            return 0.0;
+        }
+        let i = f as usize;
+        (self.cdf[i + 1] - self.cdf[i]) / BIN_NM
+    }
+
+    pub fn integral(&self) -> f64 {
+        self.integral
+    }
+
+    /// Expected colour-matching values of one sampled wavelength: the XYZ
+    /// of one watt of this light (what a "white" path carries).
+    pub fn mean_cmf(&self) -> glam::DVec3 {
+        (0..self.cdf.len() - 1).map(|i| (self.cdf[i + 1] - self.cdf[i]) * super::cie::cmf(LAMBDA_MIN + (i as f64 + 0.5) * BIN_NM)).sum()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn samples_follow_the_spectrum() {
+        let s = Spectrum::Lines { lines: vec![(450.0, 1.0), (600.0, 3.0)], fwhm: 2.0 };
+        let w = WavelengthSampler::new(&s);
+        assert!((w.integral() - 4.0).abs() < 1e-3);
+        let n = 10000;
+        let near = |c: f64| (0..n).filter(|&k| (w.sample((k as f64 + 0.5) / n as f64).0 - c).abs() < 5.0).count();
+        assert!((near(450.0) as f64 / n as f64 - 0.25).abs() < 0.01);
+        assert!((near(600.0) as f64 / n as f64 - 0.75).abs() < 0.01);
+        let (nm, pdf) = w.sample(0.6);
+        assert!((pdf - w.pdf(nm)).abs() < 1e-9 && pdf > 0.0);
+        // Uniform for a dark spectrum.
+        let dark = WavelengthSampler::new(&Spectrum::Constant(0.0));
+        assert!((dark.sample(0.5).0 - 595.0).abs() < 0.2);
+    }
+}
