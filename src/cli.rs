@@ -103,7 +103,7 @@ pub struct PrismSceneArgs {
     #[arg(long, default_value = "N-SF11")]
     pub flint: String,
     /// Flint apex angle in degrees (the crown apex is then solved for no deviation at the d line)
-    #[arg(long, default_value_t = 90.0)]
+    #[arg(long, default_value_t = 90.0, allow_negative_numbers = true)]
     pub flint_apex: f64,
     /// Index-of-refraction model of the glasses
     #[arg(long, value_enum, default_value_t = IorKind::Sellmeier)]
@@ -125,7 +125,7 @@ pub struct PrismRenderArgs {
     #[arg(long)]
     pub light: Option<String>,
     /// Photons traced in the light pass
-    #[arg(long, default_value_t = 1_000_000)]
+    #[arg(long, default_value_t = 1_000_000, allow_negative_numbers = true)]
     pub photons: u64,
     /// Photon map: the report's per-object buffer or a kd-tree
     #[arg(long, value_enum, default_value_t = MapKind::Kdtree)]
@@ -134,16 +134,16 @@ pub struct PrismRenderArgs {
     #[arg(long, value_enum, default_value_t = Filter::Cone)]
     pub filter: Filter,
     /// Gather radius in metres [default: two pixels' footprint on the screen]
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub radius: Option<f64>,
     /// Gather the k nearest photons instead of a fixed radius (kd-tree only)
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub k: Option<usize>,
     /// Image size W,H in pixels
     #[arg(long, value_name = "W,H", default_value = "640,240", value_parser = parse_size)]
     pub size: [usize; 2],
     /// Samples per pixel of the eye pass
-    #[arg(long, default_value_t = 4)]
+    #[arg(long, default_value_t = 4, allow_negative_numbers = true)]
     pub spp: u32,
     /// Seed of every random choice (same seed, same image, any thread count)
     #[arg(long, default_value_t = 0)]
@@ -155,10 +155,10 @@ pub struct PrismRenderArgs {
     #[arg(long, value_enum, default_value_t = EyeMode::Hero)]
     pub eye: EyeMode,
     /// Monochromatic rays per split with --eye split
-    #[arg(long, default_value_t = 8)]
+    #[arg(long, default_value_t = 8, allow_negative_numbers = true)]
     pub split: u32,
     /// Exposure multiplier [default: automatic, the 99.5th percentile at full scale]
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub exposure: Option<f64>,
     /// Out-of-gamut colours: desaturate at equal luminance, or clip each channel
     #[arg(long, value_enum, default_value_t = GamutMap::Desaturate)]

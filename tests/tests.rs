@@ -20,3 +20,5 @@ mod off_fuzz;
 mod spectral_oracles;
 // Prism scenes against closed-form deviation and the Amici oracle.
 mod prism_optics;
+// Whole prism renders: energy, landing points, chroma, the CFL's line images.
+mod prism_render;
