@@ -117,6 +117,9 @@ pub struct PrismSceneArgs {
     /// Hold the index at n_d for every wavelength ("image with no dispersion effect")
     #[arg(long)]
     pub no_dispersion: bool,
+    /// A Wavefront OBJ mesh (in metres) of --glass that replaces the prism; its winding is made consistent and outward
+    #[arg(long, value_name = "FILE")]
+    pub obj: Option<PathBuf>,
 }
 
 #[derive(Args, Debug)]
@@ -191,6 +194,7 @@ impl PrismSceneArgs {
             incidence_deg: self.incidence,
             no_prism: self.no_prism,
             no_dispersion: self.no_dispersion,
+            obj: self.obj.clone(),
             width: size[0],
             height: size[1],
         }
@@ -469,6 +473,10 @@ fn write_meshes(dir: &std::path::Path) -> Result<()> {
         crate::image_io::atomic_write(&path, |f| Ok(std::io::Write::write_all(f, text.as_bytes())?))?;
         eprintln!("wrote {}", path.display());
     }
+    let path = dir.join("prism60.obj");
+    let text = crate::mesh::generate::prism60_obj();
+    crate::image_io::atomic_write(&path, |f| Ok(std::io::Write::write_all(f, text.as_bytes())?))?;
+    eprintln!("wrote {}", path.display());
     Ok(())
 }
 

@@ -41,3 +41,19 @@ fn single_prism_matches_the_closed_form_deviation() {
     assert!((-probe(&scene, lines::LD).deviation_deg - 38.6467).abs() < 1e-4);
     assert!((probe(&scene, lines::F).deviation_deg - probe(&scene, lines::C).deviation_deg + 0.710).abs() < 1e-3);
 }
+
+#[test]
+fn an_obj_prism_with_mixed_winding_refracts_like_the_built_in_one() {
+    // off/prism60.obj is the built-in prism with three faces wound inward.
+    let mut o = SceneOptions::new(SceneKind::SinglePrism);
+    let built_in = build(&o).unwrap();
+    o.obj = Some(repo("off/prism60.obj"));
+    let from_obj = build(&o).unwrap();
+    for nm in [400.0, lines::F, lines::LD, lines::C, 700.0] {
+        let (a, b) = (probe(&built_in, nm), probe(&from_obj, nm));
+        // The OBJ's vertices pass through f32: agree to 1e-5 degrees.
+        assert!((a.deviation_deg - b.deviation_deg).abs() < 1e-5, "{nm}: {} vs {}", a.deviation_deg, b.deviation_deg);
+        assert!((a.transmittance - b.transmittance).abs() < 1e-6);
+        assert_eq!(b.faces, 2, "in through one face, out through another");
+    }
+}

@@ -196,6 +196,25 @@ pub fn icosphere(subdivisions: u32) -> Mesh {
     icosphere_poly(subdivisions).to_mesh()
 }
 
+/// The single-prism scene's 60 degree prism (side 5 cm, 5 cm tall, metres)
+/// as OBJ, with half its faces wound inward on purpose, as files from
+/// modelling tools come: the loader must make the winding consistent.
+pub fn prism60_obj() -> String {
+    let side = 0.05f64;
+    let tall = side * (30f64.to_radians()).cos();
+    let c = tall / 3.0;
+    let tri = [(-side / 2.0, -c), (side / 2.0, -c), (0.0, tall - c)];
+    let mut s = String::from("# 60 degree prism of the single-prism scene, metres; faces 2, 4 and 5 wound inward on purpose\n# made by `refract meshes`\n");
+    for z in [-0.025, 0.025] {
+        for (x, y) in tri {
+            s.push_str(&format!("v {x} {y} {z}\n"));
+        }
+    }
+    // Bottom cap, top cap (inward), three sides as quads (one inward).
+    s.push_str("f 1 3 2\nf 4 6 5\nf 1 2 5 4\nf 2 5 6 3\nf 3 6 4 1\n");
+    s
+}
+
 /// The meshes shipped in `off/`: (file name, description, mesh).
 pub fn shipped() -> Vec<(&'static str, &'static str, PolyMesh)> {
     vec![

@@ -1,7 +1,8 @@
-//! Triangle meshes: the type the renderers use, the OFF reader, polygon
+//! Triangle meshes: the type the renderers use, the OFF and OBJ readers, polygon
 //! triangulation, consistent outward orientation and generated meshes.
 
 pub mod generate;
+pub mod obj;
 pub mod off;
 pub mod orient;
 pub mod triangulate;

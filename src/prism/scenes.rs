@@ -52,6 +52,8 @@ pub struct SceneOptions {
     pub incidence_deg: Option<f64>,
     pub no_prism: bool,
     pub no_dispersion: bool,
+    /// A user's OBJ mesh (metres) of `crown` glass in place of the prism.
+    pub obj: Option<std::path::PathBuf>,
     pub width: usize,
     pub height: usize,
 }
@@ -68,6 +70,7 @@ impl SceneOptions {
             incidence_deg: None,
             no_prism: false,
             no_dispersion: false,
+            obj: None,
             width: 640,
             height: 240,
         }
@@ -94,17 +97,35 @@ pub fn build(o: &SceneOptions) -> Result<PrismScene> {
         SceneKind::AmiciScreen | SceneKind::AmiciLamp => amici(o)?,
         SceneKind::SinglePrism => single_prism(o)?,
     };
+    if let Some(path) = &o.obj {
+        // The user's mesh replaces the prism; beam, screen and camera stay
+        // where the built-in prism put them.
+        let mesh = crate::mesh::obj::read_obj(path)?;
+        let keep: Vec<Face> = scene.faces.drain(..).filter(|f| !matches!(f.surface, Surface::Interface { .. })).collect();
+        for (i, t) in mesh.triangles.iter().enumerate() {
+            let v: Vec<DVec3> = t.iter().map(|&k| mesh.positions[k as usize].as_dvec3()).collect();
+            let n = (v[1] - v[0]).cross(v[2] - v[0]);
+            scene.faces.push(Face::polygon(&format!("obj triangle {i}"), v, n, Surface::Interface { front: 0, back: 1 }));
+        }
+        scene.faces.extend(keep);
+        reindex(&mut scene);
+    }
     if o.no_prism {
         scene.faces.retain(|f| !matches!(f.surface, Surface::Interface { .. }));
-        // Face indices moved: rebuild the map list and area lights.
-        scene.maps = scene.faces.iter().enumerate().filter(|(_, f)| matches!(f.surface, Surface::Diffuse { .. })).map(|(i, _)| i).collect();
-        for l in &mut scene.lights {
-            if let Emission::Area { face } = &mut l.emission {
-                *face = scene.faces.iter().position(|f| matches!(f.surface, Surface::Emitter { .. })).expect("the lamp face stays");
-            }
-        }
+        reindex(&mut scene);
     }
     Ok(scene)
+}
+
+/// After faces were removed or added: the matte-surface list and the area
+/// lights' face indices follow the faces.
+fn reindex(scene: &mut PrismScene) {
+    scene.maps = scene.faces.iter().enumerate().filter(|(_, f)| matches!(f.surface, Surface::Diffuse { .. })).map(|(i, _)| i).collect();
+    for (li, l) in scene.lights.iter_mut().enumerate() {
+        if let Emission::Area { face } = &mut l.emission {
+            *face = scene.faces.iter().position(|f| f.surface == Surface::Emitter { light: li }).expect("each area light keeps its face");
+        }
+    }
 }
 
 fn light_spectrum(o: &SceneOptions, default: &str) -> Result<Spectrum> {
