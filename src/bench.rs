@@ -119,3 +119,157 @@ pub fn interior(quick: bool) -> Result<String> {
     writeln!(out, "ratio = linear time / bvh time on the same {} rows; columns in millions of rays per second", if quick { "few" } else { "sampled" })?;
     Ok(out)
 }
+
+/// Relative RMSE of luminance: ||Y - Y_ref|| / ||Y_ref|| over all pixels.
+pub fn relative_rmse(img: &crate::prism::film::XyzImage, reference: &crate::prism::film::XyzImage) -> f64 {
+    let (mut num, mut den) = (0.0, 0.0);
+    for (a, b) in img.xyz.iter().zip(&reference.xyz) {
+        num += (a.y - b.y).powi(2);
+        den += b.y * b.y;
+    }
+    if den > 0.0 {
+        (num / den).sqrt()
+    } else {
+        0.0
+    }
+}
+
+/// Time to reach `target` error, interpolated log-log between runs
+/// (`None` if no run got there).
+pub fn time_to_error(runs: &[(f64, f64)], target: f64) -> Option<f64> {
+    let mut runs = runs.to_vec();
+    runs.sort_by(|a, b| a.0.total_cmp(&b.0));
+    if runs.first()?.1 <= target {
+        return Some(runs[0].0);
+    }
+    runs.windows(2).find(|w| w[0].1 > target && w[1].1 <= target).map(|w| {
+        let ((t0, e0), (t1, e1)) = ((w[0].0.ln(), w[0].1.ln()), (w[1].0.ln(), w[1].1.ln()));
+        (t0 + (target.ln() - e0) / (e1 - e0) * (t1 - t0)).exp()
+    })
+}
+
+/// Prism mode: photon throughput per thread, memory per photon, and the
+/// rainbow strip's error against time for every photon map and filter on
+/// the single-prism anchor scene (320x240, 60 degree N-BK7 prism, 2 cm
+/// white beam at 49.4 degrees, screen 4 m behind). The reference is the
+/// kd-tree with 100x the photons of the middle run and half the radius,
+/// so the error includes each filter's blur as well as its noise.
+pub fn prism(quick: bool, out_dir: &std::path::Path) -> Result<String> {
+    use crate::photon::gather::{Filter, Lookup};
+    use crate::photon::map::MapKind;
+    use crate::prism::render::{render, EyeMode, RenderOptions};
+    use crate::prism::scenes::{build, SceneKind, SceneOptions};
+    let mut so = SceneOptions::new(SceneKind::SinglePrism);
+    (so.width, so.height, so.incidence_deg) = (320, 240, Some(49.4));
+    let scene = build(&so)?;
+    let radius = crate::prism::default_radius(&scene);
+    let hidden = indicatif::MultiProgress::with_draw_target(indicatif::ProgressDrawTarget::hidden());
+    let opts = |photons: u64, map: MapKind, filter: Filter, r: f64| RenderOptions {
+        photons,
+        map,
+        filter,
+        lookup: Lookup::Radius(r),
+        spp: 1,
+        seed: 1,
+        eye: EyeMode::Hero,
+        split: 8,
+    };
+    let mut out = String::new();
+
+    // Throughput on one thread.
+    let one = rayon::ThreadPoolBuilder::new().num_threads(1).build()?;
+    let n = if quick { 200_000 } else { 2_000_000 };
+    let pass = one.install(|| {
+        let t = Instant::now();
+        let p = crate::photon::emit::light_pass(&scene, n, 1, &indicatif::ProgressBar::hidden());
+        (p.stats, t.elapsed().as_secs_f64())
+    });
+    writeln!(out, "prism bench: single-prism, 320x240, 49.4 deg, D65 beam; radius {:.2} mm", radius * 1e3)?;
+    writeln!(
+        out,
+        "light pass, 1 thread: {:.2} M photons traced/s, {:.2} M stored/s; kd-tree {} bytes per stored photon, buffer 0",
+        pass.0.emitted as f64 / pass.1 / 1e6,
+        pass.0.stored as f64 / pass.1 / 1e6,
+        std::mem::size_of::<crate::photon::map::Photon>()
+    )?;
+
+    let counts: Vec<u64> = if quick { vec![20_000, 80_000] } else { vec![25_000, 50_000, 100_000, 200_000, 400_000, 800_000, 1_600_000] };
+    let mid = counts[counts.len() / 2];
+    let t = Instant::now();
+    let reference = render(&scene, &opts(mid * 100, MapKind::Kdtree, Filter::Box, radius / 2.0), &hidden);
+    writeln!(out, "reference: {} photons, kd-tree, box, radius {:.2} mm ({:.1} s)", mid * 100, radius * 0.5e3, t.elapsed().as_secs_f64())?;
+    let mut csv = String::from("map,filter,photons,time_s,rel_rmse\n");
+    let mut series = Vec::new();
+    writeln!(out, "{:>7} {:>9} {:>14} {:>14} {:>16} {:>16}", "map", "filter", "t(0.039) s", "t(0.022) s", "x Mitsuba@0.039", "x Mitsuba@0.022")?;
+    for map in [MapKind::Buffer, MapKind::Kdtree] {
+        for filter in [Filter::Box, Filter::Cone, Filter::Gaussian] {
+            let mut runs = Vec::new();
+            for &c in &counts {
+                let r = render(&scene, &opts(c, map, filter, radius), &hidden);
+                let time = r.trace_s + r.build_s + r.render_s;
+                let err = relative_rmse(&r.image, &reference.image);
+                writeln!(csv, "{},{},{c},{},{}", map.name(), filter.name(), crate::timing::cell(time), crate::timing::cell(err))?;
+                runs.push((time, err));
+            }
+            let (a, b) = (time_to_error(&runs, 0.039), time_to_error(&runs, 0.022));
+            let fmt = |t: Option<f64>| t.map_or("-".to_string(), |t| format!("{t:.3}"));
+            let ratio = |t: Option<f64>, m: f64| t.map_or("-".to_string(), |t| format!("{:.1}", m / t));
+            writeln!(out, "{:>7} {:>9} {:>14} {:>14} {:>16} {:>16}", map.name(), filter.name(), fmt(a), fmt(b), ratio(a, 1.3), ratio(b, 4.4))?;
+            series.push((format!("{} {}", map.name(), filter.name()), runs));
+        }
+    }
+    writeln!(out, "Mitsuba 3 particle tracer (anchor): 0.039 in 1.3 s, 0.022 in 4.4 s; LuxCore light tracer: 0.057 in 4.2 s, 0.026 in 15 s")?;
+    // Hue along the strip against the CIE locus, for both gamut maps and
+    // for the Amici prism's narrow slit (where wavelengths hardly overlap).
+    for kind in [SceneKind::SinglePrism, SceneKind::AmiciScreen] {
+        let mut so = SceneOptions::new(kind);
+        (so.width, so.height) = (640, 240);
+        if kind == SceneKind::SinglePrism {
+            so.incidence_deg = Some(49.4);
+        }
+        let s = build(&so)?;
+        let r = render(&s, &opts(if quick { 200_000 } else { 2_000_000 }, MapKind::Kdtree, Filter::Cone, crate::prism::default_radius(&s)), &hidden);
+        let exposure = r.image.auto_exposure();
+        for gamut in [crate::spectrum::cie::GamutMap::Desaturate, crate::spectrum::cie::GamutMap::Clip] {
+            let h = crate::prism::metrics::strip_hue_error(&s, &r.image, exposure, gamut);
+            writeln!(
+                out,
+                "hue error along the strip, {} ({:?} gamut map): mean {:.1} deg, max {:.1} deg over {} columns",
+                kind.name(),
+                gamut,
+                h.mean_deg,
+                h.max_deg,
+                h.columns
+            )?;
+        }
+    }
+    std::fs::create_dir_all(out_dir)?;
+    crate::image_io::atomic_write(&out_dir.join("prism_error_vs_time.csv"), |f| Ok(std::io::Write::write_all(f, csv.as_bytes())?))?;
+    let chart = crate::experiment::plot::LineChart {
+        title: "single-prism strip: error against time (log10 axes)".into(),
+        x_label: "log10 time (s)".into(),
+        y_label: "log10 relative RMSE".into(),
+        series: series
+            .iter()
+            .zip(crate::experiment::plot::PALETTE)
+            .map(|((name, runs), color)| crate::experiment::plot::Series {
+                name: name.clone(),
+                points: runs.iter().map(|(t, e)| (t.log10(), e.log10())).collect(),
+                color,
+            })
+            .chain(
+                [("Mitsuba 3 (anchor)", [(1.3f64, 0.039f64), (4.4, 0.022)]), ("LuxCore (anchor)", [(4.2, 0.057), (15.0, 0.026)])]
+                    .into_iter()
+                    .zip([plotters::style::RGBColor(0, 0, 0), plotters::style::RGBColor(160, 160, 160)])
+                    .map(|((name, pts), color)| crate::experiment::plot::Series {
+                        name: name.into(),
+                        points: pts.iter().map(|(t, e)| (t.log10(), e.log10())).collect(),
+                        color,
+                    }),
+            )
+            .collect(),
+    };
+    crate::experiment::plot::render(&out_dir.join("prism_error_vs_time.png"), &chart)?;
+    writeln!(out, "wrote {}/prism_error_vs_time.{{csv,png}}", out_dir.display())?;
+    Ok(out)
+}

@@ -63,6 +63,17 @@ pub enum BenchCommand {
         #[arg(long)]
         quick: bool,
     },
+    /// Photons per second per thread, bytes per photon, and the rainbow
+    /// strip's error against time for each photon map and filter
+    /// (single-prism anchor scene; CSV and plot in --out).
+    Prism {
+        /// Fewer, smaller runs (a smoke run, not a measurement).
+        #[arg(long)]
+        quick: bool,
+        /// Folder for the CSV and the plot
+        #[arg(long, default_value = "results/bench")]
+        out: PathBuf,
+    },
 }
 
 #[derive(Args, Debug)]
@@ -429,6 +440,7 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Spectrum { which } => run_spectrum(which),
         Command::Glass(args) => run_glass(args),
         Command::Bench { which: BenchCommand::Interior { quick } } => write_stdout(&crate::bench::interior(quick)?),
+        Command::Bench { which: BenchCommand::Prism { quick, out } } => write_stdout(&crate::bench::prism(quick, &out)?),
     }
 }
 

@@ -5,6 +5,7 @@
 
 pub mod amici;
 pub mod film;
+pub mod metrics;
 pub mod probe;
 pub mod render;
 pub mod scene;
