@@ -40,6 +40,9 @@ pub enum Command {
     /// Report 000: white light dispersed by an Amici prism, by photon
     /// mapping. `refract prism trace` probes the optics ray by ray.
     Prism(PrismArgs),
+    /// Run an experiment file (experiments/*.toml): a grid of runs, one CSV
+    /// row each, and its plots; `refract sweep merge` joins shards.
+    Sweep(SweepArgs),
     /// Spectra and colour: the CIE locus, illuminants, the accuracy report.
     Spectrum {
         #[command(subcommand)]
@@ -210,6 +213,60 @@ impl PrismSceneArgs {
             height: size[1],
         }
     }
+}
+
+#[derive(Args, Debug)]
+#[command(args_conflicts_with_subcommands = true, subcommand_precedence_over_arg = true)]
+pub struct SweepArgs {
+    #[command(subcommand)]
+    pub merge: Option<SweepCommand>,
+    /// The experiment file
+    #[arg(required = true)]
+    pub file: Option<PathBuf>,
+    /// The file's [quick] settings: a small, fast version of the experiment
+    #[arg(long)]
+    pub quick: bool,
+    /// Keep the rows already in runs.csv and run only the missing ones
+    #[arg(long)]
+    pub resume: bool,
+    /// Runs at once (each then gets its share of the cores; timings are fairest with 1)
+    #[arg(long, default_value_t = 1)]
+    pub jobs: usize,
+    /// Output folder [default: results/NAME]
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+    /// Only runs whose id modulo N is I (0 <= I < N), for job arrays; join with `sweep merge`
+    #[arg(long, value_name = "I/N", value_parser = parse_shard)]
+    pub shard: Option<(usize, usize)>,
+    /// Stop after this many runs (for testing interruption)
+    #[arg(long, hide = true)]
+    pub max_runs: Option<usize>,
+}
+
+#[derive(Subcommand, Debug)]
+pub enum SweepCommand {
+    /// Join the runs.csv of shard folders into one, sorted by run id.
+    Merge {
+        /// Shard folders
+        #[arg(required = true)]
+        dirs: Vec<PathBuf>,
+        /// Folder for the joined runs.csv
+        #[arg(long)]
+        out: PathBuf,
+        /// Draw the experiment's plots from the joined rows
+        #[arg(long)]
+        experiment: Option<PathBuf>,
+    },
+}
+
+fn parse_shard(s: &str) -> Result<(usize, usize), String> {
+    let bad = || format!("`{s}` is not I/N with 0 <= I < N");
+    let (i, n) = s.split_once('/').ok_or_else(bad)?;
+    let (i, n): (usize, usize) = (i.trim().parse().map_err(|_| bad())?, n.trim().parse().map_err(|_| bad())?);
+    if n == 0 || i >= n {
+        return Err(bad());
+    }
+    Ok((i, n))
 }
 
 #[derive(Subcommand, Debug)]
@@ -437,6 +494,7 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Interior(args) => run_interior(args),
         Command::Meshes { dir } => write_meshes(&dir),
         Command::Prism(args) => run_prism(args),
+        Command::Sweep(args) => run_sweep(args),
         Command::Spectrum { which } => run_spectrum(which),
         Command::Glass(args) => run_glass(args),
         Command::Bench { which: BenchCommand::Interior { quick } } => write_stdout(&crate::bench::interior(quick)?),
@@ -622,5 +680,23 @@ fn run_prism(args: PrismArgs) -> Result<()> {
         report.render.render_s,
         report.exposure
     );
+    Ok(())
+}
+
+fn run_sweep(args: SweepArgs) -> Result<()> {
+    use crate::experiment::{spec::Experiment, sweep};
+    if let Some(SweepCommand::Merge { dirs, out, experiment }) = args.merge {
+        let e = experiment.map(|p| Experiment::load(&p, false)).transpose()?;
+        eprintln!("{}", sweep::merge(&dirs, &out, e.as_ref())?);
+        return Ok(());
+    }
+    let file = args.file.context("an experiment file is required")?;
+    let e = Experiment::load(&file, args.quick)?;
+    if args.jobs == 0 || args.jobs > 256 {
+        bail!("--jobs: {} is not between 1 and 256", args.jobs);
+    }
+    let opts = sweep::SweepOptions { quick: args.quick, resume: args.resume, jobs: args.jobs, out: args.out, shard: args.shard, max_runs: args.max_runs };
+    let (_, summary) = sweep::run(&e, &opts)?;
+    eprintln!("{summary}");
     Ok(())
 }

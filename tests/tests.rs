@@ -22,3 +22,5 @@ mod spectral_oracles;
 mod prism_optics;
 // Whole prism renders: energy, landing points, chroma, the CFL's line images.
 mod prism_render;
+// The experiment runner: rows, plots, resume, shards, failures as rows.
+mod sweep;

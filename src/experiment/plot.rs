@@ -11,6 +11,11 @@ use std::sync::Once;
 
 const FONT: &[u8] = include_bytes!("../../assets/fonts/DejaVuSans.ttf");
 
+/// Makes the embedded font available to plotters (idempotent).
+pub fn register() {
+    register_font()
+}
+
 fn register_font() {
     static ONCE: Once = Once::new();
     ONCE.call_once(|| {

@@ -31,15 +31,33 @@ pub struct RunReport {
     pub build_s: f64,
     pub render_s: f64,
     pub rays: u64,
+    /// Followed rays turned back by total internal reflection.
+    pub tir: u64,
     /// Things the user should know that are not errors.
     pub notes: Vec<String>,
+}
+
+/// The mesh a configuration names: an OFF file, or a generated shape
+/// written `icosphere:S` (S subdivisions, 20 * 4^S triangles) or `torus:N`
+/// (N x N/2 quads), for sweeps over mesh size.
+pub fn load_mesh(path: &Path) -> Result<Mesh> {
+    let s = path.to_string_lossy();
+    if let Some(n) = s.strip_prefix("icosphere:") {
+        let n: u32 = n.parse().ok().filter(|n| *n <= 8).ok_or_else(|| anyhow::anyhow!("`{s}`: icosphere subdivisions must be 0-8"))?;
+        return Ok(crate::mesh::generate::icosphere(n));
+    }
+    if let Some(n) = s.strip_prefix("torus:") {
+        let n: u32 = n.parse().ok().filter(|n| (3..=4096).contains(n)).ok_or_else(|| anyhow::anyhow!("`{s}`: torus segments must be 3-4096"))?;
+        return Ok(crate::mesh::generate::torus(n, n / 2).to_mesh());
+    }
+    Ok(read_off(path)?)
 }
 
 /// Loads the mesh, renders and writes the image.
 pub fn run(cfg: &InteriorConfig) -> Result<RunReport> {
     cfg.validate().map_err(anyhow::Error::msg)?;
     let t0 = Instant::now();
-    let mesh = read_off(&cfg.off)?;
+    let mesh = load_mesh(&cfg.off)?;
     let load_s = t0.elapsed().as_secs_f64();
     let mut report = render_mesh(mesh, cfg)?;
     report.load_s = load_s;
@@ -75,7 +93,7 @@ pub fn render_mesh(mesh: Mesh, cfg: &InteriorConfig) -> Result<RunReport> {
         (accel, build_s, render, t.elapsed().as_secs_f64())
     });
     drop(accel);
-    Ok(RunReport { image: render.image, triangles, threads, load_s: 0.0, build_s, render_s, rays: render.rays, notes })
+    Ok(RunReport { image: render.image, triangles, threads, load_s: 0.0, build_s, render_s, rays: render.rays, tir: render.tir, notes })
 }
 
 /// Columns of the interior mode's timing CSV.

@@ -34,6 +34,8 @@ pub struct Render {
     pub image: Image,
     /// Rays traced (primary and followed).
     pub rays: u64,
+    /// Followed rays turned back by total internal reflection.
+    pub tir: u64,
 }
 
 pub struct Tracer<'a> {
@@ -61,11 +63,13 @@ impl<'a> Tracer<'a> {
         }
     }
 
-    /// Colour seen along `ray`, and the number of rays traced.
-    pub fn trace(&self, mut ray: Ray) -> (Rgb, u64) {
+    /// Colour seen along `ray`, the rays traced and the total internal
+    /// reflections met.
+    pub fn trace(&self, mut ray: Ray) -> (Rgb, u64, u64) {
         let mut rays = 1;
+        let mut tir = 0;
         let Some(mut hit) = self.accel.intersect(&ray) else {
-            return (self.background, rays);
+            return (self.background, rays, tir);
         };
         let mut colour = Rgb::BLACK;
         let mut weight = 1.0f32;
@@ -89,7 +93,12 @@ impl<'a> Tracer<'a> {
             // Follow the refracted ray; reflect under total internal reflection.
             let entering = ray.dir.dot(n) < 0.0;
             let eta = if entering { 1.0 / m.ior } else { m.ior };
-            let dir = refract(ray.dir, n, eta).unwrap_or_else(|| reflect(ray.dir, n)).normalize_or_zero();
+            let dir = refract(ray.dir, n, eta)
+                .unwrap_or_else(|| {
+                    tir += 1;
+                    reflect(ray.dir, n)
+                })
+                .normalize_or_zero();
             if dir == glam::Vec3::ZERO {
                 colour += weight * self.background;
                 break;
@@ -104,7 +113,7 @@ impl<'a> Tracer<'a> {
                 }
             }
         }
-        (colour, rays)
+        (colour, rays, tir)
     }
 
     /// Renders the image, rows in parallel. Each pixel depends only on its
@@ -113,26 +122,27 @@ impl<'a> Tracer<'a> {
     pub fn render(&self, spp: u32, seed: u64) -> Render {
         let cam = self.scene.camera;
         let mut image = Image::new(cam.width, cam.height);
-        let rays: u64 = image
+        let (rays, tir) = image
             .pixels
             .par_chunks_mut(cam.width)
             .enumerate()
             .map(|(y, row)| {
-                let mut rays = 0;
+                let (mut rays, mut tir) = (0, 0);
                 for (x, px) in row.iter_mut().enumerate() {
                     let mut sum = Rgb::BLACK;
                     for k in 0..spp {
                         let (jx, jy) = if spp == 1 { (0.5, 0.5) } else { jitter(seed, (y * cam.width + x) as u64, k) };
-                        let (c, r) = self.trace(cam.ray(x as f32 + jx, y as f32 + jy));
+                        let (c, r, t) = self.trace(cam.ray(x as f32 + jx, y as f32 + jy));
                         sum += c;
                         rays += r;
+                        tir += t;
                     }
                     *px = sum * (1.0 / spp as f32);
                 }
-                rays
+                (rays, tir)
             })
-            .sum();
-        Render { image, rays }
+            .reduce(|| (0, 0), |a, b| (a.0 + b.0, a.1 + b.1));
+        Render { image, rays, tir }
     }
 }
 

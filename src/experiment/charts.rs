@@ -1,0 +1,143 @@
+//! The experiment's plots, drawn from its runs.csv (never from memory), as
+//! PNG and SVG: line charts grouped into series, with log axes and fitted
+//! slopes where asked, and a pass/fail table for stability experiments.
+
+use super::plot::{render, LineChart, Series, PALETTE};
+use super::spec::{Experiment, PlotSpec};
+use crate::image_io::write_rgb8;
+use anyhow::{anyhow, Result};
+use plotters::prelude::*;
+use std::path::Path;
+
+pub fn draw_all(e: &Experiment, dir: &Path, header: &[String], rows: &[Vec<String>]) -> Result<()> {
+    for p in &e.plots {
+        match p.kind.as_str() {
+            "table" => status_table(p, dir, header, rows)?,
+            _ => {
+                let chart = line_chart(p, header, rows)?;
+                render(&dir.join(format!("{}.png", p.file)), &chart)?;
+                render(&dir.join(format!("{}.svg", p.file)), &chart)?;
+            }
+        }
+    }
+    Ok(())
+}
+
+fn col(header: &[String], name: &str) -> Result<usize> {
+    header.iter().position(|h| h == name).ok_or_else(|| anyhow!("plot column `{name}` is not in runs.csv; columns: {}", header.join(", ")))
+}
+
+/// Least-squares slope of y on x.
+pub fn slope(points: &[(f64, f64)]) -> Option<f64> {
+    let n = points.len() as f64;
+    if n < 2.0 {
+        return None;
+    }
+    let (mx, my) = points.iter().fold((0.0, 0.0), |a, p| (a.0 + p.0 / n, a.1 + p.1 / n));
+    let (sxy, sxx) = points.iter().fold((0.0, 0.0), |a, p| (a.0 + (p.0 - mx) * (p.1 - my), a.1 + (p.0 - mx).powi(2)));
+    (sxx > 0.0).then(|| sxy / sxx)
+}
+
+pub fn line_chart(p: &PlotSpec, header: &[String], rows: &[Vec<String>]) -> Result<LineChart> {
+    let (xi, yi) = (col(header, &p.x)?, col(header, &p.y)?);
+    let si: Vec<usize> = p.series.iter().map(|s| col(header, s)).collect::<Result<_>>()?;
+    let status = col(header, "status")?;
+    // Group rows into series; average repeats at equal x.
+    let mut groups: Vec<(String, Vec<(f64, f64)>)> = Vec::new();
+    for r in rows.iter().filter(|r| r[status] == "ok") {
+        let (Ok(x), Ok(y)) = (r[xi].parse::<f64>(), r[yi].parse::<f64>()) else { continue };
+        let key = si.iter().zip(&p.series).map(|(&i, n)| format!("{}={}", n.trim_start_matches("param_"), r[i])).collect::<Vec<_>>().join(", ");
+        let tx = |v: f64, log: bool| if log { (v > 0.0).then(|| v.log10()) } else { Some(v) };
+        let (Some(x), Some(y)) = (tx(x, p.log_x), tx(y, p.log_y)) else { continue };
+        match groups.iter_mut().find(|g| g.0 == key) {
+            Some(g) => g.1.push((x, y)),
+            None => groups.push((key, vec![(x, y)])),
+        }
+    }
+    let series = groups
+        .into_iter()
+        .zip(PALETTE.iter().cycle())
+        .map(|((name, mut pts), color)| {
+            pts.sort_by(|a, b| a.0.total_cmp(&b.0));
+            let mut avg: Vec<(f64, f64, usize)> = Vec::new();
+            for (x, y) in pts {
+                match avg.last_mut() {
+                    Some(l) if l.0 == x => {
+                        l.1 += y;
+                        l.2 += 1;
+                    }
+                    _ => avg.push((x, y, 1)),
+                }
+            }
+            let points: Vec<(f64, f64)> = avg.into_iter().map(|(x, y, n)| (x, y / n as f64)).collect();
+            let label = if name.is_empty() { p.y.clone() } else { name };
+            let label = match (p.fit, slope(&points)) {
+                (true, Some(s)) => format!("{label} (slope {s:.2})"),
+                _ => label,
+            };
+            Series { name: label, points, color: *color }
+        })
+        .collect();
+    let axis = |name: &str, log: bool| if log { format!("log10 {name}") } else { name.to_string() };
+    Ok(LineChart { title: p.title.clone(), x_label: axis(&p.x, p.log_x), y_label: axis(&p.y, p.log_y), series })
+}
+
+/// One row per run: its case and parameters, then whether it failed, its
+/// NaN/inf pixels, fireflies and fraction of rays in total internal
+/// reflection, coloured red (failed or NaN), amber (fireflies), green.
+fn status_table(p: &PlotSpec, dir: &Path, header: &[String], rows: &[Vec<String>]) -> Result<()> {
+    super::plot::register();
+    let (case, status, error) = (col(header, "case")?, col(header, "status")?, col(header, "error")?);
+    let (nan, ff, tir) = (col(header, "nan_count")?, col(header, "fireflies")?, col(header, "tir_fraction")?);
+    let params: Vec<usize> = header.iter().enumerate().filter(|(_, h)| h.starts_with("param_")).map(|(i, _)| i).collect();
+    let (w, line) = (1400u32, 26u32);
+    let h = 80 + line * rows.len() as u32;
+    let mut buf = vec![255u8; (w * h * 3) as usize];
+    {
+        let root = BitMapBackend::with_buffer(&mut buf, (w, h)).into_drawing_area();
+        root.fill(&WHITE).map_err(|e| anyhow!("{e}"))?;
+        let font = ("sans-serif", 15).into_font();
+        root.draw(&Text::new(p.title.clone(), (10, 10), ("sans-serif", 22).into_font())).map_err(|e| anyhow!("{e}"))?;
+        let heads = ["case / parameters", "result", "NaN px", "fireflies", "TIR"];
+        let xs = [10, 760, 1010, 1110, 1210];
+        for (t, x) in heads.iter().zip(xs) {
+            root.draw(&Text::new(t.to_string(), (x, 48), font.clone())).map_err(|e| anyhow!("{e}"))?;
+        }
+        for (i, r) in rows.iter().enumerate() {
+            let y = 72 + line as i32 * i as i32;
+            let failed = r[status] != "ok";
+            let bad = failed || r[nan].parse::<u64>().unwrap_or(0) > 0;
+            let warn = r[ff].parse::<u64>().unwrap_or(0) > 0;
+            let colour = if bad {
+                RGBColor(250, 200, 200)
+            } else if warn {
+                RGBColor(250, 230, 180)
+            } else {
+                RGBColor(205, 240, 205)
+            };
+            root.draw(&Rectangle::new([(5, y - 2), (w as i32 - 5, y + line as i32 - 4)], colour.filled())).map_err(|e| anyhow!("{e}"))?;
+            let label = std::iter::once(r[case].clone())
+                .chain(params.iter().filter(|&&c| !r[c].is_empty()).map(|&c| format!("{}={}", header[c].trim_start_matches("param_"), r[c])))
+                .collect::<Vec<_>>()
+                .join("  ");
+            let result = if failed { format!("error: {}", r[error]) } else { "ok".into() };
+            let cells = [label, result.chars().take(40).collect(), r[nan].clone(), r[ff].clone(), r[tir].chars().take(6).collect()];
+            for (t, x) in cells.iter().zip(xs) {
+                root.draw(&Text::new(t.chars().take(100).collect::<String>(), (x, y + 2), font.clone())).map_err(|e| anyhow!("{e}"))?;
+            }
+        }
+        root.present().map_err(|e| anyhow!("{e}"))?;
+    }
+    write_rgb8(&dir.join(format!("{}.png", p.file)), w as usize, h as usize, &buf)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn slope_of_a_line() {
+        assert!((slope(&[(0.0, 1.0), (1.0, 3.0), (2.0, 5.0)]).unwrap() - 2.0).abs() < 1e-12);
+        assert_eq!(slope(&[(1.0, 1.0)]), None);
+    }
+}

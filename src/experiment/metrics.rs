@@ -1,0 +1,123 @@
+//! Accuracy and stability metrics recorded for every run.
+
+/// What the runner keeps of a rendered image.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Frame {
+    pub width: usize,
+    pub height: usize,
+    /// 8-bit sRGB as written.
+    pub display: Vec<u8>,
+    /// Linear luminance per pixel (non-finite values as they came).
+    pub luminance: Vec<f64>,
+}
+
+/// Pixels whose luminance is NaN or infinite.
+pub fn non_finite(f: &Frame) -> usize {
+    f.luminance.iter().filter(|v| !v.is_finite()).count()
+}
+
+/// RMSE of the displayed values in [0, 1] (all channels) and PSNR in dB
+/// (infinite PSNR is written as 99 dB). `None` if the sizes differ.
+pub fn rmse_psnr(a: &Frame, reference: &Frame) -> Option<(f64, f64)> {
+    if (a.width, a.height) != (reference.width, reference.height) {
+        return None;
+    }
+    let n = a.display.len().max(1) as f64;
+    let se: f64 = a.display.iter().zip(&reference.display).map(|(x, y)| ((*x as f64 - *y as f64) / 255.0).powi(2)).sum();
+    let rmse = (se / n).sqrt();
+    let psnr = if rmse > 0.0 { (20.0 * (1.0 / rmse).log10()).min(99.0) } else { 99.0 };
+    Some((rmse, psnr))
+}
+
+/// Relative RMSE of luminance, ||Y - Y_ref|| / ||Y_ref||.
+pub fn relative_rmse(a: &Frame, reference: &Frame) -> Option<f64> {
+    if (a.width, a.height) != (reference.width, reference.height) {
+        return None;
+    }
+    let fin = |v: f64| if v.is_finite() { v } else { 0.0 };
+    let (num, den) = a.luminance.iter().zip(&reference.luminance).fold((0.0, 0.0), |(n, d), (x, y)| (n + (fin(*x) - fin(*y)).powi(2), d + fin(*y).powi(2)));
+    Some(if den > 0.0 { (num / den).sqrt() } else { 0.0 })
+}
+
+/// Pixels whose display value differs from the other frame's.
+pub fn changed_pixels(a: &Frame, b: &Frame) -> Option<usize> {
+    if (a.width, a.height) != (b.width, b.height) {
+        return None;
+    }
+    Some(a.display.chunks(3).zip(b.display.chunks(3)).filter(|(x, y)| x != y).count())
+}
+
+/// Fireflies: pixels more than 10 times as bright as the mean of their
+/// eight neighbours, and above 1 % of the frame's brightest.
+pub fn fireflies(f: &Frame) -> usize {
+    let (w, h) = (f.width, f.height);
+    let lum = |x: usize, y: usize| {
+        let v = f.luminance[y * w + x];
+        if v.is_finite() {
+            v
+        } else {
+            0.0
+        }
+    };
+    let max = (0..w * h).map(|i| lum(i % w, i / w)).fold(0.0, f64::max);
+    let mut n = 0;
+    for y in 1..h.saturating_sub(1) {
+        for x in 1..w.saturating_sub(1) {
+            let v = lum(x, y);
+            if v <= 0.01 * max {
+                continue;
+            }
+            let around: f64 =
+                [(0, 0), (1, 0), (2, 0), (0, 1), (2, 1), (0, 2), (1, 2), (2, 2)].iter().map(|(dx, dy)| lum(x + dx - 1, y + dy - 1)).sum::<f64>() / 8.0;
+            if v > 10.0 * around {
+                n += 1;
+            }
+        }
+    }
+    n
+}
+
+/// Highlight area: pixels of linear luminance at least 0.75.
+pub fn highlight_pixels(f: &Frame) -> usize {
+    f.luminance.iter().filter(|v| **v >= 0.75).count()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn frame(lum: Vec<f64>) -> Frame {
+        let n = lum.len();
+        Frame { width: n, height: 1, display: lum.iter().flat_map(|v| [(v.clamp(0.0, 1.0) * 255.0) as u8; 3]).collect(), luminance: lum }
+    }
+
+    #[test]
+    fn counts_an_injected_nan_and_infinity() {
+        let mut f = frame(vec![0.5; 10]);
+        assert_eq!(non_finite(&f), 0);
+        f.luminance[3] = f64::NAN;
+        f.luminance[7] = f64::INFINITY;
+        assert_eq!(non_finite(&f), 2);
+        // Metrics stay finite with them.
+        assert!(relative_rmse(&f, &frame(vec![0.5; 10])).unwrap().is_finite());
+    }
+
+    #[test]
+    fn rmse_psnr_and_changes() {
+        let a = frame(vec![0.0, 1.0]);
+        let b = frame(vec![0.0, 0.0]);
+        let (rmse, psnr) = rmse_psnr(&a, &b).unwrap();
+        assert!((rmse - (0.5f64).sqrt()).abs() < 1e-12 && (psnr - 3.0103).abs() < 1e-3);
+        assert_eq!(rmse_psnr(&a, &a).unwrap(), (0.0, 99.0));
+        assert_eq!(changed_pixels(&a, &b), Some(1));
+        assert_eq!(rmse_psnr(&a, &frame(vec![0.0])), None);
+    }
+
+    #[test]
+    fn fireflies_stand_out() {
+        let mut lum = vec![0.1; 25];
+        lum[12] = 5.0;
+        let f = Frame { width: 5, height: 5, display: vec![0; 75], luminance: lum };
+        assert_eq!(fireflies(&f), 1);
+    }
+}

@@ -1,0 +1,369 @@
+//! Experiment files (TOML), one per figure family in `experiments/`:
+//!
+//! ```toml
+//! name = "lab-ior"                 # results go to results/<name>/
+//! mode = "interior"                # interior | prism
+//! figures = ["lab-ior1.4"]         # figure ids the experiment backs (optional)
+//! repeats = 1
+//! [fixed]                          # parameters every run shares
+//! off = "off/cube.off"
+//! size = [201, 201]
+//! [sweep]                          # axes, the first outermost; a list or a range
+//! ior = { from = 1.1, to = 3.0, step = 0.1 }
+//! trace = [0, 5, 10]
+//! [[case]]                         # optional named cases (stability), times the sweep
+//! name = "low ior"
+//! ior = 0.5
+//! [reference]                      # overrides for the reference image (RMSE, PSNR)
+//! photons = 20000000
+//! [quick]                          # replaces fixed/sweep/repeats keys under --quick
+//! fixed = { size = [64, 64] }
+//! [outputs]
+//! images = true
+//! [[outputs.plot]]
+//! x = "param_trace"; y = "render_s"; series = ["param_specular_opacity"]; log_x = false; fit = false
+//! ```
+//!
+//! Parameter names are the mode's flag names with `_` for `-`. Errors name
+//! the key and its line.
+
+use super::params::{self, Mode};
+use anyhow::{anyhow, Result};
+use std::path::Path;
+use toml::{Table, Value};
+
+/// A named case of an experiment (stability conditions, timing groups).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Case {
+    pub name: String,
+    pub mode: Mode,
+    pub params: Vec<(String, Value)>,
+}
+
+/// One line chart drawn from the runs' CSV.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PlotSpec {
+    pub x: String,
+    pub y: String,
+    pub series: Vec<String>,
+    pub log_x: bool,
+    pub log_y: bool,
+    /// Print the least-squares slope (log-log where the axes are) in the legend.
+    pub fit: bool,
+    pub title: String,
+    pub file: String,
+    /// `line` (default) or `table` (a pass/fail grid of the cases).
+    pub kind: String,
+}
+
+#[derive(Clone, Debug)]
+pub struct Experiment {
+    pub name: String,
+    pub mode: Mode,
+    pub description: String,
+    pub figures: Vec<String>,
+    pub repeats: u32,
+    pub fixed: Vec<(String, Value)>,
+    pub sweep: Vec<(String, Vec<Value>)>,
+    /// Named cases: their mode (the file's unless they say) and overrides;
+    /// a list under a sweep axis's name narrows that axis for the case.
+    pub cases: Vec<Case>,
+    pub reference: Option<Vec<(String, Value)>>,
+    pub images: bool,
+    pub plots: Vec<PlotSpec>,
+}
+
+/// The line of `key` inside `[section]` (the `nth` such section for arrays
+/// of tables); 1 when it cannot be found.
+pub fn line_of(text: &str, section: &str, nth: usize, key: &str) -> usize {
+    let mut current = String::new();
+    let mut seen = 0usize;
+    for (i, raw) in text.lines().enumerate() {
+        let l = raw.trim();
+        if l.starts_with('[') {
+            current = l.trim_matches(|c| c == '[' || c == ']').trim().to_string();
+            if current == section {
+                seen += 1;
+            }
+            continue;
+        }
+        let in_section = current == section && (seen == nth + 1 || section.is_empty());
+        if in_section || (section.is_empty() && current.is_empty()) {
+            if let Some((k, _)) = l.split_once('=') {
+                if k.trim().trim_matches('"') == key {
+                    return i + 1;
+                }
+            }
+        }
+    }
+    // An inline table (`fixed = { ... }`) or a dotted key: search anywhere.
+    text.lines().position(|l| l.contains(key)).map_or(1, |i| i + 1)
+}
+
+impl Experiment {
+    pub fn load(path: &Path, quick: bool) -> Result<Experiment> {
+        let text = std::fs::read_to_string(path).map_err(|e| anyhow!("{}: cannot read: {e}", path.display()))?;
+        Experiment::parse(&text, &path.display().to_string(), quick)
+    }
+
+    pub fn parse(text: &str, file: &str, quick: bool) -> Result<Experiment> {
+        let root: Table = text.parse::<Table>().map_err(|e| {
+            let line = e.span().map_or(1, |s| text[..s.start.min(text.len())].lines().count().max(1));
+            anyhow!("{file}:{line}: {}", e.message())
+        })?;
+        let err = |section: &str, nth: usize, key: &str, msg: String| anyhow!("{file}:{}: `{key}`: {msg}", line_of(text, section, nth, key));
+        for k in root.keys() {
+            if !["name", "mode", "description", "figures", "repeats", "fixed", "sweep", "case", "reference", "quick", "outputs"].contains(&k.as_str()) {
+                return Err(err(
+                    "",
+                    0,
+                    k,
+                    "unknown key; expected name, mode, description, figures, repeats, fixed, sweep, case, reference, quick or outputs".into(),
+                ));
+            }
+        }
+        let string = |key: &str| -> Result<String> {
+            match root.get(key) {
+                Some(Value::String(s)) => Ok(s.clone()),
+                Some(_) => Err(err("", 0, key, "must be a string".into())),
+                None => Err(anyhow!("{file}: missing `{key}`")),
+            }
+        };
+        let name = string("name")?;
+        if name.is_empty() || !name.chars().all(|c| c.is_ascii_alphanumeric() || c == '-' || c == '_') {
+            return Err(err("", 0, "name", "use letters, digits, - and _ only (it names a folder)".into()));
+        }
+        let mode = match string("mode")?.as_str() {
+            "interior" => Mode::Interior,
+            "prism" => Mode::Prism,
+            m => return Err(err("", 0, "mode", format!("`{m}` is not interior or prism"))),
+        };
+        let description = root.get("description").and_then(Value::as_str).unwrap_or_default().to_string();
+        let figures = match root.get("figures") {
+            None => Vec::new(),
+            Some(Value::Array(a)) => a
+                .iter()
+                .map(|v| v.as_str().map(str::to_string).ok_or_else(|| err("", 0, "figures", "must be a list of strings".into())))
+                .collect::<Result<_>>()?,
+            Some(_) => return Err(err("", 0, "figures", "must be a list of strings".into())),
+        };
+        let empty = Table::new();
+        let quick_t = if quick {
+            match root.get("quick") {
+                Some(Value::Table(t)) => t.clone(),
+                Some(_) => return Err(err("", 0, "quick", "must be a table".into())),
+                None => empty.clone(),
+            }
+        } else {
+            empty.clone()
+        };
+        let table = |key: &str| -> Result<Table> {
+            match root.get(key) {
+                None => Ok(Table::new()),
+                Some(Value::Table(t)) => Ok(t.clone()),
+                Some(_) => Err(err("", 0, key, "must be a table".into())),
+            }
+        };
+        let merged = |key: &str| -> Result<Table> {
+            let mut t = table(key)?;
+            if let Some(q) = quick_t.get(key) {
+                let Value::Table(q) = q else { return Err(err("quick", 0, key, "must be a table".into())) };
+                for (k, v) in q {
+                    t.insert(k.clone(), v.clone());
+                }
+            }
+            Ok(t)
+        };
+        let repeats = match quick_t.get("repeats").or(root.get("repeats")) {
+            None => 1,
+            Some(Value::Integer(n)) if (1..=1000).contains(n) => *n as u32,
+            Some(_) => return Err(err("", 0, "repeats", "must be a whole number from 1 to 1000".into())),
+        };
+        let check = |section: &str, nth: usize, k: &str, v: &Value| -> Result<()> { params::check(mode, k, v).map_err(|m| err(section, nth, k, m)) };
+        let mut fixed = Vec::new();
+        for (k, v) in merged("fixed")? {
+            check("fixed", 0, &k, &v)?;
+            fixed.push((k, v));
+        }
+        let mut sweep = Vec::new();
+        // Keep the file's order of axes (toml::Table is sorted by key).
+        let mut sweep_t: Vec<(String, Value)> = merged("sweep")?.into_iter().collect();
+        sweep_t.sort_by_key(|(k, _)| text.find(&format!("\n{k}")).or_else(|| text.find(k.as_str())).unwrap_or(usize::MAX));
+        for (k, v) in sweep_t {
+            let values = match &v {
+                Value::Array(a) if !a.is_empty() => a.clone(),
+                Value::Table(t) => range(t).map_err(|m| err("sweep", 0, &k, m))?,
+                _ => return Err(err("sweep", 0, &k, "must be a non-empty list or { from, to, step }".into())),
+            };
+            for x in &values {
+                check("sweep", 0, &k, x)?;
+            }
+            sweep.push((k, values));
+        }
+        let mut cases = Vec::new();
+        if let Some(c) = root.get("case") {
+            let Value::Array(list) = c else { return Err(err("", 0, "case", "write cases as [[case]] tables".into())) };
+            for (i, item) in list.iter().enumerate() {
+                let Value::Table(t) = item else { return Err(err("", 0, "case", "write cases as [[case]] tables".into())) };
+                let name = t.get("name").and_then(Value::as_str).ok_or_else(|| err("case", i, "name", format!("case {} needs a name", i + 1)))?.to_string();
+                let case_mode = match t.get("mode").map(|m| m.as_str()) {
+                    None => mode,
+                    Some(Some("interior")) => Mode::Interior,
+                    Some(Some("prism")) => Mode::Prism,
+                    Some(_) => return Err(err("case", i, "mode", "must be interior or prism".into())),
+                };
+                let mut set = Vec::new();
+                for (k, v) in t.iter().filter(|(k, _)| k.as_str() != "name" && k.as_str() != "mode") {
+                    let narrows = sweep.iter().any(|(a, _)| a == k);
+                    match v {
+                        Value::Array(list) if narrows => {
+                            for x in list {
+                                params::check(case_mode, k, x).map_err(|m| err("case", i, k, m))?;
+                            }
+                        }
+                        _ => params::check(case_mode, k, v).map_err(|m| err("case", i, k, m))?,
+                    }
+                    set.push((k.clone(), v.clone()));
+                }
+                cases.push(Case { name, mode: case_mode, params: set });
+            }
+        }
+        let reference = match root.get("reference") {
+            None => None,
+            Some(Value::Table(t)) => {
+                let mut set = Vec::new();
+                for (k, v) in t {
+                    check("reference", 0, k, v)?;
+                    set.push((k.clone(), v.clone()));
+                }
+                Some(set)
+            }
+            Some(_) => return Err(err("", 0, "reference", "must be a table".into())),
+        };
+        let outputs = table("outputs")?;
+        let images = match outputs.get("images") {
+            None => false,
+            Some(Value::Boolean(b)) => *b,
+            Some(_) => return Err(err("outputs", 0, "images", "must be true or false".into())),
+        };
+        let mut plots = Vec::new();
+        if let Some(p) = outputs.get("plot") {
+            let Value::Array(list) = p else { return Err(err("outputs", 0, "plot", "write plots as [[outputs.plot]] tables".into())) };
+            for (i, item) in list.iter().enumerate() {
+                let Value::Table(t) = item else { return Err(err("outputs", 0, "plot", "write plots as [[outputs.plot]] tables".into())) };
+                let perr = |key: &str, m: &str| err("outputs.plot", i, key, m.to_string());
+                for k in t.keys() {
+                    if !["x", "y", "series", "log_x", "log_y", "fit", "title", "file", "kind"].contains(&k.as_str()) {
+                        return Err(perr(k, "unknown plot key; expected x, y, series, log_x, log_y, fit, title, file or kind"));
+                    }
+                }
+                let s = |key: &str| t.get(key).and_then(Value::as_str).map(str::to_string);
+                let b = |key: &str| t.get(key).and_then(Value::as_bool).unwrap_or(false);
+                let kind = s("kind").unwrap_or_else(|| "line".into());
+                if kind != "line" && kind != "table" {
+                    return Err(perr("kind", "must be line or table"));
+                }
+                let series = match t.get("series") {
+                    None => Vec::new(),
+                    Some(Value::String(x)) => vec![x.clone()],
+                    Some(Value::Array(a)) => a.iter().filter_map(Value::as_str).map(str::to_string).collect(),
+                    Some(_) => return Err(perr("series", "must be a column name or a list of them")),
+                };
+                let file = s("file").ok_or_else(|| perr("file", "each plot needs a file name"))?;
+                if !file.chars().all(|c| c.is_ascii_alphanumeric() || c == '-' || c == '_') {
+                    return Err(perr("file", "use letters, digits, - and _ only"));
+                }
+                let (x, y) = if kind == "table" {
+                    (s("x").unwrap_or_default(), s("y").unwrap_or_default())
+                } else {
+                    (s("x").ok_or_else(|| perr("x", "a line plot needs x"))?, s("y").ok_or_else(|| perr("y", "a line plot needs y"))?)
+                };
+                plots.push(PlotSpec {
+                    x,
+                    y,
+                    series,
+                    log_x: b("log_x"),
+                    log_y: b("log_y"),
+                    fit: b("fit"),
+                    title: s("title").unwrap_or_else(|| file.clone()),
+                    file,
+                    kind,
+                });
+            }
+        }
+        Ok(Experiment { name, mode, description, figures, repeats, fixed, sweep, cases, reference, images, plots })
+    }
+}
+
+/// `{ from, to, step }` as the list of values, inclusive of `to` within
+/// rounding; integers stay integers.
+fn range(t: &Table) -> Result<Vec<Value>, String> {
+    for k in t.keys() {
+        if !["from", "to", "step"].contains(&k.as_str()) {
+            return Err(format!("unknown range key `{k}`; expected from, to, step"));
+        }
+    }
+    let num = |k: &str| t.get(k).and_then(|v| v.as_float().or(v.as_integer().map(|i| i as f64))).ok_or(format!("a range needs a number `{k}`"));
+    let (from, to, step) = (num("from")?, num("to")?, num("step")?);
+    if !(step > 0.0) || !(to >= from) || !from.is_finite() || !to.is_finite() {
+        return Err(format!("range from {from} to {to} step {step}: need from <= to and step > 0"));
+    }
+    let n = ((to - from) / step + 1e-9).floor() as usize + 1;
+    if n > 100_000 {
+        return Err(format!("range gives {n} values; at most 100000"));
+    }
+    let ints = t.values().all(|v| v.is_integer());
+    Ok((0..n)
+        .map(|i| {
+            let v = from + i as f64 * step;
+            if ints {
+                Value::Integer(v.round() as i64)
+            } else {
+                // Round away binary noise: 1.1 + 2 * 0.1 is written 1.3.
+                Value::Float((v * 1e9).round() / 1e9)
+            }
+        })
+        .collect())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const GOOD: &str = r#"
+name = "t"
+mode = "interior"
+[fixed]
+off = "off/cube.off"
+size = [16, 16]
+[sweep]
+trace = [0, 2]
+ior = { from = 1.1, to = 1.5, step = 0.2 }
+[quick]
+sweep = { trace = [0] }
+"#;
+
+    #[test]
+    fn parses_axes_ranges_and_quick() {
+        let e = Experiment::parse(GOOD, "t.toml", false).unwrap();
+        assert_eq!(e.sweep[0].0, "trace", "file order kept");
+        assert_eq!(e.sweep[1].1, vec![Value::Float(1.1), Value::Float(1.3), Value::Float(1.5)]);
+        let q = Experiment::parse(GOOD, "t.toml", true).unwrap();
+        assert_eq!(q.sweep.iter().find(|s| s.0 == "trace").unwrap().1.len(), 1);
+    }
+
+    #[test]
+    fn errors_name_key_and_line() {
+        for (bad, needle) in [
+            (GOOD.replace("mode = \"interior\"", "mode = \"film\""), "t.toml:3: `mode`: `film` is not interior or prism"),
+            (GOOD.replace("size = [16, 16]", "colour = [1, 2, 3]"), "t.toml:6: `colour`: unknown interior parameter"),
+            (GOOD.replace("trace = [0, 2]", "trace = [0, -2]"), "t.toml:8: `trace`"),
+            (GOOD.replace("step = 0.2", "step = 0"), "t.toml:9: `ior`: range from 1.1 to 1.5 step 0"),
+            (GOOD.replace("[fixed]", "colour = 3\n[fixed]"), "t.toml:4: `colour`: unknown key"),
+            (GOOD.replace("size = [16, 16]", "size = [16, 16"), "t.toml:6"),
+        ] {
+            let e = Experiment::parse(&bad, "t.toml", false).unwrap_err().to_string();
+            assert!(e.starts_with(needle), "{e}\n  expected: {needle}");
+        }
+    }
+}

@@ -1,0 +1,460 @@
+//! `refract sweep`: runs an experiment file's grid of runs, one CSV row per
+//! run, flushed as each finishes; `--resume` runs only what is missing,
+//! `--shard I/N` every N-th run (from I), `refract sweep merge` joins shards.
+//! A run that fails is a row with its error, never a crashed sweep.
+
+use super::metrics::{self, Frame};
+use super::params::{apply_interior, apply_prism, cell, Mode};
+use super::spec::{Case, Experiment};
+use crate::image_io::{atomic_write, write_rgb8};
+use crate::interior::config::InteriorConfig;
+use crate::mesh::Mesh;
+use crate::prism::scenes::{SceneKind, SceneOptions};
+use crate::prism::PrismConfig;
+use anyhow::{bail, Context, Result};
+use std::collections::{HashMap, HashSet};
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+use std::time::Instant;
+use toml::Value;
+
+/// One run of the grid.
+#[derive(Clone, Debug)]
+pub struct RunSpec {
+    pub id: usize,
+    pub mode: Mode,
+    pub case: String,
+    pub repeat: u32,
+    /// Effective parameters: fixed, then the case's, then the swept ones.
+    pub params: Vec<(String, Value)>,
+    /// Index along each sweep axis.
+    pub at: Vec<usize>,
+}
+
+/// Every run of an experiment, in a fixed order (case, then the sweep axes
+/// with the first outermost, then repeats).
+pub fn expand(e: &Experiment) -> Vec<RunSpec> {
+    let cases = if e.cases.is_empty() { vec![Case { name: String::new(), mode: e.mode, params: Vec::new() }] } else { e.cases.clone() };
+    let mut runs = Vec::new();
+    for Case { name: case, mode, params: case_params } in &cases {
+        // A case may narrow an axis by listing its own values for it.
+        let axes: Vec<(String, Vec<Value>)> = e
+            .sweep
+            .iter()
+            .map(|(k, vals)| match case_params.iter().find(|(c, _)| c == k) {
+                Some((_, Value::Array(own))) => (k.clone(), own.clone()),
+                _ => (k.clone(), vals.clone()),
+            })
+            .collect();
+        let overrides: Vec<(String, Value)> = case_params.iter().filter(|(k, _)| !axes.iter().any(|(a, _)| a == k)).cloned().collect();
+        let lens: Vec<usize> = axes.iter().map(|s| s.1.len()).collect();
+        let total: usize = lens.iter().product();
+        for flat in 0..total {
+            // Decode the flat index, last axis fastest.
+            let mut at = vec![0; lens.len()];
+            let mut rest = flat;
+            for k in (0..lens.len()).rev() {
+                at[k] = rest % lens[k];
+                rest /= lens[k];
+            }
+            let mut params = e.fixed.clone();
+            let swept = axes.iter().zip(&at).map(|((k, vals), &i)| (k.clone(), vals[i].clone()));
+            for (k, v) in overrides.iter().cloned().chain(swept) {
+                params.retain(|(p, _)| *p != k);
+                params.push((k, v));
+            }
+            for repeat in 0..e.repeats {
+                runs.push(RunSpec { id: runs.len(), mode: *mode, case: case.clone(), repeat, params: params.clone(), at: at.clone() });
+            }
+        }
+    }
+    runs
+}
+
+/// Parameter columns: the sweep axes, then case keys, then fixed keys.
+pub fn param_names(e: &Experiment) -> Vec<String> {
+    let mut names: Vec<String> = Vec::new();
+    for k in e.sweep.iter().map(|s| &s.0).chain(e.cases.iter().flat_map(|c| c.params.iter().map(|p| &p.0))).chain(e.fixed.iter().map(|p| &p.0)) {
+        if !names.contains(k) {
+            names.push(k.clone());
+        }
+    }
+    names
+}
+
+pub const METRICS: [&str; 24] = [
+    "status",
+    "error",
+    "failed",
+    "triangles",
+    "width",
+    "height",
+    "load_s",
+    "build_s",
+    "trace_s",
+    "render_s",
+    "total_s",
+    "rays",
+    "rays_per_s",
+    "photons",
+    "stored",
+    "photons_per_s",
+    "nan_count",
+    "fireflies",
+    "tir_fraction",
+    "highlight_px",
+    "changed_px",
+    "rmse",
+    "psnr",
+    "rel_rmse",
+];
+
+pub fn header(e: &Experiment) -> Vec<String> {
+    let mut h = vec!["run_id".to_string(), "mode".into(), "case".into(), "repeat".into()];
+    h.extend(param_names(e).iter().map(|n| format!("param_{n}")));
+    h.extend(METRICS.iter().map(|m| m.to_string()));
+    h
+}
+
+#[derive(Clone, Debug, Default)]
+pub struct SweepOptions {
+    pub quick: bool,
+    pub resume: bool,
+    pub jobs: usize,
+    pub out: Option<PathBuf>,
+    /// (I, N): run only ids with id % N == I.
+    pub shard: Option<(usize, usize)>,
+    /// Stop after this many runs (to test interruption).
+    pub max_runs: Option<usize>,
+}
+
+/// What one run measured, as named cells.
+type Measured = Vec<(&'static str, String)>;
+
+struct Outcome {
+    frame: Option<Frame>,
+    cells: Measured,
+}
+
+/// Meshes loaded once per sweep, with their load time.
+#[derive(Default)]
+struct MeshCache(Mutex<HashMap<PathBuf, (Mesh, f64)>>);
+
+impl MeshCache {
+    fn get(&self, p: &Path) -> Result<(Mesh, f64)> {
+        if let Some(m) = self.0.lock().unwrap().get(p) {
+            return Ok(m.clone());
+        }
+        let t = Instant::now();
+        let mesh = crate::interior::load_mesh(p)?;
+        let entry = (mesh, t.elapsed().as_secs_f64());
+        self.0.lock().unwrap().insert(p.to_path_buf(), entry.clone());
+        Ok(entry)
+    }
+}
+
+fn run_interior(params: &[(String, Value)], meshes: &MeshCache) -> Result<Outcome> {
+    let mut cfg = InteriorConfig::with_defaults(PathBuf::from("off/cube.off"), PathBuf::new());
+    cfg.width = 201;
+    cfg.height = 201;
+    for (k, v) in params {
+        apply_interior(&mut cfg, k, v).map_err(|m| anyhow::anyhow!("{k}: {m}"))?;
+    }
+    cfg.validate().map_err(anyhow::Error::msg)?;
+    let (mesh, load_s) = meshes.get(&cfg.off)?;
+    let r = crate::interior::render_mesh(mesh, &cfg)?;
+    let luminance = r.image.pixels.iter().map(|p| p.0.dot(glam::Vec3::new(0.2126, 0.7152, 0.0722)) as f64).collect();
+    let frame = Frame { width: r.image.width, height: r.image.height, display: r.image.to_rgb8(), luminance };
+    let c = crate::timing::cell;
+    let cells = vec![
+        ("triangles", r.triangles.to_string()),
+        ("width", cfg.width.to_string()),
+        ("height", cfg.height.to_string()),
+        ("load_s", c(load_s)),
+        ("build_s", c(r.build_s)),
+        ("render_s", c(r.render_s)),
+        ("total_s", c(load_s + r.build_s + r.render_s)),
+        ("rays", r.rays.to_string()),
+        ("rays_per_s", c(r.rays as f64 / r.render_s.max(1e-12))),
+        ("tir_fraction", c(r.tir as f64 / r.rays.max(1) as f64)),
+    ];
+    Ok(Outcome { frame: Some(frame), cells })
+}
+
+fn prism_config(params: &[(String, Value)]) -> Result<PrismConfig> {
+    let mut so = SceneOptions::new(SceneKind::AmiciScreen);
+    (so.width, so.height) = (320, 120);
+    let mut cfg = PrismConfig::new(so, PathBuf::new());
+    cfg.photons = 200_000;
+    for (k, v) in params {
+        apply_prism(&mut cfg, k, v).map_err(|m| anyhow::anyhow!("{k}: {m}"))?;
+    }
+    cfg.validate()?;
+    Ok(cfg)
+}
+
+fn run_prism(params: &[(String, Value)]) -> Result<Outcome> {
+    let cfg = prism_config(params)?;
+    let scene = crate::prism::scenes::build(&cfg.scene)?;
+    let radius = cfg.radius.unwrap_or_else(|| crate::prism::default_radius(&scene));
+    let lookup = match cfg.k {
+        Some(k) => crate::photon::gather::Lookup::Nearest(k),
+        None => crate::photon::gather::Lookup::Radius(radius),
+    };
+    let opts = crate::prism::render::RenderOptions {
+        photons: cfg.photons,
+        map: cfg.map,
+        filter: cfg.filter,
+        lookup,
+        spp: cfg.spp,
+        seed: cfg.seed,
+        eye: cfg.eye,
+        split: cfg.split,
+    };
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(cfg.threads).build()?;
+    let hidden = indicatif::MultiProgress::with_draw_target(indicatif::ProgressDrawTarget::hidden());
+    let r = pool.install(|| crate::prism::render::render(&scene, &opts, &hidden));
+    let exposure = cfg.exposure.unwrap_or_else(|| r.image.auto_exposure());
+    let frame = Frame {
+        width: r.image.width,
+        height: r.image.height,
+        display: r.image.to_srgb8(exposure, cfg.gamut),
+        luminance: r.image.xyz.iter().map(|v| v.y).collect(),
+    };
+    let c = crate::timing::cell;
+    let s = &r.stats;
+    let cells = vec![
+        ("width", r.image.width.to_string()),
+        ("height", r.image.height.to_string()),
+        ("build_s", c(r.build_s)),
+        ("trace_s", c(r.trace_s)),
+        ("render_s", c(r.render_s)),
+        ("total_s", c(r.trace_s + r.build_s + r.render_s)),
+        ("rays", r.eye_rays.to_string()),
+        ("rays_per_s", c(r.eye_rays as f64 / r.render_s.max(1e-12))),
+        ("photons", s.emitted.to_string()),
+        ("stored", s.stored.to_string()),
+        ("photons_per_s", c(s.emitted as f64 / r.trace_s.max(1e-12))),
+        ("tir_fraction", c(s.tir as f64 / s.emitted.max(1) as f64)),
+    ];
+    Ok(Outcome { frame: Some(frame), cells })
+}
+
+fn run_one(mode: Mode, params: &[(String, Value)], meshes: &MeshCache) -> Outcome {
+    let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| match mode {
+        Mode::Interior => run_interior(params, meshes),
+        Mode::Prism => run_prism(params),
+    }));
+    match result {
+        Ok(Ok(o)) => o,
+        Ok(Err(e)) => Outcome { frame: None, cells: vec![("status", "error".into()), ("error", format!("{e:#}")), ("failed", "1".into())] },
+        Err(p) => {
+            let msg = p.downcast_ref::<String>().cloned().or_else(|| p.downcast_ref::<&str>().map(|s| s.to_string())).unwrap_or_else(|| "panic".into());
+            Outcome { frame: None, cells: vec![("status", "error".into()), ("error", format!("internal error: {msg}")), ("failed", "1".into())] }
+        }
+    }
+}
+
+/// Complete rows of an existing runs.csv (a torn last line is dropped).
+fn read_rows(path: &Path, header: &[String]) -> Result<Vec<Vec<String>>> {
+    let text = match std::fs::read_to_string(path) {
+        Ok(t) => t,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(Vec::new()),
+        Err(e) => return Err(e).with_context(|| format!("cannot read {}", path.display())),
+    };
+    let complete = match text.rfind('\n') {
+        Some(i) => &text[..=i],
+        None => "",
+    };
+    let mut r = csv::ReaderBuilder::new().flexible(true).from_reader(complete.as_bytes());
+    let h: Vec<String> = r.headers()?.iter().map(str::to_string).collect();
+    if !h.is_empty() && h != header {
+        bail!("{}: its columns differ from this experiment's; use another --out or delete it", path.display());
+    }
+    Ok(r.records().filter_map(|x| x.ok()).map(|x| x.iter().map(str::to_string).collect::<Vec<_>>()).filter(|x: &Vec<String>| x.len() == header.len()).collect())
+}
+
+fn write_rows(path: &Path, header: &[String], rows: &[Vec<String>]) -> Result<()> {
+    atomic_write(path, |f| {
+        let mut w = csv::Writer::from_writer(f);
+        w.write_record(header)?;
+        for r in rows {
+            w.write_record(r)?;
+        }
+        w.flush()?;
+        Ok(())
+    })
+}
+
+/// Runs the experiment; returns the output folder and a summary line.
+pub fn run(e: &Experiment, opts: &SweepOptions) -> Result<(PathBuf, String)> {
+    let dir = opts.out.clone().unwrap_or_else(|| PathBuf::from("results").join(&e.name));
+    std::fs::create_dir_all(&dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    let header = header(e);
+    let names = param_names(e);
+    let csv_path = dir.join("runs.csv");
+    let existing = if opts.resume { read_rows(&csv_path, &header)? } else { Vec::new() };
+    // Start the file afresh with the complete rows only.
+    write_rows(&csv_path, &header, &existing)?;
+    let done: HashSet<usize> = existing.iter().filter_map(|r| r[0].parse().ok()).collect();
+    let all = expand(e);
+    let mine: Vec<&RunSpec> = all
+        .iter()
+        .filter(|r| opts.shard.is_none_or(|(i, n)| r.id % n == i))
+        .filter(|r| !done.contains(&r.id))
+        .take(opts.max_runs.unwrap_or(usize::MAX))
+        .collect();
+
+    let meshes = MeshCache::default();
+    let reference = match &e.reference {
+        Some(over) => {
+            let mut p = e.fixed.clone();
+            for (k, v) in over {
+                p.retain(|(q, _)| q != k);
+                p.push((k.clone(), v.clone()));
+            }
+            let o = run_one(e.mode, &p, &meshes);
+            if let Some(f) = &o.frame {
+                write_rgb8(&dir.join("reference.png"), f.width, f.height, &f.display)?;
+            }
+            o.frame
+        }
+        None => None,
+    };
+    if e.images {
+        std::fs::create_dir_all(dir.join("images"))?;
+    }
+    let frames: Mutex<HashMap<usize, Frame>> = Mutex::new(HashMap::new());
+    let file = Mutex::new(std::fs::OpenOptions::new().append(true).open(&csv_path)?);
+    let bar = indicatif::ProgressBar::new(mine.len() as u64)
+        .with_style(
+            indicatif::ProgressStyle::with_template("{prefix} [{bar:40}] {pos}/{len} eta {eta}").unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+        )
+        .with_prefix(e.name.clone());
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(opts.jobs.max(1)).build()?;
+    // The run one step earlier along the first sweep axis, for changed_px.
+    let predecessor = |r: &RunSpec| -> Option<usize> {
+        if r.at.first().copied().unwrap_or(0) == 0 {
+            return None;
+        }
+        let mut at = r.at.clone();
+        at[0] -= 1;
+        all.iter().find(|q| q.case == r.case && q.repeat == r.repeat && q.at == at).map(|q| q.id)
+    };
+    let errors: Mutex<Vec<anyhow::Error>> = Mutex::new(Vec::new());
+    let do_run = |r: &&RunSpec| {
+        let o = run_one(r.mode, &r.params, &meshes);
+        let mut cells: HashMap<&str, String> = o.cells.into_iter().collect();
+        cells.entry("status").or_insert_with(|| "ok".into());
+        cells.entry("failed").or_insert_with(|| "0".into());
+        if let Some(f) = &o.frame {
+            cells.insert("nan_count", metrics::non_finite(f).to_string());
+            cells.insert("fireflies", metrics::fireflies(f).to_string());
+            cells.insert("highlight_px", metrics::highlight_pixels(f).to_string());
+            if let Some(rf) = &reference {
+                if let Some((rmse, psnr)) = metrics::rmse_psnr(f, rf) {
+                    cells.insert("rmse", crate::timing::cell(rmse));
+                    cells.insert("psnr", crate::timing::cell(psnr));
+                }
+                if let Some(rel) = metrics::relative_rmse(f, rf) {
+                    cells.insert("rel_rmse", crate::timing::cell(rel));
+                }
+            }
+            let prev =
+                predecessor(r).and_then(|p| frames.lock().unwrap().get(&p).cloned().or_else(|| load_frame(&dir.join("images").join(format!("{p}.png")))));
+            if let Some(c) = prev.and_then(|p| metrics::changed_pixels(f, &p)) {
+                cells.insert("changed_px", c.to_string());
+            }
+            if e.images {
+                if let Err(err) = write_rgb8(&dir.join("images").join(format!("{}.png", r.id)), f.width, f.height, &f.display) {
+                    errors.lock().unwrap().push(err);
+                }
+            }
+            frames.lock().unwrap().insert(r.id, f.clone());
+        }
+        let mut row = vec![r.id.to_string(), r.mode.name().to_string(), r.case.clone(), r.repeat.to_string()];
+        row.extend(names.iter().map(|n| r.params.iter().find(|(k, _)| k == n).map_or(String::new(), |(_, v)| cell(v))));
+        row.extend(METRICS.iter().map(|m| cells.get(m).cloned().unwrap_or_default()));
+        let mut w = csv::WriterBuilder::new().has_headers(false).from_writer(Vec::new());
+        let line = w.write_record(&row).map_err(anyhow::Error::from).and_then(|_| w.into_inner().map_err(|e| anyhow::anyhow!("{e}")));
+        match line {
+            Ok(bytes) => {
+                let mut f = file.lock().unwrap();
+                if let Err(err) = f.write_all(&bytes).and_then(|_| f.flush()) {
+                    errors.lock().unwrap().push(err.into());
+                }
+            }
+            Err(err) => errors.lock().unwrap().push(err),
+        }
+        bar.inc(1);
+    };
+    // In waves along the first sweep axis, so each run's predecessor (for
+    // changed_px) is done before it; runs within a wave go in parallel.
+    let mut waves: std::collections::BTreeMap<usize, Vec<&RunSpec>> = std::collections::BTreeMap::new();
+    for r in &mine {
+        waves.entry(r.at.first().copied().unwrap_or(0)).or_default().push(r);
+    }
+    for wave in waves.values() {
+        use rayon::prelude::*;
+        pool.install(|| wave.par_iter().with_max_len(1).for_each(do_run));
+    }
+    bar.finish_and_clear();
+    if let Some(err) = errors.into_inner().unwrap().into_iter().next() {
+        return Err(err.context(format!("writing {}", dir.display())));
+    }
+    // Final order by run id, whatever order the runs finished in.
+    let mut rows = read_rows(&csv_path, &header)?;
+    rows.sort_by_key(|r| r[0].parse::<usize>().unwrap_or(usize::MAX));
+    rows.dedup_by(|a, b| a[0] == b[0]);
+    write_rows(&csv_path, &header, &rows)?;
+    let complete = rows.len() == all.len();
+    if complete || opts.shard.is_some() {
+        super::charts::draw_all(e, &dir, &header, &rows)?;
+    }
+    let failed = rows.iter().filter(|r| r[header.iter().position(|h| h == "failed").unwrap_or(0)] == "1").count();
+    let summary = format!(
+        "{}: {} of {} runs in {} ({} failed){}",
+        e.name,
+        rows.len(),
+        all.len(),
+        csv_path.display(),
+        failed,
+        if complete { "" } else { "; run again with --resume to finish" }
+    );
+    Ok((dir, summary))
+}
+
+fn load_frame(path: &Path) -> Option<Frame> {
+    let img = image::open(path).ok()?.to_rgb8();
+    let (w, h) = img.dimensions();
+    let display = img.into_raw();
+    let luminance = display.chunks(3).map(|c| 0.2126 * c[0] as f64 / 255.0 + 0.7152 * c[1] as f64 / 255.0 + 0.0722 * c[2] as f64 / 255.0).collect();
+    Some(Frame { width: w as usize, height: h as usize, display, luminance })
+}
+
+/// Joins the runs.csv of several shard folders into `out`/runs.csv.
+pub fn merge(dirs: &[PathBuf], out: &Path, experiment: Option<&Experiment>) -> Result<String> {
+    let mut header: Option<Vec<String>> = None;
+    let mut rows: Vec<Vec<String>> = Vec::new();
+    for d in dirs {
+        let p = d.join("runs.csv");
+        let text = std::fs::read_to_string(&p).with_context(|| format!("cannot read {}", p.display()))?;
+        let mut r = csv::Reader::from_reader(text.as_bytes());
+        let h: Vec<String> = r.headers()?.iter().map(str::to_string).collect();
+        match &header {
+            Some(x) if *x != h => bail!("{}: its columns differ from {}", p.display(), dirs[0].join("runs.csv").display()),
+            _ => header = Some(h.clone()),
+        }
+        rows.extend(r.records().filter_map(|x| x.ok()).map(|x| x.iter().map(str::to_string).collect::<Vec<_>>()).filter(|x| x.len() == h.len()));
+    }
+    let header = header.ok_or_else(|| anyhow::anyhow!("no folders to merge"))?;
+    rows.sort_by_key(|r| r[0].parse::<usize>().unwrap_or(usize::MAX));
+    rows.dedup_by(|a, b| a[0] == b[0]);
+    std::fs::create_dir_all(out)?;
+    write_rows(&out.join("runs.csv"), &header, &rows)?;
+    if let Some(e) = experiment {
+        super::charts::draw_all(e, out, &header, &rows)?;
+    }
+    Ok(format!("merged {} rows from {} folders into {}", rows.len(), dirs.len(), out.join("runs.csv").display()))
+}

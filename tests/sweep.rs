@@ -1,0 +1,128 @@
+//! The experiment runner: rows, plots, resume, shards, failures as rows.
+
+use crate::common::*;
+use std::path::Path;
+
+fn rows(dir: &Path) -> (Vec<String>, Vec<Vec<String>>) {
+    let text = std::fs::read_to_string(dir.join("runs.csv")).unwrap();
+    let mut r = csv::Reader::from_reader(text.as_bytes());
+    let h: Vec<String> = r.headers().unwrap().iter().map(str::to_string).collect();
+    (h, r.records().map(|x| x.unwrap().iter().map(str::to_string).collect()).collect())
+}
+
+/// The rows without the columns that measure time (they differ run to run).
+fn stable(dir: &Path) -> Vec<Vec<String>> {
+    let (h, rows) = rows(dir);
+    let keep: Vec<usize> = h.iter().enumerate().filter(|(_, c)| !c.ends_with("_s") && !c.ends_with("per_s")).map(|(i, _)| i).collect();
+    rows.iter().map(|r| keep.iter().map(|&i| r[i].clone()).collect()).collect()
+}
+
+fn sweep(args: &[&str], dir: &Path) -> std::process::Output {
+    let mut full = vec!["sweep"];
+    full.extend(args);
+    run(&full, "", dir)
+}
+
+fn tiny() -> String {
+    repo("tests/data/tiny.toml").display().to_string()
+}
+
+#[test]
+fn tiny_experiment_gives_rows_and_plots() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = sweep(&[&tiny(), "--out", dir.path().join("out").to_str().unwrap()], &repo(""));
+    assert!(o.status.success(), "{}", stderr(&o));
+    let out = dir.path().join("out");
+    let (h, r) = rows(&out);
+    assert_eq!(r.len(), 6);
+    let col = |n: &str| h.iter().position(|c| c == n).unwrap();
+    for (i, row) in r.iter().enumerate() {
+        assert_eq!(row[col("run_id")], i.to_string());
+        assert_eq!(row[col("status")], "ok");
+        assert_eq!(row[col("nan_count")], "0");
+        assert!(row[col("rays")].parse::<u64>().unwrap() >= 24 * 24);
+    }
+    // Traces 0 and 2 differ; the reference (trace 10, fixed) is close to trace 4.
+    assert!(r[2][col("changed_px")].parse::<u64>().unwrap() > 0);
+    assert!(r[5][col("rmse")].parse::<f64>().unwrap() < r[1][col("rmse")].parse::<f64>().unwrap());
+    for p in ["time-vs-trace.png", "change-vs-trace.png", "reference.png", "images/3.png"] {
+        let img = image::open(out.join(p)).unwrap().to_rgb8();
+        let first = *img.get_pixel(0, 0);
+        assert!(img.pixels().any(|q| *q != first), "{p} is blank");
+    }
+    assert!(std::fs::read_to_string(out.join("time-vs-trace.svg")).unwrap().contains("<svg"));
+}
+
+#[test]
+fn an_interrupted_sweep_resumes_to_the_same_csv() {
+    let dir = tempfile::tempdir().unwrap();
+    let (full, part) = (dir.path().join("full"), dir.path().join("part"));
+    assert!(sweep(&[&tiny(), "--out", full.to_str().unwrap()], &repo("")).status.success());
+    let o = sweep(&[&tiny(), "--out", part.to_str().unwrap(), "--max-runs", "2"], &repo(""));
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stderr(&o).contains("--resume"));
+    assert_eq!(rows(&part).1.len(), 2);
+    // A run killed while writing leaves a torn line.
+    let mut text = std::fs::read_to_string(part.join("runs.csv")).unwrap();
+    text.push_str("2,interior,,0,2,rep");
+    std::fs::write(part.join("runs.csv"), text).unwrap();
+    let o = sweep(&[&tiny(), "--out", part.to_str().unwrap(), "--resume"], &repo(""));
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(stable(&part), stable(&full));
+}
+
+#[test]
+fn shards_merged_equal_the_unsharded_run() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = |n: &str| dir.path().join(n).display().to_string();
+    assert!(sweep(&[&tiny(), "--out", &d("all")], &repo("")).status.success());
+    for s in ["0/2", "1/2"] {
+        let o = sweep(&[&tiny(), "--out", &d(&format!("shard{}", &s[..1])), "--shard", s], &repo(""));
+        assert!(o.status.success(), "{}", stderr(&o));
+    }
+    assert_eq!(rows(Path::new(&d("shard0"))).1.len(), 3);
+    let o = sweep(&["merge", &d("shard0"), &d("shard1"), "--out", &d("merged"), "--experiment", &tiny()], &repo(""));
+    assert!(o.status.success(), "{}", stderr(&o));
+    // changed_px needs the previous trace's image, which another shard made:
+    // compare everything else.
+    let strip = |dir: &str| {
+        let (h, _) = rows(Path::new(dir));
+        let c = h.iter().position(|x| x == "changed_px").unwrap();
+        stable(Path::new(dir))
+            .into_iter()
+            .map(|mut r| {
+                r.remove(c - h.iter().take(c).filter(|x| x.ends_with("_s")).count());
+                r
+            })
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(strip(&d("merged")), strip(&d("all")));
+    assert!(Path::new(&d("merged")).join("time-vs-trace.png").exists());
+}
+
+#[test]
+fn failing_runs_are_rows_and_bad_files_name_the_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("e.toml");
+    std::fs::write(
+        &file,
+        "name = \"e\"\nmode = \"interior\"\n[fixed]\nsize = [8, 8]\n[[case]]\nname = \"fine\"\noff = \"OFF_OK\"\n[[case]]\nname = \"missing mesh\"\noff = \"nowhere.off\"\n[[case]]\nname = \"prism, few photons\"\nmode = \"prism\"\nphotons = 10\nsize = [16, 8]\n"
+            .replace("OFF_OK", &repo("off/cube.off").display().to_string()),
+    )
+    .unwrap();
+    let o = sweep(&[file.to_str().unwrap(), "--out", dir.path().join("o").to_str().unwrap()], &repo(""));
+    assert!(o.status.success(), "{}", stderr(&o));
+    let (h, r) = rows(&dir.path().join("o"));
+    let col = |n: &str| h.iter().position(|c| c == n).unwrap();
+    assert_eq!(r.len(), 3);
+    assert_eq!((r[0][col("status")].as_str(), r[1][col("status")].as_str(), r[2][col("status")].as_str()), ("ok", "error", "ok"));
+    assert!(r[1][col("error")].contains("nowhere.off: cannot read the file"), "{}", r[1][col("error")]);
+    assert_eq!(r[2][col("mode")], "prism");
+
+    std::fs::write(&file, "name = \"e\"\nmode = \"interior\"\n[sweep]\nior = [1.4, \"glass\"]\n").unwrap();
+    let o = sweep(&[file.to_str().unwrap()], dir.path());
+    assert_clean_failure(&o, "e.toml:4: `ior`: `\"glass\"` is not a number");
+    std::fs::write(&file, "name = \"e\"\nmode = \"interior\"\nrepeat = 2\n").unwrap();
+    let o = sweep(&[file.to_str().unwrap()], dir.path());
+    assert_clean_failure(&o, "e.toml:3: `repeat`: unknown key");
+}
