@@ -126,3 +126,28 @@ fn failing_runs_are_rows_and_bad_files_name_the_line() {
     let o = sweep(&[file.to_str().unwrap()], dir.path());
     assert_clean_failure(&o, "e.toml:3: `repeat`: unknown key");
 }
+
+#[test]
+fn shipped_experiments_parse_and_stability_records_failures_as_rows() {
+    let mut n = 0;
+    for entry in std::fs::read_dir(repo("experiments")).unwrap() {
+        let p = entry.unwrap().path();
+        if p.extension().is_some_and(|e| e == "toml") {
+            for quick in [false, true] {
+                refract::experiment::spec::Experiment::load(&p, quick).unwrap_or_else(|e| panic!("{e:#}"));
+            }
+            n += 1;
+        }
+    }
+    assert!(n >= 7, "{n} experiment files");
+    let dir = tempfile::tempdir().unwrap();
+    let o = sweep(&[repo("experiments/stability.toml").to_str().unwrap(), "--quick", "--out", dir.path().to_str().unwrap()], &repo(""));
+    assert!(o.status.success(), "{}", stderr(&o));
+    let (h, r) = rows(dir.path());
+    let col = |n: &str| h.iter().position(|c| c == n).unwrap();
+    let tir = r.iter().find(|x| x[col("case")].contains("totally reflected")).unwrap();
+    assert_eq!(tir[col("status")], "error");
+    assert!(tir[col("error")].contains("totally reflected"));
+    assert!(r.iter().all(|x| x[col("nan_count")] == "0" || x[col("status")] == "error"), "no NaN may reach an image");
+    assert!(dir.path().join("stability.png").exists());
+}

@@ -58,7 +58,13 @@ pub fn expand(e: &Experiment) -> Vec<RunSpec> {
                 at[k] = rest % lens[k];
                 rest /= lens[k];
             }
-            let mut params = e.fixed.clone();
+            // Fixed parameters of the file's mode that a case of the other
+            // mode does not have are left out for it.
+            let known = |k: &str| match mode {
+                Mode::Interior => super::params::INTERIOR.contains(&k),
+                Mode::Prism => super::params::PRISM.contains(&k),
+            };
+            let mut params: Vec<(String, Value)> = e.fixed.iter().filter(|(k, _)| known(k)).cloned().collect();
             let swept = axes.iter().zip(&at).map(|((k, vals), &i)| (k.clone(), vals[i].clone()));
             for (k, v) in overrides.iter().cloned().chain(swept) {
                 params.retain(|(p, _)| *p != k);
