@@ -173,6 +173,7 @@ pub fn prism(quick: bool, out_dir: &std::path::Path) -> Result<String> {
         seed: 1,
         eye: EyeMode::Hero,
         split: 8,
+        colours: crate::spectrum::colormap::ColorMap::Cie,
     };
     let mut out = String::new();
 
@@ -181,7 +182,7 @@ pub fn prism(quick: bool, out_dir: &std::path::Path) -> Result<String> {
     let n = if quick { 200_000 } else { 2_000_000 };
     let pass = one.install(|| {
         let t = Instant::now();
-        let p = crate::photon::emit::light_pass(&scene, n, 1, &indicatif::ProgressBar::hidden());
+        let p = crate::photon::emit::light_pass(&scene, n, 1, crate::spectrum::colormap::ColorMap::Cie, &indicatif::ProgressBar::hidden());
         (p.stats, t.elapsed().as_secs_f64())
     });
     writeln!(out, "prism bench: single-prism, 320x240, 49.4 deg, D65 beam; radius {:.2} mm", radius * 1e3)?;

@@ -180,6 +180,9 @@ pub struct PrismRenderArgs {
     /// Out-of-gamut colours: desaturate at equal luminance, or clip each channel
     #[arg(long, value_enum, default_value_t = GamutMap::Desaturate)]
     pub gamut: GamutMap,
+    /// Wavelength to colour: CIE (physical) or one of reports 001/003's maps
+    #[arg(long, value_enum, default_value_t = crate::spectrum::colormap::ColorMap::Cie)]
+    pub colours: crate::spectrum::colormap::ColorMap,
     /// Output image: .png, .ppm (display) or .pfm (linear sRGB)
     #[arg(long, default_value = "results/prism.png")]
     pub out: PathBuf,
@@ -653,6 +656,7 @@ fn run_prism(args: PrismArgs) -> Result<()> {
     cfg.split = r.split;
     cfg.exposure = r.exposure;
     cfg.gamut = r.gamut;
+    cfg.colours = r.colours;
     if let Some(parent) = cfg.out.parent() {
         if cfg.out.starts_with("results") && !parent.as_os_str().is_empty() {
             std::fs::create_dir_all(parent).with_context(|| format!("cannot create {}", parent.display()))?;

@@ -22,7 +22,17 @@ fn scene(kind: SceneKind, light: Option<&str>, size: [usize; 2]) -> PrismScene {
 }
 
 fn opts(photons: u64, spp: u32) -> RenderOptions {
-    RenderOptions { photons, map: MapKind::Kdtree, filter: Filter::Cone, lookup: Lookup::Radius(1e-3), spp, seed: 1, eye: EyeMode::Hero, split: 8 }
+    RenderOptions {
+        photons,
+        map: MapKind::Kdtree,
+        filter: Filter::Cone,
+        lookup: Lookup::Radius(1e-3),
+        spp,
+        seed: 1,
+        eye: EyeMode::Hero,
+        split: 8,
+        colours: refract::spectrum::colormap::ColorMap::Cie,
+    }
 }
 
 /// Luminance-weighted centroid of an image, in pixels.
@@ -48,7 +58,7 @@ fn energy_on_the_screen_is_the_emitted_power_times_fresnel_transmittance() {
         let (c, eu, ev) = s.faces[f].frame.unwrap();
         let mid = c + eu / 2.0 + ev / 2.0;
         s.faces[f] = Face::rect("big screen", mid - eu * 5.0 - ev * 5.0, eu * 10.0, ev * 10.0, Surface::Diffuse { albedo: 0.8, map: 0 });
-        let pass = light_pass(&s, 400_000, 3, &indicatif::ProgressBar::hidden());
+        let pass = light_pass(&s, 400_000, 3, refract::spectrum::colormap::ColorMap::Cie, &indicatif::ProgressBar::hidden());
         let measured = pass.stats.stored_power / pass.stats.emitted_power;
         // Analytic: the light's spectrum-weighted (prod Ts + prod Tp) / 2.
         let sampler = WavelengthSampler::new(&s.lights[0].spectrum);

@@ -78,6 +78,7 @@ pub const PRISM: &[&str] = &[
     "split",
     "exposure",
     "gamut",
+    "colours",
 ];
 
 fn num(v: &Value) -> Result<f64, String> {
@@ -208,6 +209,7 @@ pub fn apply_prism(c: &mut PrismConfig, key: &str, v: &Value) -> Result<(), Stri
         "split" => c.split = count(v, 1, 1024)? as u32,
         "exposure" => c.exposure = Some(num(v)?),
         "gamut" => c.gamut = choice::<GamutMap>(v)?,
+        "colours" => c.colours = choice::<crate::spectrum::colormap::ColorMap>(v)?,
         _ => return Err(format!("unknown prism parameter; expected one of {}", PRISM.join(", "))),
     }
     Ok(())

@@ -217,6 +217,7 @@ fn run_prism(params: &[(String, Value)]) -> Result<Outcome> {
         seed: cfg.seed,
         eye: cfg.eye,
         split: cfg.split,
+        colours: cfg.colours,
     };
     let pool = rayon::ThreadPoolBuilder::new().num_threads(cfg.threads).build()?;
     let hidden = indicatif::MultiProgress::with_draw_target(indicatif::ProgressDrawTarget::hidden());

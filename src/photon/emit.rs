@@ -15,7 +15,7 @@ use super::map::Photon;
 use crate::prism::scene::{Emission, PrismScene, Surface};
 use crate::prism::trace::{cross, Polarisation};
 use crate::sampling::{radical_inverse, rotate, Rng};
-use crate::spectrum::cie::cmf;
+use crate::spectrum::colormap::ColorMap;
 use crate::spectrum::sampler::WavelengthSampler;
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
@@ -56,7 +56,7 @@ const CHUNK: u64 = 8192;
 
 /// Traces `total` photons, shared among the lights by power. The result
 /// depends only on the scene, `total` and `seed`, not on thread count.
-pub fn light_pass(scene: &PrismScene, total: u64, seed: u64, progress: &indicatif::ProgressBar) -> LightPass {
+pub fn light_pass(scene: &PrismScene, total: u64, seed: u64, colours: ColorMap, progress: &indicatif::ProgressBar) -> LightPass {
     let mut out = LightPass { photons: vec![Vec::new(); scene.maps.len()], stats: LightStats::default() };
     let power: f64 = scene.lights.iter().map(|l| l.power).sum();
     if scene.maps.is_empty() || power <= 0.0 {
@@ -65,7 +65,7 @@ pub fn light_pass(scene: &PrismScene, total: u64, seed: u64, progress: &indicati
     for (li, light) in scene.lights.iter().enumerate() {
         let n = ((total as f64 * light.power / power).round() as u64).max(1);
         let sampler = WavelengthSampler::new(&light.spectrum);
-        let white = sampler.mean_cmf();
+        let white = sampler.mean_weight(colours);
         let per_photon = light.power / n as f64;
         let mut key = Rng::new(seed, li as u64, 0xfeed);
         let offsets = [key.f64(), key.f64(), key.f64()];
@@ -79,7 +79,7 @@ pub fn light_pass(scene: &PrismScene, total: u64, seed: u64, progress: &indicati
                     let u = [rotate(radical_inverse(i, 3), offsets[0]), rotate(radical_inverse(i, 5), offsets[1]), rotate(radical_inverse(i, 2), offsets[2])];
                     let mut rng = Rng::new(seed, i, 1 + li as u64);
                     let (o, d) = emit(scene, &light.emission, u[0], u[1], &mut rng);
-                    trace_photon(scene, o, d, per_photon, white, &sampler, u[2], &mut rng, &mut maps, &mut stats);
+                    trace_photon(scene, o, d, per_photon, white, &sampler, colours, u[2], &mut rng, &mut maps, &mut stats);
                 }
                 progress.inc(b - a);
                 (maps, stats)
@@ -112,13 +112,26 @@ fn emit(scene: &PrismScene, e: &Emission, a: f64, b: f64, rng: &mut Rng) -> (DVe
         Emission::Area { face } => {
             let f = &scene.faces[*face];
             let (c, eu, ev) = f.frame.expect("area lights are parallelograms");
-            // Position from (a, b); direction cosine-weighted (Malley's method).
-            let d = concentric_disc(rng.f64(), rng.f64());
-            let z = (1.0 - d.length_squared()).max(0.0).sqrt();
-            let (t, s) = (eu.normalize(), f.normal.cross(eu.normalize()));
-            (c + a * eu + b * ev + f.normal * 1e-9, t * d.x + s * d.y + f.normal * z)
+            (c + a * eu + b * ev + f.normal * 1e-9, cosine_direction(f.normal, rng))
+        }
+        Emission::Sphere { sphere } => {
+            let s = &scene.spheres[*sphere];
+            let z = 1.0 - 2.0 * a;
+            let r = (1.0 - z * z).max(0.0).sqrt();
+            let phi = 2.0 * std::f64::consts::PI * b;
+            let n = DVec3::new(r * phi.cos(), r * phi.sin(), z);
+            (s.centre + n * (s.radius * (1.0 + 1e-9)), cosine_direction(n, rng))
         }
     }
+}
+
+/// A direction about unit `n`, cosine-weighted (Malley's method).
+fn cosine_direction(n: DVec3, rng: &mut Rng) -> DVec3 {
+    let d = concentric_disc(rng.f64(), rng.f64());
+    let z = (1.0 - d.length_squared()).max(0.0).sqrt();
+    let t = n.any_orthonormal_vector();
+    let s = n.cross(t);
+    t * d.x + s * d.y + n * z
 }
 
 /// Shirley and Chiu's concentric map of the square onto the unit disc.
@@ -140,6 +153,7 @@ fn trace_photon(
     power: f64,
     white: DVec3,
     sampler: &WavelengthSampler,
+    colours: ColorMap,
     u_lambda: f64,
     rng: &mut Rng,
     maps: &mut [Vec<Photon>],
@@ -153,20 +167,19 @@ fn trace_photon(
     let mut skip = None;
     for _ in 0..MAX_BOUNCES {
         let Some(hit) = scene.intersect(o, d, skip) else { return };
-        let face = &scene.faces[hit.face];
         let p = o + hit.t * d;
-        match face.surface {
+        match *scene.surface(hit.face) {
             Surface::Interface { .. } => {
-                let c = match cross(scene, hit.face, d, nm) {
+                let c = match cross(scene, hit.face, p, d, nm) {
                     Ok(c) => c,
                     Err(_) => {
                         let (l, _pdf) = sampler.sample(u_lambda);
                         nm = Some(l);
                         // Sampled in proportion to the spectrum: the flux of
-                        // one watt at l is cmf(l) (see `mean_cmf`).
-                        xyz = cmf(l) * power;
+                        // one watt at l is its colour weight (see `mean_weight`).
+                        xyz = colours.xyz_weight(l) * power;
                         stats.dispersed += 1;
-                        cross(scene, hit.face, d, nm).expect("a wavelength is set")
+                        cross(scene, hit.face, p, d, nm).expect("a wavelength is set")
                     }
                 };
                 if c.refracted.is_none() {
@@ -177,7 +190,15 @@ fn trace_photon(
                     _ => c.reflected,
                 };
             }
+            Surface::Mirror { reflectance } => {
+                // Russian roulette keeps every photon's power equal.
+                if rng.f64() >= reflectance {
+                    return;
+                }
+                d = crate::optics::snell::reflect_f64(d, scene.normal(hit.face, p));
+            }
             Surface::Diffuse { map, .. } => {
+                let face = &scene.faces[hit.face];
                 if d.dot(face.normal) < 0.0 {
                     let (_, eu, ev) = face.frame.expect("matte surfaces are parallelograms");
                     if let Some(uv) = face.uv(p) {

@@ -39,6 +39,8 @@ pub struct PrismConfig {
     /// `None` = automatic (99.5th percentile at full scale).
     pub exposure: Option<f64>,
     pub gamut: GamutMap,
+    /// Wavelength to colour: CIE (default) or a report's map.
+    pub colours: crate::spectrum::colormap::ColorMap,
     pub out: PathBuf,
 }
 
@@ -58,6 +60,7 @@ impl PrismConfig {
             split: 8,
             exposure: None,
             gamut: GamutMap::Desaturate,
+            colours: crate::spectrum::colormap::ColorMap::Cie,
             out,
         }
     }
@@ -111,7 +114,17 @@ pub fn run(cfg: &PrismConfig) -> Result<PrismReport> {
         Some(k) => Lookup::Nearest(k),
         None => Lookup::Radius(radius),
     };
-    let opts = RenderOptions { photons: cfg.photons, map: cfg.map, filter: cfg.filter, lookup, spp: cfg.spp, seed: cfg.seed, eye: cfg.eye, split: cfg.split };
+    let opts = RenderOptions {
+        photons: cfg.photons,
+        map: cfg.map,
+        filter: cfg.filter,
+        lookup,
+        spp: cfg.spp,
+        seed: cfg.seed,
+        eye: cfg.eye,
+        split: cfg.split,
+        colours: cfg.colours,
+    };
     let pool = rayon::ThreadPoolBuilder::new().num_threads(cfg.threads).build()?;
     let bars = indicatif::MultiProgress::new();
     let render = pool.install(|| render::render(&scene, &opts, &bars));

@@ -33,12 +33,12 @@ pub fn probe(scene: &PrismScene, nm: f64) -> ProbeRay {
     let mut tir = false;
     for _ in 0..64 {
         let Some(hit) = scene.intersect(o, d, skip) else { break };
-        if !matches!(scene.faces[hit.face].surface, Surface::Interface { .. }) {
+        if !matches!(scene.surface(hit.face), Surface::Interface { .. }) {
             break;
         }
-        let c = cross(scene, hit.face, d, Some(nm)).expect("a wavelength is given");
-        debug_assert_eq!(c.from, medium, "media must be consistent along the ray");
         o += hit.t * d;
+        let c = cross(scene, hit.face, o, d, Some(nm)).expect("a wavelength is given");
+        debug_assert_eq!(c.from, medium, "media must be consistent along the ray");
         skip = Some(hit.face);
         faces += 1;
         match c.refracted {

@@ -16,7 +16,8 @@ use crate::photon::emit::{light_pass, LightStats};
 use crate::photon::gather::{Filter, Lookup};
 use crate::photon::map::{MapKind, SurfaceMap};
 use crate::sampling::Rng;
-use crate::spectrum::cie::{cie_y_integral, cmf};
+use crate::spectrum::cie::cie_y_integral;
+use crate::spectrum::colormap::ColorMap;
 use crate::spectrum::sampler::WavelengthSampler;
 use crate::spectrum::Spectrum;
 use glam::{DVec2, DVec3};
@@ -42,6 +43,8 @@ pub struct RenderOptions {
     pub seed: u64,
     pub eye: EyeMode,
     pub split: u32,
+    /// How a wavelength becomes colour: CIE, or one of the reports' maps.
+    pub colours: ColorMap,
 }
 
 /// A finished render and what it measured.
@@ -88,11 +91,12 @@ impl Eye<'_> {
             while p.depth < MAX_DEPTH {
                 *rays += 1;
                 let Some(hit) = self.scene.intersect(p.o, p.d, p.skip) else { break };
-                let face = &self.scene.faces[hit.face];
                 let x = p.o + hit.t * p.d;
-                match face.surface {
+                let normal = self.scene.normal(hit.face, x);
+                let colours = self.opts.colours;
+                match *self.scene.surface(hit.face) {
                     Surface::Interface { .. } => {
-                        let c = match cross(self.scene, hit.face, p.d, p.nm) {
+                        let c = match cross(self.scene, hit.face, x, p.d, p.nm) {
                             Ok(c) => c,
                             Err(_) => {
                                 if self.opts.eye == EyeMode::Split {
@@ -110,7 +114,7 @@ impl Eye<'_> {
                                     p.nm = Some(l);
                                     p.weight /= pdf;
                                 }
-                                cross(self.scene, hit.face, p.d, p.nm).expect("a wavelength is set")
+                                cross(self.scene, hit.face, x, p.d, p.nm).expect("a wavelength is set")
                             }
                         };
                         p.d = match c.refracted {
@@ -118,8 +122,13 @@ impl Eye<'_> {
                             _ => c.reflected,
                         };
                     }
+                    Surface::Mirror { reflectance } => {
+                        p.weight *= reflectance;
+                        p.d = crate::optics::snell::reflect_f64(p.d, normal);
+                    }
                     Surface::Diffuse { albedo, map } => {
-                        if p.d.dot(face.normal) < 0.0 {
+                        let face = &self.scene.faces[hit.face];
+                        if p.d.dot(normal) < 0.0 {
                             if let (Some(uv), Some((_, eu, ev))) = (face.uv(x), face.frame) {
                                 let pos = DVec2::new(uv.x * eu.length(), uv.y * ev.length());
                                 let l = self.maps[map].irradiance(pos, self.opts.filter, self.opts.lookup) * (albedo / std::f64::consts::PI);
@@ -128,18 +137,18 @@ impl Eye<'_> {
                                     // Seen through a dispersive face: the map holds
                                     // XYZ, not a spectrum; its luminance is spread
                                     // evenly over wavelength (an approximation).
-                                    Some(nm) => cmf(nm) * (l.y / cie_y_integral()) * p.weight,
+                                    Some(nm) => colours.xyz_weight(nm) * (l.y / cie_y_integral()) * p.weight,
                                 };
                             }
                         }
                         break;
                     }
                     Surface::Emitter { light } => {
-                        if p.d.dot(face.normal) < 0.0 {
+                        if p.d.dot(normal) < 0.0 {
                             let (scale, s) = &self.lights[light];
                             sum += match p.nm {
-                                None => s.mean_cmf() * scale * p.weight,
-                                Some(nm) => cmf(nm) * (s.pdf(nm) * scale) * p.weight,
+                                None => s.mean_weight(colours) * scale * p.weight,
+                                Some(nm) => colours.xyz_weight(nm) * (s.pdf(nm) * scale) * p.weight,
                             };
                         }
                         break;
@@ -163,7 +172,7 @@ pub fn render(scene: &PrismScene, opts: &RenderOptions, bars: &indicatif::MultiP
     let pass = if scene.maps.is_empty() {
         crate::photon::emit::LightPass { photons: Vec::new(), stats: LightStats::default() }
     } else {
-        light_pass(scene, opts.photons, opts.seed, &light_bar)
+        light_pass(scene, opts.photons, opts.seed, opts.colours, &light_bar)
     };
     light_bar.finish_and_clear();
     let trace_s = t.elapsed().as_secs_f64();
@@ -190,6 +199,7 @@ pub fn render(scene: &PrismScene, opts: &RenderOptions, bars: &indicatif::MultiP
         .map(|l| {
             let area = match l.emission {
                 Emission::Area { face } => scene.faces[face].area(),
+                Emission::Sphere { sphere } => 4.0 * std::f64::consts::PI * scene.spheres[sphere].radius.powi(2),
                 _ => 1.0,
             };
             // Lambertian emitter: radiance P / (pi A), spread over wavelength by the spectrum's pdf.

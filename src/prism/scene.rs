@@ -43,8 +43,10 @@ pub enum Surface {
     /// A matte surface: photons are stored on it (map `map`), the eye reads
     /// them back. Only its front side is lit.
     Diffuse { albedo: f64, map: usize },
-    /// An emitting face: light `light` seen directly.
+    /// An emitting surface: light `light` seen directly.
     Emitter { light: usize },
+    /// A polished metal or mirror: specular reflection of `reflectance`.
+    Mirror { reflectance: f64 },
 }
 
 /// A planar convex polygon.
@@ -116,6 +118,34 @@ impl Face {
     }
 }
 
+/// An analytic sphere (report 001's glass spheres and spherical lights).
+#[derive(Clone, Debug)]
+pub struct Sphere {
+    pub name: String,
+    pub centre: DVec3,
+    pub radius: f64,
+    /// Outside is the front (the normal points out).
+    pub surface: Surface,
+}
+
+impl Sphere {
+    /// Nearest root beyond the start; `leaving` when the ray starts on this
+    /// sphere (then the root at the start is ignored).
+    #[inline]
+    pub fn intersect(&self, o: DVec3, d: DVec3, leaving: bool) -> Option<f64> {
+        let oc = o - self.centre;
+        let b = oc.dot(d);
+        let c = oc.length_squared() - self.radius * self.radius;
+        let disc = b * b - c;
+        if !(disc >= 0.0) {
+            return None;
+        }
+        let q = disc.sqrt();
+        let eps = if leaving { 1e-7 * self.radius } else { 0.0 };
+        [-b - q, -b + q].into_iter().find(|&t| t > eps)
+    }
+}
+
 /// How a light emits.
 #[derive(Clone, Debug)]
 pub enum Emission {
@@ -127,6 +157,8 @@ pub enum Emission {
     Point { pos: DVec3 },
     /// A one-sided Lambertian emitter covering face `face`.
     Area { face: usize },
+    /// A Lambertian spherical emitter: sphere `sphere` of the scene.
+    Sphere { sphere: usize },
 }
 
 #[derive(Clone, Debug)]
@@ -204,6 +236,8 @@ pub struct PrismScene {
     pub name: String,
     pub media: Vec<Medium>,
     pub faces: Vec<Face>,
+    /// Analytic spheres; their ids follow the faces' (`faces.len() + k`).
+    pub spheres: Vec<Sphere>,
     pub lights: Vec<Light>,
     pub camera: Camera,
     /// Diffuse faces, in photon-map order: `maps[i]` is a face index.
@@ -220,8 +254,9 @@ pub struct FaceHit {
 }
 
 impl PrismScene {
-    /// Nearest hit along `o + t d`, ignoring face `skip` (the one the ray
-    /// leaves: a ray cannot meet its own plane again).
+    /// Nearest hit along `o + t d`. `skip` is the surface the ray leaves: a
+    /// face is ignored (a ray cannot meet its own plane again), a sphere
+    /// only loses the root at the start.
     pub fn intersect(&self, o: DVec3, d: DVec3, skip: Option<usize>) -> Option<FaceHit> {
         let mut best: Option<FaceHit> = None;
         for (i, f) in self.faces.iter().enumerate() {
@@ -234,7 +269,41 @@ impl PrismScene {
                 }
             }
         }
+        let n = self.faces.len();
+        for (k, s) in self.spheres.iter().enumerate() {
+            if let Some(t) = s.intersect(o, d, skip == Some(n + k)) {
+                if best.is_none_or(|b| t < b.t) {
+                    best = Some(FaceHit { t, face: n + k });
+                }
+            }
+        }
         best
+    }
+
+    /// What happens at surface `id` (a face or a sphere).
+    pub fn surface(&self, id: usize) -> &Surface {
+        match self.faces.get(id) {
+            Some(f) => &f.surface,
+            None => &self.spheres[id - self.faces.len()].surface,
+        }
+    }
+
+    /// Unit normal of surface `id` at `p` (the face's, or outward).
+    pub fn normal(&self, id: usize, p: DVec3) -> DVec3 {
+        match self.faces.get(id) {
+            Some(f) => f.normal,
+            None => {
+                let s = &self.spheres[id - self.faces.len()];
+                (p - s.centre) / s.radius
+            }
+        }
+    }
+
+    pub fn name(&self, id: usize) -> &str {
+        match self.faces.get(id) {
+            Some(f) => &f.name,
+            None => &self.spheres[id - self.faces.len()].name,
+        }
     }
 
     /// Adds the faces of an extruded prism train: counter-clockwise

@@ -48,25 +48,26 @@ impl Crossing {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct NeedsWavelength;
 
-/// Crossing of interface face `face` by direction `d` at wavelength `nm`
-/// (`None` = white, allowed only where no medium here disperses).
-pub fn cross(scene: &PrismScene, face: usize, d: DVec3, nm: Option<f64>) -> Result<Crossing, NeedsWavelength> {
-    let f = &scene.faces[face];
-    let Surface::Interface { front, back } = f.surface else {
-        panic!("cross() on a face that is not an interface: {}", f.name);
+/// Crossing of interface `id` (a face or sphere) at point `p` by direction
+/// `d` at wavelength `nm` (`None` = white, allowed only where no medium
+/// here disperses).
+pub fn cross(scene: &PrismScene, id: usize, p: DVec3, d: DVec3, nm: Option<f64>) -> Result<Crossing, NeedsWavelength> {
+    let Surface::Interface { front, back } = *scene.surface(id) else {
+        panic!("cross() on a surface that is not an interface: {}", scene.name(id));
     };
+    let normal = scene.normal(id, p);
     // Coming from the front side (against the normal) means entering `back`.
-    let (from, to) = if d.dot(f.normal) < 0.0 { (front, back) } else { (back, front) };
+    let (from, to) = if d.dot(normal) < 0.0 { (front, back) } else { (back, front) };
     let n1 = scene.media[from].n(nm).ok_or(NeedsWavelength)?;
     let n2 = scene.media[to].n(nm).ok_or(NeedsWavelength)?;
-    let cos_i = d.dot(f.normal).abs();
+    let cos_i = d.dot(normal).abs();
     Ok(Crossing {
         to,
         from,
         n1,
         n2,
         fresnel: Fresnel::dielectric(cos_i, n1, n2),
-        refracted: refract_f64(d, f.normal, n1 / n2).map(|t| t.normalize()),
-        reflected: reflect_f64(d, f.normal),
+        refracted: refract_f64(d, normal, n1 / n2).map(|t| t.normalize()),
+        reflected: reflect_f64(d, normal),
     })
 }

@@ -12,7 +12,8 @@
 //! - `gradient`: report 003's interpolated gradient through the same colours
 //!   spread evenly over 380-700 nm;
 //! - `hsl`: report 003's HSL mapping, hue 270 deg at 380 nm to 0 deg at 700 nm,
-//!   full saturation, lightness 1/2.
+//!   full saturation, lightness 1/2;
+//! - `red-white-blue`: report 003's custom map of its eagle render.
 //!
 //! Report 003's colours are display values, so they are decoded from the
 //! sRGB transfer function to linear here.
@@ -28,10 +29,13 @@ pub enum ColorMap {
     IfBuckets,
     Gradient,
     Hsl,
+    /// Report 003's custom map for its eagle: red (700 nm) through white
+    /// (540 nm) to blue (380 nm).
+    RedWhiteBlue,
 }
 
 impl ColorMap {
-    pub const ALL: [ColorMap; 5] = [ColorMap::Cie, ColorMap::Buckets81, ColorMap::IfBuckets, ColorMap::Gradient, ColorMap::Hsl];
+    pub const ALL: [ColorMap; 6] = [ColorMap::Cie, ColorMap::Buckets81, ColorMap::IfBuckets, ColorMap::Gradient, ColorMap::Hsl, ColorMap::RedWhiteBlue];
 
     pub fn name(self) -> &'static str {
         match self {
@@ -40,7 +44,29 @@ impl ColorMap {
             ColorMap::IfBuckets => "if-buckets",
             ColorMap::Gradient => "gradient",
             ColorMap::Hsl => "hsl",
+            ColorMap::RedWhiteBlue => "red-white-blue",
         }
+    }
+
+    /// Colour-matching weights of one watt at `nm` as this map colours light
+    /// (what a photon of that wavelength adds to the image): the CIE
+    /// functions for `cie`; otherwise the map's RGB as XYZ, scaled so its
+    /// luminance summed over 360-830 nm equals the CIE total (equal
+    /// brightness, no other normalisation, as the reports had none).
+    pub fn xyz_weight(self, nm: f64) -> DVec3 {
+        if self == ColorMap::Cie {
+            return cmf(nm);
+        }
+        static SCALE: OnceLock<[f64; 6]> = OnceLock::new();
+        let scale = SCALE.get_or_init(|| {
+            let mut out = [1.0; 6];
+            for m in ColorMap::ALL {
+                let y: f64 = (360..=830).map(|l| LinearRgb(m.rgb(l as f64)).to_xyz().0.y).sum();
+                out[m as usize] = if y > 0.0 { super::cie::cie_y_integral() / y } else { 1.0 };
+            }
+            out
+        });
+        LinearRgb(self.rgb(nm)).to_xyz().0 * scale[self as usize]
     }
 
     /// Linear sRGB in [0, 1] for monochromatic light of `nm`.
@@ -60,6 +86,13 @@ impl ColorMap {
                     return DVec3::ZERO;
                 }
                 decode(hsl_to_rgb(270.0 * (700.0 - nm) / 320.0, 1.0, 0.5))
+            }
+            ColorMap::RedWhiteBlue => {
+                if !(380.0..=700.0).contains(&nm) {
+                    return DVec3::ZERO;
+                }
+                let c = if nm >= 540.0 { RED.lerp(DVec3::ONE, (700.0 - nm) / 160.0) } else { DVec3::ONE.lerp(BLUE, (540.0 - nm) / 160.0) };
+                decode(c)
             }
         }
     }

@@ -63,7 +63,12 @@ impl WavelengthSampler {
     /// Expected colour-matching values of one sampled wavelength: the XYZ
     /// of one watt of this light (what a "white" path carries).
     pub fn mean_cmf(&self) -> glam::DVec3 {
-        (0..self.cdf.len() - 1).map(|i| (self.cdf[i + 1] - self.cdf[i]) * super::cie::cmf(LAMBDA_MIN + (i as f64 + 0.5) * BIN_NM)).sum()
+        self.mean_weight(super::colormap::ColorMap::Cie)
+    }
+
+    /// The same with a wavelength-to-colour map's weights.
+    pub fn mean_weight(&self, map: super::colormap::ColorMap) -> glam::DVec3 {
+        (0..self.cdf.len() - 1).map(|i| (self.cdf[i + 1] - self.cdf[i]) * map.xyz_weight(LAMBDA_MIN + (i as f64 + 0.5) * BIN_NM)).sum()
     }
 }
 
