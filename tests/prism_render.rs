@@ -57,7 +57,7 @@ fn energy_on_the_screen_is_the_emitted_power_times_fresnel_transmittance() {
         let f = s.maps[0];
         let (c, eu, ev) = s.faces[f].frame.unwrap();
         let mid = c + eu / 2.0 + ev / 2.0;
-        s.faces[f] = Face::rect("big screen", mid - eu * 5.0 - ev * 5.0, eu * 10.0, ev * 10.0, Surface::Diffuse { albedo: 0.8, map: 0 });
+        s.faces[f] = Face::rect("big screen", mid - eu * 5.0 - ev * 5.0, eu * 10.0, ev * 10.0, Surface::Diffuse { albedo: [0.8; 3], map: 0 });
         let pass = light_pass(&s, 400_000, 3, refract::spectrum::colormap::ColorMap::Cie, &indicatif::ProgressBar::hidden());
         let measured = pass.stats.stored_power / pass.stats.emitted_power;
         // Analytic: the light's spectrum-weighted (prod Ts + prod Tp) / 2.

@@ -78,7 +78,14 @@ pub fn light_pass(scene: &PrismScene, total: u64, seed: u64, colours: ColorMap, 
                 for i in a..b {
                     let u = [rotate(radical_inverse(i, 3), offsets[0]), rotate(radical_inverse(i, 5), offsets[1]), rotate(radical_inverse(i, 2), offsets[2])];
                     let mut rng = Rng::new(seed, i, 1 + li as u64);
-                    let (o, d) = emit(scene, &light.emission, u[0], u[1], &mut rng);
+                    // Beams take stratified positions; lights that emit in all
+                    // directions take random ones (a Halton lattice folded by
+                    // mirrors shows as a checkerboard on the walls).
+                    let (a, b) = match light.emission {
+                        Emission::Beam { .. } => (u[0], u[1]),
+                        _ => (rng.f64(), rng.f64()),
+                    };
+                    let (o, d) = emit(scene, &light.emission, a, b, &mut rng);
                     trace_photon(scene, o, d, per_photon, white, &sampler, colours, u[2], &mut rng, &mut maps, &mut stats);
                 }
                 progress.inc(b - a);

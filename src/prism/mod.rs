@@ -10,6 +10,7 @@ pub mod probe;
 pub mod render;
 pub mod scene;
 pub mod scenes;
+pub mod scenes_extra;
 pub mod trace;
 
 use crate::photon::gather::{Filter, Lookup};

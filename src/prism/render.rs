@@ -60,6 +60,9 @@ pub struct PrismRender {
 }
 
 const MAX_DEPTH: usize = 64;
+/// Interfaces up to this depth split an eye path into its reflected and
+/// refracted parts instead of choosing one.
+const SPLIT_DEPTH: usize = 4;
 
 struct Eye<'a> {
     scene: &'a PrismScene,
@@ -117,8 +120,17 @@ impl Eye<'_> {
                                 cross(self.scene, hit.face, x, p.d, p.nm).expect("a wavelength is set")
                             }
                         };
+                        let r = c.reflectance(p.pol);
                         p.d = match c.refracted {
-                            Some(t) if rng.f64() >= c.reflectance(p.pol) => t,
+                            // Near the camera both branches are followed with
+                            // their Fresnel weights (no roulette noise); deeper,
+                            // one is chosen by Russian roulette.
+                            Some(t) if p.depth < SPLIT_DEPTH => {
+                                stack.push(Path { o: x, d: c.reflected, skip: Some(hit.face), weight: p.weight * r, depth: p.depth + 1, ..p });
+                                p.weight *= 1.0 - r;
+                                t
+                            }
+                            Some(t) if rng.f64() >= r => t,
                             _ => c.reflected,
                         };
                     }
@@ -131,7 +143,8 @@ impl Eye<'_> {
                         if p.d.dot(normal) < 0.0 {
                             if let (Some(uv), Some((_, eu, ev))) = (face.uv(x), face.frame) {
                                 let pos = DVec2::new(uv.x * eu.length(), uv.y * ev.length());
-                                let l = self.maps[map].irradiance(pos, self.opts.filter, self.opts.lookup) * (albedo / std::f64::consts::PI);
+                                let e = self.maps[map].irradiance(pos, self.opts.filter, self.opts.lookup);
+                                let l = tint(e, albedo) / std::f64::consts::PI;
                                 sum += match p.nm {
                                     None => l * p.weight,
                                     // Seen through a dispersive face: the map holds
@@ -161,6 +174,15 @@ impl Eye<'_> {
         }
         sum
     }
+}
+
+/// XYZ times a linear-sRGB albedo (exact for grey).
+fn tint(xyz: DVec3, albedo: [f64; 3]) -> DVec3 {
+    if albedo[0] == albedo[1] && albedo[1] == albedo[2] {
+        return xyz * albedo[0];
+    }
+    let rgb = crate::spectrum::Xyz(xyz).to_linear_srgb().0 * DVec3::from(albedo);
+    crate::spectrum::LinearRgb(rgb).to_xyz().0
 }
 
 /// Runs the light pass and the eye pass.

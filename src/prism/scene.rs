@@ -41,8 +41,9 @@ pub enum Surface {
     /// `front` is the side the normal points to.
     Interface { front: usize, back: usize },
     /// A matte surface: photons are stored on it (map `map`), the eye reads
-    /// them back. Only its front side is lit.
-    Diffuse { albedo: f64, map: usize },
+    /// them back. Only its front side is lit. The albedo is linear sRGB,
+    /// applied to the stored colour (an RGB product, not spectral).
+    Diffuse { albedo: [f64; 3], map: usize },
     /// An emitting surface: light `light` seen directly.
     Emitter { light: usize },
     /// A polished metal or mirror: specular reflection of `reflectance`.
@@ -365,7 +366,7 @@ mod tests {
 
     #[test]
     fn rect_uv_and_hits() {
-        let f = Face::rect("s", DVec3::ZERO, DVec3::new(2.0, 0.0, 0.0), DVec3::new(0.0, 0.0, 1.0), Surface::Diffuse { albedo: 0.8, map: 0 });
+        let f = Face::rect("s", DVec3::ZERO, DVec3::new(2.0, 0.0, 0.0), DVec3::new(0.0, 0.0, 1.0), Surface::Diffuse { albedo: [0.8; 3], map: 0 });
         let t = f.intersect(DVec3::new(0.5, 3.0, 0.25), DVec3::NEG_Y).unwrap();
         assert!((t - 3.0).abs() < 1e-12);
         let uv = f.uv(DVec3::new(0.5, 0.0, 0.25)).unwrap();

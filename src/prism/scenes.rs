@@ -21,9 +21,26 @@ use glam::{DVec2, DVec3};
 
 #[derive(Copy, Clone, Debug, PartialEq, Eq, clap::ValueEnum)]
 pub enum SceneKind {
+    /// Report 000: a white slit beam through an Amici prism onto a screen.
     AmiciScreen,
+    /// Report 000: a fluorescent tube seen through an Amici prism.
     AmiciLamp,
+    /// The anchor: a 60 degree prism, a 2 cm beam, a screen 4 m behind.
     SinglePrism,
+    /// Report 001: a glass sphere before a spherical black-body light, off centre.
+    SphereArealight,
+    /// Report 001: a glass sphere before a polished metal plate reflecting a warm light.
+    SphereMetal,
+    /// Report 001's final image: glass spheres before a bright bar light.
+    SpheresFinal,
+    /// Report 003: a point light and a glass prism in a Cornell box (a faint rainbow).
+    CornellPointlight,
+    /// Report 003: the point light at the end of a mirror tube (a brighter rainbow).
+    CornellMirrorTube,
+    /// Report 003: a laser into a glass prism in a Cornell box.
+    CornellLaser,
+    /// Report 003's album-cover remake: a white beam through a prism fanning into a spectrum.
+    DarkSide,
 }
 
 impl SceneKind {
@@ -32,6 +49,13 @@ impl SceneKind {
             SceneKind::AmiciScreen => "amici-screen",
             SceneKind::AmiciLamp => "amici-lamp",
             SceneKind::SinglePrism => "single-prism",
+            SceneKind::SphereArealight => "sphere-arealight",
+            SceneKind::SphereMetal => "sphere-metal",
+            SceneKind::SpheresFinal => "spheres-final",
+            SceneKind::CornellPointlight => "cornell-pointlight",
+            SceneKind::CornellMirrorTube => "cornell-mirror-tube",
+            SceneKind::CornellLaser => "cornell-laser",
+            SceneKind::DarkSide => "dark-side",
         }
     }
 }
@@ -77,13 +101,13 @@ impl SceneOptions {
     }
 }
 
-fn glass_medium(name: &str, kind: IorKind, no_dispersion: bool) -> Result<Medium> {
+pub(crate) fn glass_medium(name: &str, kind: IorKind, no_dispersion: bool) -> Result<Medium> {
     let g = glass::by_name(name)?;
     let kind = if no_dispersion { IorKind::Constant } else { kind };
     Ok(Medium::Glass { name: g.name.clone(), ior: IorModel::for_glass(g, kind) })
 }
 
-fn rotate_z(v: DVec3, angle: f64) -> DVec3 {
+pub(crate) fn rotate_z(v: DVec3, angle: f64) -> DVec3 {
     let (s, c) = angle.sin_cos();
     DVec3::new(c * v.x - s * v.y, s * v.x + c * v.y, v.z)
 }
@@ -96,6 +120,9 @@ pub fn build(o: &SceneOptions) -> Result<PrismScene> {
     let mut scene = match o.kind {
         SceneKind::AmiciScreen | SceneKind::AmiciLamp => amici(o)?,
         SceneKind::SinglePrism => single_prism(o)?,
+        SceneKind::SphereArealight | SceneKind::SphereMetal | SceneKind::SpheresFinal => super::scenes_extra::spheres(o)?,
+        SceneKind::CornellPointlight | SceneKind::CornellMirrorTube | SceneKind::CornellLaser => super::scenes_extra::cornell(o)?,
+        SceneKind::DarkSide => super::scenes_extra::dark_side(o)?,
     };
     if let Some(path) = &o.obj {
         // The user's mesh replaces the prism; beam, screen and camera stay
@@ -128,7 +155,7 @@ fn reindex(scene: &mut PrismScene) {
     }
 }
 
-fn light_spectrum(o: &SceneOptions, default: &str) -> Result<Spectrum> {
+pub(crate) fn light_spectrum(o: &SceneOptions, default: &str) -> Result<Spectrum> {
     Ok(Spectrum::light(o.light.as_deref().unwrap_or(default))?)
 }
 
@@ -189,7 +216,13 @@ fn amici(o: &SceneOptions) -> Result<PrismScene> {
             let tall = width * o.height as f64 / o.width as f64;
             // Normal -x (facing the prism), u along +y, v along +z... wound so u x v = -x.
             let corner = centre + DVec3::new(0.0, width / 2.0, -tall / 2.0);
-            scene.faces.push(Face::rect("screen", corner, DVec3::new(0.0, -width, 0.0), DVec3::new(0.0, 0.0, tall), Surface::Diffuse { albedo: 0.8, map: 0 }));
+            scene.faces.push(Face::rect(
+                "screen",
+                corner,
+                DVec3::new(0.0, -width, 0.0),
+                DVec3::new(0.0, 0.0, tall),
+                Surface::Diffuse { albedo: [0.8; 3], map: 0 },
+            ));
             scene.maps.push(scene.faces.len() - 1);
             let cam = centre - DVec3::X * 1.0;
             let vfov = 2.0 * ((tall / 2.0) / 1.0).atan().to_degrees();
@@ -264,7 +297,7 @@ fn single_prism(o: &SceneOptions) -> Result<PrismScene> {
     let u = out.cross(DVec3::Z).normalize(); // in the xy plane, across the strip
     let corner = centre - u * (width / 2.0) - DVec3::Z * (high / 2.0);
     // Normal u x z = -out: facing the prism.
-    scene.faces.push(Face::rect("screen", corner, u * width, DVec3::Z * high, Surface::Diffuse { albedo: 0.8, map: 0 }));
+    scene.faces.push(Face::rect("screen", corner, u * width, DVec3::Z * high, Surface::Diffuse { albedo: [0.8; 3], map: 0 }));
     scene.maps.push(scene.faces.len() - 1);
     let cam = centre - out * 1.0;
     let vfov = 2.0 * ((high / 2.0) / 1.0).atan().to_degrees();

@@ -1,0 +1,249 @@
+//! The scenes of reports 001 and 003, built in code (units: metres; z up
+//! in the Cornell boxes and the album cover, where prisms stand on the
+//! floor; light travels along +x for the spheres).
+//!
+//! - `sphere-arealight`: a glass sphere hanging before a spherical
+//!   black-body light slightly off centre: colour fringes at its edges.
+//! - `sphere-metal`: the sphere before a polished metal plate that reflects
+//!   a warm black-body light: a yellow-to-red fringe.
+//! - `spheres-final`: three flint spheres before a bright bar light, where
+//!   the wavelength effects show clearly.
+//! - `cornell-pointlight`, `cornell-mirror-tube`, `cornell-laser`: a glass
+//!   prism on the floor of a Cornell box lit by a bare point light (a faint
+//!   rainbow), by the same light at the end of a mirror tube (brighter),
+//!   and by a laser (a bright fan).
+//! - `dark-side`: a white beam grazing a dark backdrop through a prism
+//!   standing on it, fanning into a spectrum (the album cover).
+
+use super::scene::{Camera, Emission, Face, Light, Medium, PrismScene, Sphere, Surface};
+use super::scenes::{glass_medium, light_spectrum, rotate_z, SceneKind, SceneOptions};
+use crate::spectrum::Spectrum;
+use anyhow::Result;
+use glam::{DVec2, DVec3};
+
+fn empty(o: &SceneOptions, glass: Medium) -> PrismScene {
+    PrismScene {
+        name: o.kind.name().into(),
+        media: vec![Medium::Air, glass],
+        faces: Vec::new(),
+        spheres: Vec::new(),
+        lights: Vec::new(),
+        camera: Camera::look_at(DVec3::ZERO, DVec3::X, DVec3::Z, 30.0, o.width, o.height),
+        maps: Vec::new(),
+        probe: (DVec3::ZERO, DVec3::X),
+    }
+}
+
+/// A matte parallelogram with its own photon map.
+fn matte(s: &mut PrismScene, name: &str, corner: DVec3, eu: DVec3, ev: DVec3, albedo: [f64; 3]) {
+    let map = s.maps.len();
+    s.faces.push(Face::rect(name, corner, eu, ev, Surface::Diffuse { albedo, map }));
+    s.maps.push(s.faces.len() - 1);
+}
+
+fn glass_sphere(s: &mut PrismScene, name: &str, centre: DVec3, radius: f64) {
+    s.spheres.push(Sphere { name: name.into(), centre, radius, surface: Surface::Interface { front: 0, back: 1 } });
+}
+
+fn sphere_light(s: &mut PrismScene, o: &SceneOptions, centre: DVec3, radius: f64, default: &str) -> Result<()> {
+    let light = s.lights.len();
+    s.spheres.push(Sphere { name: "light".into(), centre, radius, surface: Surface::Emitter { light } });
+    s.lights.push(Light {
+        name: "sphere light".into(),
+        emission: Emission::Sphere { sphere: s.spheres.len() - 1 },
+        spectrum: light_spectrum(o, default)?,
+        power: 1.0,
+    });
+    Ok(())
+}
+
+/// An equilateral prism's cross-section centred at `c`, turned so that
+/// light of index `n` passing at minimum deviation leaves along `exit`
+/// (radians from +x). Unturned, the apex points +y and that light leaves
+/// at 30 deg - theta1, with sin theta1 = n sin 30 deg.
+fn prism_cross_section(c: DVec2, side: f64, n: f64, exit: f64) -> [DVec2; 3] {
+    let tall = side * 3f64.sqrt() / 2.0;
+    let theta1 = (n * 0.5f64).min(1.0).asin();
+    let turn = DVec2::from_angle(exit - (30f64.to_radians() - theta1));
+    [DVec2::new(-side / 2.0, -tall / 3.0), DVec2::new(side / 2.0, -tall / 3.0), DVec2::new(0.0, 2.0 * tall / 3.0)].map(|p| c + turn.rotate(p))
+}
+
+/// Direction (in the xy plane) that meets the left face of a prism of
+/// `cross` at incidence `incidence` (radians).
+fn into_left_face(cross: [DVec2; 3], incidence: f64) -> (DVec3, DVec3) {
+    let (apex, left) = (cross[2], cross[0]);
+    let edge = (left - apex).normalize();
+    let inward = DVec2::new(-edge.y, edge.x); // rotate the edge +90 deg: into the prism
+    let angle = inward.y.atan2(inward.x);
+    let dir = rotate_z(DVec3::X, angle + incidence);
+    let mid = (apex + left) / 2.0;
+    (DVec3::new(mid.x, mid.y, 0.0), dir)
+}
+
+pub fn spheres(o: &SceneOptions) -> Result<PrismScene> {
+    let glass = glass_medium(&o.crown, o.ior, o.no_dispersion)?;
+    let mut s = empty(o, glass);
+    match o.kind {
+        SceneKind::SphereArealight => {
+            if !o.no_prism {
+                glass_sphere(&mut s, "glass sphere", DVec3::new(3.0, 0.0, 0.0), 0.5);
+            }
+            sphere_light(&mut s, o, DVec3::new(6.0, 0.35, 0.15), 0.9, "blackbody:6500")?;
+            s.camera = Camera::look_at(DVec3::ZERO, DVec3::new(3.0, 0.0, 0.0), DVec3::Z, 30.0, o.width, o.height);
+        }
+        SceneKind::SphereMetal => {
+            if !o.no_prism {
+                glass_sphere(&mut s, "glass sphere", DVec3::new(3.0, 0.0, 0.0), 0.5);
+            }
+            // A metal plate at 45 degrees behind the sphere reflects a warm
+            // light standing off to the side.
+            let (c, n) = (DVec3::new(5.5, 0.0, 0.0), DVec3::new(-1.0, 1.0, 0.0).normalize());
+            let u = DVec3::Z.cross(n).normalize();
+            s.faces.push(Face::rect("metal plate", c - u * 2.0 - DVec3::Z * 2.0, u * 4.0, DVec3::Z * 4.0, Surface::Mirror { reflectance: 0.9 }));
+            sphere_light(&mut s, o, DVec3::new(5.7, 3.0, 0.2), 1.2, "blackbody:3200")?;
+            s.camera = Camera::look_at(DVec3::ZERO, DVec3::new(3.0, 0.0, 0.0), DVec3::Z, 30.0, o.width, o.height);
+        }
+        _ => {
+            if !o.no_prism {
+                glass_sphere(&mut s, "sphere 1", DVec3::new(3.0, -0.7, 0.1), 0.38);
+                glass_sphere(&mut s, "sphere 2", DVec3::new(3.6, 0.15, -0.15), 0.45);
+                glass_sphere(&mut s, "sphere 3", DVec3::new(3.2, 0.85, 0.2), 0.3);
+            }
+            // A tall bright bar behind them.
+            let light = s.lights.len();
+            s.faces.push(Face::rect(
+                "bar light",
+                DVec3::new(6.0, 0.05, -1.5),
+                DVec3::new(0.0, 0.0, 3.0),
+                DVec3::new(0.0, 0.2, 0.0),
+                Surface::Emitter { light },
+            ));
+            s.lights.push(Light {
+                name: "bar".into(),
+                emission: Emission::Area { face: s.faces.len() - 1 },
+                spectrum: light_spectrum(o, "blackbody:5500")?,
+                power: 1.0,
+            });
+            s.camera = Camera::look_at(DVec3::ZERO, DVec3::new(3.0, 0.0, 0.0), DVec3::Z, 32.0, o.width, o.height);
+        }
+    }
+    s.probe = (DVec3::ZERO, DVec3::X);
+    Ok(s)
+}
+
+/// The Cornell box: x in [-1, 1], y in [-1, 1] (back wall at y = 1), z in
+/// [0, 2], open toward the camera at y = -1.
+fn cornell_box(s: &mut PrismScene) {
+    let (white, red, green) = ([0.75; 3], [0.75, 0.12, 0.1], [0.12, 0.55, 0.12]);
+    let v = DVec3::new;
+    matte(s, "floor", v(-1.0, -1.0, 0.0), v(2.0, 0.0, 0.0), v(0.0, 2.0, 0.0), white);
+    matte(s, "ceiling", v(-1.0, -1.0, 2.0), v(0.0, 2.0, 0.0), v(2.0, 0.0, 0.0), white);
+    matte(s, "back wall", v(-1.0, 1.0, 0.0), v(2.0, 0.0, 0.0), v(0.0, 0.0, 2.0), white);
+    matte(s, "left wall", v(-1.0, -1.0, 0.0), v(0.0, 2.0, 0.0), v(0.0, 0.0, 2.0), red);
+    matte(s, "right wall", v(1.0, -1.0, 0.0), v(0.0, 0.0, 2.0), v(0.0, 2.0, 0.0), green);
+}
+
+pub fn cornell(o: &SceneOptions) -> Result<PrismScene> {
+    let glass = glass_medium(&o.crown, o.ior, o.no_dispersion)?;
+    let mut s = empty(o, glass);
+    cornell_box(&mut s);
+    let n_d = s.media[1].n(Some(crate::optics::glass::lines::LD)).unwrap_or(1.5);
+    // The spectrum fans toward the back wall, a little to the right.
+    let cross = prism_cross_section(DVec2::new(-0.1, -0.3), 0.3, n_d, 70f64.to_radians());
+    if !o.no_prism {
+        s.add_extruded("prism", &[(cross, 1)], 0.0, 0.5);
+    }
+    let incidence = o.incidence_deg.map_or((n_d * 0.5f64).asin(), f64::to_radians);
+    let (aim, dir) = into_left_face(cross, incidence);
+    let aim = aim + DVec3::Z * 0.25;
+    match o.kind {
+        SceneKind::CornellPointlight => {
+            let pos = aim - dir * 0.55;
+            s.lights.push(Light { name: "point light".into(), emission: Emission::Point { pos }, spectrum: light_spectrum(o, "d65")?, power: 1.0 });
+        }
+        SceneKind::CornellMirrorTube => {
+            // A square mirror tube along the light's way into the prism,
+            // closed behind the light.
+            let (len, half) = (0.45, 0.04);
+            let start = aim - dir * 0.75;
+            let u = DVec3::Z.cross(dir).normalize();
+            let w = DVec3::Z;
+            let corner = |a: f64, b: f64| start + u * (a * half) + w * (b * half);
+            let sides = [
+                (corner(-1.0, -1.0), u * (2.0 * half)),
+                (corner(-1.0, 1.0), u * (2.0 * half)),
+                (corner(-1.0, -1.0), w * (2.0 * half)),
+                (corner(1.0, -1.0), w * (2.0 * half)),
+            ];
+            for (i, (c, e)) in sides.into_iter().enumerate() {
+                s.faces.push(Face::rect(&format!("mirror tube {i}"), c, dir * len, e, Surface::Mirror { reflectance: 0.95 }));
+            }
+            s.faces.push(Face::rect("mirror tube end", corner(-1.0, -1.0), u * (2.0 * half), w * (2.0 * half), Surface::Mirror { reflectance: 0.95 }));
+            s.lights.push(Light {
+                name: "point light in a mirror tube".into(),
+                emission: Emission::Point { pos: start + dir * 0.02 },
+                spectrum: light_spectrum(o, "d65")?,
+                power: 1.0,
+            });
+        }
+        _ => {
+            let start = aim - dir * 0.8;
+            let u = DVec3::Z.cross(dir).normalize();
+            s.lights.push(Light {
+                name: "laser".into(),
+                emission: Emission::Beam { centre: start, dir, u, v: DVec3::Z, half: DVec2::new(0.004, 0.004), disc: true },
+                spectrum: light_spectrum(o, "d65")?,
+                power: 1.0,
+            });
+            // A dim lamp in the ceiling so the room shows round the fan.
+            let light = s.lights.len();
+            s.faces.push(Face::rect(
+                "ceiling lamp",
+                DVec3::new(-0.25, -0.25, 1.995),
+                DVec3::new(0.0, 0.5, 0.0),
+                DVec3::new(0.5, 0.0, 0.0),
+                Surface::Emitter { light },
+            ));
+            s.lights.push(Light {
+                name: "ceiling lamp".into(),
+                emission: Emission::Area { face: s.faces.len() - 1 },
+                spectrum: Spectrum::light("d65")?,
+                power: 0.5,
+            });
+        }
+    }
+    s.probe = (aim - dir * 0.5, dir);
+    s.camera = Camera::look_at(DVec3::new(0.0, -3.3, 1.0), DVec3::new(0.0, 0.0, 0.9), DVec3::Z, 38.0, o.width, o.height);
+    Ok(s)
+}
+
+pub fn dark_side(o: &SceneOptions) -> Result<PrismScene> {
+    let glass = glass_medium(&o.crown, o.ior, o.no_dispersion)?;
+    let mut s = empty(o, glass);
+    // A dark backdrop the beam grazes, so its path shows (like a light sheet).
+    matte(&mut s, "backdrop", DVec3::new(-1.2, -0.9, 0.0), DVec3::new(2.4, 0.0, 0.0), DVec3::new(0.0, 1.8, 0.0), [0.35; 3]);
+    let n_d = s.media[1].n(Some(crate::optics::glass::lines::LD)).unwrap_or(1.5);
+    // As on the cover: the beam comes up from the left, the fan leaves down to the right.
+    let cross = prism_cross_section(DVec2::new(0.0, 0.0), 0.3, n_d, -20f64.to_radians());
+    if !o.no_prism {
+        s.add_extruded("prism", &[(cross, 1)], 0.0, 0.12);
+    }
+    let incidence = o.incidence_deg.map_or((n_d * 0.5f64).asin(), f64::to_radians);
+    let (aim, dir) = into_left_face(cross, incidence);
+    // The beam descends 2 degrees toward the backdrop: each ray paints a
+    // streak where it lands; the higher ones reach the prism first.
+    let tilt = 2f64.to_radians();
+    let dir3 = (dir * tilt.cos() - DVec3::Z * tilt.sin()).normalize();
+    let start = aim + DVec3::Z * 0.045 - dir * 0.9;
+    let u = DVec3::Z.cross(dir).normalize();
+    let v = u.cross(dir3).normalize();
+    s.lights.push(Light {
+        name: "white beam".into(),
+        emission: Emission::Beam { centre: start, dir: dir3, u, v, half: DVec2::new(0.006, 0.02), disc: false },
+        spectrum: light_spectrum(o, "e")?,
+        power: 1.0,
+    });
+    s.probe = (aim - dir * 0.5, dir);
+    s.camera = Camera::look_at(DVec3::new(0.05, -0.05, 2.6), DVec3::new(0.05, 0.0, 0.0), DVec3::Y, 36.0, o.width, o.height);
+    Ok(s)
+}
