@@ -24,3 +24,5 @@ mod prism_optics;
 mod prism_render;
 // The experiment runner: rows, plots, resume, shards, failures as rows.
 mod sweep;
+// The figures of the four reports and their gallery; scene files.
+mod figures;

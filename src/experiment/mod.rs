@@ -1,9 +1,11 @@
 //! The harness: accuracy reports, plots and (later) sweeps.
 
 pub mod charts;
+pub mod figures;
 pub mod metrics;
 pub mod params;
 pub mod plot;
+pub mod scene_file;
 pub mod spec;
 pub mod spectral;
 pub mod sweep;

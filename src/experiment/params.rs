@@ -77,6 +77,7 @@ pub const PRISM: &[&str] = &[
     "eye",
     "split",
     "exposure",
+    "exposure_gain",
     "gamut",
     "colours",
 ];
@@ -208,6 +209,7 @@ pub fn apply_prism(c: &mut PrismConfig, key: &str, v: &Value) -> Result<(), Stri
         "eye" => c.eye = choice::<EyeMode>(v)?,
         "split" => c.split = count(v, 1, 1024)? as u32,
         "exposure" => c.exposure = Some(num(v)?),
+        "exposure_gain" => c.exposure_gain = num(v)?,
         "gamut" => c.gamut = choice::<GamutMap>(v)?,
         "colours" => c.colours = choice::<crate::spectrum::colormap::ColorMap>(v)?,
         _ => return Err(format!("unknown prism parameter; expected one of {}", PRISM.join(", "))),

@@ -39,6 +39,9 @@ pub struct PrismConfig {
     pub split: u32,
     /// `None` = automatic (99.5th percentile at full scale).
     pub exposure: Option<f64>,
+    /// Multiplies the automatic exposure (a photograph's over-exposure:
+    /// bright lines saturate, dim ones show).
+    pub exposure_gain: f64,
     pub gamut: GamutMap,
     /// Wavelength to colour: CIE (default) or a report's map.
     pub colours: crate::spectrum::colormap::ColorMap,
@@ -60,6 +63,7 @@ impl PrismConfig {
             eye: EyeMode::Hero,
             split: 8,
             exposure: None,
+            exposure_gain: 1.0,
             gamut: GamutMap::Desaturate,
             colours: crate::spectrum::colormap::ColorMap::Cie,
             out,
@@ -87,6 +91,9 @@ impl PrismConfig {
         }
         if self.split == 0 || self.split > 1024 {
             bail!("--split: {} is not between 1 and 1024", self.split);
+        }
+        if !(self.exposure_gain.is_finite() && self.exposure_gain > 0.0) {
+            bail!("--exposure-gain: {} must be a positive number", self.exposure_gain);
         }
         if let Some(e) = self.exposure {
             if !(e.is_finite() && e > 0.0) {
@@ -129,7 +136,7 @@ pub fn run(cfg: &PrismConfig) -> Result<PrismReport> {
     let pool = rayon::ThreadPoolBuilder::new().num_threads(cfg.threads).build()?;
     let bars = indicatif::MultiProgress::new();
     let render = pool.install(|| render::render(&scene, &opts, &bars));
-    let exposure = cfg.exposure.unwrap_or_else(|| render.image.auto_exposure());
+    let exposure = cfg.exposure.unwrap_or_else(|| render.image.auto_exposure() * cfg.exposure_gain);
     render.image.write(&cfg.out, exposure, cfg.gamut)?;
     Ok(PrismReport { render, exposure, radius: lookup.radius(), threads: pool.current_num_threads(), peak_mem_mb: peak_memory_mb() })
 }

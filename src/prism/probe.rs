@@ -21,6 +21,8 @@ pub struct ProbeRay {
     pub tir: bool,
     /// Faces crossed.
     pub faces: usize,
+    /// The points the ray went through: its start, each crossing.
+    pub path: Vec<DVec3>,
 }
 
 pub fn probe(scene: &PrismScene, nm: f64) -> ProbeRay {
@@ -31,12 +33,14 @@ pub fn probe(scene: &PrismScene, nm: f64) -> ProbeRay {
     let mut skip = None;
     let mut faces = 0;
     let mut tir = false;
+    let mut path = vec![o];
     for _ in 0..64 {
         let Some(hit) = scene.intersect(o, d, skip) else { break };
         if !matches!(scene.surface(hit.face), Surface::Interface { .. }) {
             break;
         }
         o += hit.t * d;
+        path.push(o);
         let c = cross(scene, hit.face, o, d, Some(nm)).expect("a wavelength is given");
         debug_assert_eq!(c.from, medium, "media must be consistent along the ray");
         skip = Some(hit.face);
@@ -64,5 +68,5 @@ pub fn probe(scene: &PrismScene, nm: f64) -> ProbeRay {
     } else if dev <= -180.0 {
         dev += 360.0;
     }
-    ProbeRay { nm, exit_point: o, exit_dir: d, deviation_deg: dev, transmittance: if tir { 0.0 } else { 0.5 * (ts + tp) }, tir, faces }
+    ProbeRay { nm, exit_point: o, exit_dir: d, deviation_deg: dev, transmittance: if tir { 0.0 } else { 0.5 * (ts + tp) }, tir, faces, path }
 }

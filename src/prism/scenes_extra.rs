@@ -100,7 +100,8 @@ pub fn spheres(o: &SceneOptions) -> Result<PrismScene> {
             let (c, n) = (DVec3::new(5.5, 0.0, 0.0), DVec3::new(-1.0, 1.0, 0.0).normalize());
             let u = DVec3::Z.cross(n).normalize();
             s.faces.push(Face::rect("metal plate", c - u * 2.0 - DVec3::Z * 2.0, u * 4.0, DVec3::Z * 4.0, Surface::Mirror { reflectance: 0.9 }));
-            sphere_light(&mut s, o, DVec3::new(5.7, 3.0, 0.2), 1.2, "blackbody:3200")?;
+            // Out of the camera's view; the plate shows it behind the sphere.
+            sphere_light(&mut s, o, DVec3::new(5.5, 6.5, 0.0), 3.5, "blackbody:3200")?;
             s.camera = Camera::look_at(DVec3::ZERO, DVec3::new(3.0, 0.0, 0.0), DVec3::Z, 30.0, o.width, o.height);
         }
         _ => {

@@ -1,0 +1,442 @@
+//! `refract figures`: every figure of the four reports (listed in
+//! `scenes/FIGURES.md`) regenerated as `results/figures/<id>.png`, the
+//! shipped sweeps' plots, and `results/index.html`, a gallery that puts each
+//! figure beside the report's caption, its parameters and its render time.
+//!
+//! Renderings come from the scene files in `scenes/` (editable, and
+//! renderable alone with `refract render`); three figures are drawn here:
+//! the ray diagram (css552-p2), the scene overview (css552-p3) and the
+//! colour-map comparison (pm-spectra-compare).
+
+use super::scene_file::SceneFile;
+use crate::image_io::{atomic_write, write_rgb8};
+use crate::prism::scenes::{build, SceneKind, SceneOptions};
+use anyhow::{anyhow, Context, Result};
+use plotters::prelude::*;
+use std::collections::BTreeMap;
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// Figures drawn in code rather than from a scene file.
+const DRAWN: [(&str, &str, &str); 3] = [
+    (
+        "css552-p2",
+        "000",
+        "Picture 2: direction of a monochromatic ray by Snell's law (a white ray splitting through the Amici prism; angles past the prism drawn 5x larger)",
+    ),
+    ("css552-p3", "000", "Picture 3: the scene (light, prism, screen, camera), seen from above"),
+    (
+        "pm-spectra-compare",
+        "003",
+        "The same scene with different wavelength-to-colour maps (CIE, buckets, interpolated gradient, HSL-based, custom red-white-blue)",
+    ),
+];
+
+/// The sweeps whose plots the gallery shows, with what they stand for.
+const SWEEPS: [(&str, &str); 7] = [
+    ("lab-trace", "Report 004's timing figure: render time against trace count; image change against trace count"),
+    ("lab-timing", "Report 004's limitation: render time against polygons, linear scan against BVH"),
+    ("lab-size", "Report 004's limitation: render time against pixels"),
+    ("lab-ior", "Highlight area against refractive index"),
+    ("lab-shininess", "Highlight area against shininess"),
+    ("prism-photons", "Photon maps and filters: error against time on the single-prism anchor scene"),
+    ("stability", "Where the methods fail"),
+];
+
+#[derive(Clone, Debug, Default)]
+pub struct FigureOptions {
+    pub quick: bool,
+    /// Only these ids (and then no sweeps).
+    pub only: Vec<String>,
+    /// Results folder (figures go to `<out>/figures`).
+    pub out: PathBuf,
+    /// Folder holding the scene files and FIGURES.md.
+    pub scenes: PathBuf,
+}
+
+/// Every figure id of FIGURES.md, in its order.
+pub fn figure_ids(figures_md: &str) -> Vec<String> {
+    figures_md
+        .lines()
+        .filter_map(|l| l.strip_prefix("| ").and_then(|r| r.split(" |").next()))
+        .map(str::trim)
+        .filter(|id| id.contains('-') && id.chars().all(|c| c.is_ascii_alphanumeric() || c == '-' || c == '.'))
+        .map(str::to_string)
+        .collect()
+}
+
+/// One row of the gallery's record.
+#[derive(Clone, Debug, Default)]
+struct Record {
+    report: String,
+    caption: String,
+    params: String,
+    seconds: String,
+    status: String,
+}
+
+fn record_path(out: &Path) -> PathBuf {
+    out.join("figures").join("figures.csv")
+}
+
+fn read_records(out: &Path) -> BTreeMap<String, Record> {
+    let mut map = BTreeMap::new();
+    if let Ok(text) = std::fs::read_to_string(record_path(out)) {
+        let mut r = csv::Reader::from_reader(text.as_bytes());
+        for rec in r.records().flatten() {
+            if rec.len() == 6 {
+                map.insert(
+                    rec[0].to_string(),
+                    Record { report: rec[1].into(), caption: rec[2].into(), params: rec[3].into(), seconds: rec[4].into(), status: rec[5].into() },
+                );
+            }
+        }
+    }
+    map
+}
+
+fn write_records(out: &Path, records: &BTreeMap<String, Record>) -> Result<()> {
+    atomic_write(&record_path(out), |f| {
+        let mut w = csv::Writer::from_writer(f);
+        w.write_record(["id", "report", "caption", "parameters", "render_s", "status"])?;
+        for (id, r) in records {
+            w.write_record([id.as_str(), &r.report, &r.caption, &r.params, &r.seconds, &r.status])?;
+        }
+        w.flush()?;
+        Ok(())
+    })
+}
+
+/// Renders the figures, runs the sweeps, writes the gallery.
+pub fn run(o: &FigureOptions) -> Result<String> {
+    let md_path = o.scenes.join("FIGURES.md");
+    let md = std::fs::read_to_string(&md_path).with_context(|| format!("cannot read {}", md_path.display()))?;
+    let ids = figure_ids(&md);
+    for id in &o.only {
+        if !ids.contains(id) {
+            return Err(anyhow!("--only: unknown figure `{id}`; valid: {}", ids.join(", ")));
+        }
+    }
+    let todo: Vec<&String> = ids.iter().filter(|id| o.only.is_empty() || o.only.contains(id)).collect();
+    let dir = o.out.join("figures");
+    std::fs::create_dir_all(&dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    let mut records = read_records(&o.out);
+    let bar = indicatif::ProgressBar::new(todo.len() as u64).with_style(
+        indicatif::ProgressStyle::with_template("figures [{bar:40}] {pos}/{len} {msg} eta {eta}").unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+    );
+    let mut failed = Vec::new();
+    for id in todo {
+        bar.set_message(id.clone());
+        let png = dir.join(format!("{id}.png"));
+        let t = Instant::now();
+        let result: Result<Record> = match DRAWN.iter().find(|d| d.0 == id) {
+            Some(&(_, report, caption)) => draw(id, &png, o.quick).map(|params| Record {
+                report: report.into(),
+                caption: caption.into(),
+                params,
+                seconds: format!("{:.2}", t.elapsed().as_secs_f64()),
+                status: "ok".into(),
+            }),
+            None => SceneFile::load(&o.scenes.join(format!("{id}.toml")), o.quick).and_then(|s| {
+                let secs = s.render(&png)?;
+                Ok(Record { report: s.report.clone(), caption: s.caption.clone(), params: s.describe(), seconds: format!("{secs:.2}"), status: "ok".into() })
+            }),
+        };
+        let rec = result.unwrap_or_else(|e| {
+            failed.push(format!("{id}: {e:#}"));
+            Record { status: format!("error: {e:#}"), ..Default::default() }
+        });
+        records.insert(id.clone(), rec);
+        write_records(&o.out, &records)?;
+        bar.inc(1);
+    }
+    bar.finish_and_clear();
+    if o.only.is_empty() {
+        let opts = super::sweep::SweepOptions { quick: o.quick, jobs: 1, ..Default::default() };
+        for (name, _) in SWEEPS {
+            let e = super::spec::Experiment::load(&PathBuf::from("experiments").join(format!("{name}.toml")), o.quick)?;
+            super::sweep::run(&e, &super::sweep::SweepOptions { out: Some(o.out.join(name)), ..opts.clone() })?;
+        }
+        super::spectral::write_report(&o.out.join("spectral"), crate::optics::glass::by_name("N-BK7")?)?;
+    }
+    write_index(&o.out, &ids, &records)?;
+    let mut msg = format!("wrote {} and {}", dir.display(), o.out.join("index.html").display());
+    if !failed.is_empty() {
+        write!(msg, "; {} figures failed:\n  {}", failed.len(), failed.join("\n  "))?;
+    }
+    Ok(msg)
+}
+
+fn esc(s: &str) -> String {
+    s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;")
+}
+
+fn write_index(out: &Path, ids: &[String], records: &BTreeMap<String, Record>) -> Result<()> {
+    let mut h = String::from("<!doctype html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>refract: the reports' figures</title>\n<style>body{font-family:sans-serif;margin:2em;background:#fafafa}figure{display:inline-block;vertical-align:top;margin:0 1.5em 2em 0;max-width:660px}img{max-width:640px;border:1px solid #ccc;background:#000}figcaption{font-size:90%}code{font-size:85%;color:#555}.missing{color:#a00}</style></head><body>\n<h1>refract: every figure of the four reports</h1>\n<p>Regenerated by <code>cargo run --release -- figures</code>. Each figure: the report's caption, the parameters that made it (scene files in <code>scenes/</code>) and its render time on this machine.</p>\n");
+    let reports = [
+        ("000", "Report 000 (CSS552): dispersion through an Amici prism, photon map"),
+        ("004", "Report 004: internal illumination of a translucent object"),
+        ("001", "Report 001 (CS348b): prismatic effects in a spectral ray tracer"),
+        ("003", "Report 003: dispersion with photon mapping (Cornell boxes)"),
+    ];
+    let report_of = |id: &str| -> &str {
+        if id.starts_with("css552") {
+            "000"
+        } else if id.starts_with("lab") {
+            "004"
+        } else if id.starts_with("cs348b") {
+            "001"
+        } else {
+            "003"
+        }
+    };
+    for (rep, title) in reports {
+        writeln!(h, "<h2>{}</h2>", esc(title))?;
+        for id in ids.iter().filter(|id| report_of(id) == rep) {
+            let png = out.join("figures").join(format!("{id}.png"));
+            let r = records.get(id).cloned().unwrap_or_default();
+            writeln!(h, "<figure id=\"{id}\">")?;
+            if png.exists() {
+                writeln!(h, "<a href=\"figures/{id}.png\"><img src=\"figures/{id}.png\" alt=\"{id}\"></a>")?;
+            } else {
+                writeln!(h, "<p class=\"missing\">not rendered yet: <code>refract figures --only {id}</code></p>")?;
+            }
+            writeln!(
+                h,
+                "<figcaption><b>{id}</b>: {}<br><code>{}</code><br>render time: {} s {}</figcaption></figure>",
+                esc(&r.caption),
+                esc(&r.params),
+                esc(&r.seconds),
+                if r.status.starts_with("error") { format!("<span class=\"missing\">{}</span>", esc(&r.status)) } else { String::new() }
+            )?;
+        }
+    }
+    writeln!(h, "<h2>Plots from the shipped sweeps (<code>experiments/</code>)</h2>")?;
+    for (name, what) in SWEEPS {
+        let d = out.join(name);
+        let pngs: Vec<String> = std::fs::read_dir(&d)
+            .map(|rd| rd.flatten().map(|e| e.file_name().to_string_lossy().into_owned()).filter(|f| f.ends_with(".png") && f != "reference.png").collect())
+            .unwrap_or_default();
+        let mut pngs = pngs;
+        pngs.sort();
+        writeln!(h, "<h3>{name}: {}</h3>", esc(what))?;
+        if pngs.is_empty() {
+            writeln!(h, "<p class=\"missing\">not run yet: <code>refract sweep experiments/{name}.toml</code></p>")?;
+        }
+        for p in pngs {
+            writeln!(h, "<figure><a href=\"{name}/{p}\"><img src=\"{name}/{p}\" alt=\"{p}\"></a><figcaption><code>{name}/{p}</code> (data: <a href=\"{name}/runs.csv\">runs.csv</a>)</figcaption></figure>")?;
+        }
+    }
+    let spectral = out.join("spectral");
+    if spectral.join("colour_maps.png").exists() {
+        writeln!(h, "<h3>Spectral accuracy: IOR models and colour maps (<code>refract spectrum accuracy</code>)</h3>")?;
+        for p in ["ior_models.png", "ior_models_error.png", "colour_maps.png", "colour_maps_error.png"] {
+            if spectral.join(p).exists() {
+                writeln!(h, "<figure><a href=\"spectral/{p}\"><img src=\"spectral/{p}\" alt=\"{p}\"></a></figure>")?;
+            }
+        }
+    }
+    writeln!(h, "</body></html>")?;
+    atomic_write(&out.join("index.html"), |f| Ok(std::io::Write::write_all(f, h.as_bytes())?))
+}
+
+/// Draws one of the figures made in code; returns its parameter text.
+fn draw(id: &str, png: &Path, quick: bool) -> Result<String> {
+    match id {
+        "css552-p2" => ray_diagram(png),
+        "css552-p3" => overview(png),
+        _ => colour_compare(png, quick),
+    }
+}
+
+fn amici() -> Result<crate::prism::scene::PrismScene> {
+    build(&SceneOptions::new(SceneKind::AmiciScreen))
+}
+
+/// Prism faces in the z < 0 cap plane as segments (top view).
+fn outline(s: &crate::prism::scene::PrismScene) -> Vec<[(f64, f64); 2]> {
+    s.faces
+        .iter()
+        .filter(|f| matches!(f.surface, crate::prism::scene::Surface::Interface { .. }) && f.normal.z.abs() < 1e-9)
+        .map(|f| {
+            let low: Vec<_> = f.verts.iter().filter(|v| v.z < 0.0).collect();
+            [(low[0].x, low[0].y), (low[1].x, low[1].y)]
+        })
+        .collect()
+}
+
+fn plot_err<E: std::fmt::Display>(e: E) -> anyhow::Error {
+    anyhow!("{e}")
+}
+
+fn ray_diagram(png: &Path) -> Result<String> {
+    super::plot::register();
+    let s = amici()?;
+    let (w, h) = (900u32, 520u32);
+    let mut buf = vec![0u8; (w * h * 3) as usize];
+    let lambdas = [404.7, 435.8, 480.0, 520.0, 546.1, 587.6, 620.0, 656.3, 700.0];
+    {
+        let root = BitMapBackend::with_buffer(&mut buf, (w, h)).into_drawing_area();
+        root.fill(&WHITE).map_err(plot_err)?;
+        let mut c = ChartBuilder::on(&root)
+            .caption("A white ray split by the Amici prism (Snell's law per wavelength)", ("sans-serif", 20))
+            .margin(12)
+            .x_label_area_size(36)
+            .y_label_area_size(56)
+            .build_cartesian_2d(-0.12f64..0.26f64, -0.05f64..0.12f64)
+            .map_err(plot_err)?;
+        c.configure_mesh().x_desc("x (m)").y_desc("y (m)").label_style(("sans-serif", 13)).draw().map_err(plot_err)?;
+        for seg in outline(&s) {
+            c.draw_series(LineSeries::new(seg, BLACK.stroke_width(2))).map_err(plot_err)?;
+        }
+        for nm in lambdas {
+            let p = crate::prism::probe::probe(&s, nm);
+            let rgb = crate::spectrum::colormap::ColorMap::Cie.rgb(nm);
+            let scale = 1.0 / rgb.max_element().max(1e-9);
+            let enc = |v: f64| (crate::spectrum::cie::srgb_encode((v * scale).clamp(0.0, 1.0)) * 255.0) as u8;
+            let colour = RGBColor(enc(rgb.x), enc(rgb.y), enc(rgb.z));
+            let mut pts: Vec<(f64, f64)> = p.path.iter().map(|v| (v.x, v.y)).collect();
+            // Past the prism, 5x the angle so the fan shows.
+            let end = p.exit_point;
+            let d = p.exit_dir;
+            let far = (end.x + 0.2, end.y + 0.2 * (d.y / d.x) * 5.0);
+            pts.push(far);
+            c.draw_series(LineSeries::new(pts, colour.stroke_width(2)))
+                .map_err(plot_err)?
+                .label(format!("{nm} nm"))
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], colour.stroke_width(3)));
+        }
+        c.configure_series_labels()
+            .position(SeriesLabelPosition::UpperLeft)
+            .background_style(WHITE.mix(0.9))
+            .border_style(BLACK)
+            .label_font(("sans-serif", 13))
+            .draw()
+            .map_err(plot_err)?;
+        root.present().map_err(plot_err)?;
+    }
+    write_rgb8(png, w as usize, h as usize, &buf)?;
+    Ok("N-BK7 | N-SF11 | N-BK7, flint apex 90 deg, Sellmeier; deviation past the prism drawn 5x".into())
+}
+
+fn overview(png: &Path) -> Result<String> {
+    super::plot::register();
+    let s = amici()?;
+    let (w, h) = (900u32, 420u32);
+    let mut buf = vec![0u8; (w * h * 3) as usize];
+    {
+        let root = BitMapBackend::with_buffer(&mut buf, (w, h)).into_drawing_area();
+        root.fill(&WHITE).map_err(plot_err)?;
+        let mut c = ChartBuilder::on(&root)
+            .caption("amici-screen, seen from above: beam, prism, screen, camera", ("sans-serif", 20))
+            .margin(12)
+            .x_label_area_size(36)
+            .y_label_area_size(56)
+            .build_cartesian_2d(-0.5f64..2.3f64, -0.45f64..0.75f64)
+            .map_err(plot_err)?;
+        c.configure_mesh().x_desc("x (m)").y_desc("y (m)").label_style(("sans-serif", 13)).draw().map_err(plot_err)?;
+        for seg in outline(&s) {
+            c.draw_series(LineSeries::new(seg, BLACK.stroke_width(2))).map_err(plot_err)?;
+        }
+        let screen = &s.faces[s.maps[0]];
+        let (lo, hi) = (screen.verts.iter().map(|v| v.y).fold(f64::INFINITY, f64::min), screen.verts.iter().map(|v| v.y).fold(f64::NEG_INFINITY, f64::max));
+        let sx = screen.verts[0].x;
+        c.draw_series(LineSeries::new([(sx, lo), (sx, hi)], RGBColor(120, 120, 120).stroke_width(5)))
+            .map_err(plot_err)?
+            .label("matte screen")
+            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], RGBColor(120, 120, 120).stroke_width(5)));
+        for (nm, colour) in [(450.0, RGBColor(40, 60, 255)), (587.5618, RGBColor(0, 0, 0)), (650.0, RGBColor(230, 0, 0))] {
+            let p = crate::prism::probe::probe(&s, nm);
+            let t = (sx - p.exit_point.x) / p.exit_dir.x;
+            let mut pts: Vec<(f64, f64)> = p.path.iter().map(|v| (v.x, v.y)).collect();
+            pts.push((sx, p.exit_point.y + t * p.exit_dir.y));
+            c.draw_series(LineSeries::new(pts, colour.stroke_width(1)))
+                .map_err(plot_err)?
+                .label(format!("beam at {nm} nm"))
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], colour.stroke_width(2)));
+        }
+        let cam = s.camera.pos;
+        c.draw_series(std::iter::once(Circle::new((cam.x, cam.y), 6, RGBColor(0, 150, 0).filled())))
+            .map_err(plot_err)?
+            .label("camera")
+            .legend(|(x, y)| Circle::new((x + 9, y), 5, RGBColor(0, 150, 0).filled()));
+        for v in [lo, hi] {
+            c.draw_series(LineSeries::new([(cam.x, cam.y), (sx, v)], RGBColor(0, 150, 0).stroke_width(1))).map_err(plot_err)?;
+        }
+        c.configure_series_labels()
+            .position(SeriesLabelPosition::UpperLeft)
+            .background_style(WHITE.mix(0.9))
+            .border_style(BLACK)
+            .label_font(("sans-serif", 13))
+            .draw()
+            .map_err(plot_err)?;
+        root.present().map_err(plot_err)?;
+    }
+    write_rgb8(png, w as usize, h as usize, &buf)?;
+    Ok("amici-screen geometry (metres), probe rays at 450, 587.6 and 650 nm".into())
+}
+
+fn colour_compare(png: &Path, quick: bool) -> Result<String> {
+    use crate::spectrum::colormap::ColorMap;
+    super::plot::register();
+    let (tw, th) = if quick { (240usize, 180usize) } else { (480, 360) };
+    let photons = if quick { 600_000 } else { 4_000_000 };
+    let maps = ColorMap::ALL;
+    let cols = 3;
+    let rows = maps.len().div_ceil(cols);
+    let (w, h) = (tw * cols, (th + 28) * rows);
+    let mut buf = vec![0u8; w * h * 3];
+    for (k, map) in maps.iter().enumerate() {
+        let mut so = SceneOptions::new(SceneKind::DarkSide);
+        so.crown = "N-SF11".into();
+        (so.width, so.height) = (tw, th);
+        let mut cfg = crate::prism::PrismConfig::new(so, PathBuf::new());
+        cfg.photons = photons;
+        cfg.colours = *map;
+        let scene = build(&cfg.scene)?;
+        let r = crate::prism::default_radius(&scene);
+        let opts = crate::prism::render::RenderOptions {
+            photons,
+            map: cfg.map,
+            filter: cfg.filter,
+            lookup: crate::photon::gather::Lookup::Radius(r),
+            spp: 2,
+            seed: 0,
+            eye: cfg.eye,
+            split: 8,
+            colours: *map,
+        };
+        let hidden = indicatif::MultiProgress::with_draw_target(indicatif::ProgressDrawTarget::hidden());
+        let img = crate::prism::render::render(&scene, &opts, &hidden).image;
+        let tile = img.to_srgb8(img.auto_exposure(), crate::spectrum::cie::GamutMap::Desaturate);
+        let (x0, y0) = ((k % cols) * tw, (k / cols) * (th + 28) + 28);
+        for y in 0..th {
+            let dst = ((y0 + y) * w + x0) * 3;
+            buf[dst..dst + tw * 3].copy_from_slice(&tile[y * tw * 3..(y + 1) * tw * 3]);
+        }
+    }
+    {
+        let root = BitMapBackend::with_buffer(&mut buf, (w as u32, h as u32)).into_drawing_area();
+        for (k, map) in maps.iter().enumerate() {
+            let (x0, y0) = ((k % cols) * tw, (k / cols) * (th + 28));
+            root.draw(&Text::new(map.name().to_string(), (x0 as i32 + 8, y0 as i32 + 6), ("sans-serif", 16).into_font().color(&WHITE))).map_err(plot_err)?;
+        }
+        root.present().map_err(plot_err)?;
+    }
+    write_rgb8(png, w, h, &buf)?;
+    Ok(format!("dark-side scene, N-SF11, {photons} photons per tile, colour maps: {}", maps.iter().map(|m| m.name()).collect::<Vec<_>>().join(", ")))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn reads_every_id_of_the_figure_list() {
+        let ids = figure_ids(include_str!("../../scenes/FIGURES.md"));
+        assert_eq!(ids.len(), 28, "{ids:?}");
+        assert_eq!(ids[0], "css552-p1");
+        assert!(ids.contains(&"lab-ior1.1-noatten".to_string()) && ids.contains(&"pm-spectra-compare".to_string()));
+    }
+}

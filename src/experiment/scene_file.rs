@@ -1,0 +1,118 @@
+//! Scene files a user can edit: the figures' scenes live in `scenes/` and
+//! `refract render FILE` renders any of them.
+//!
+//! ```toml
+//! id = "css552-p5"                 # names the output: results/<id>.png
+//! report = "000"
+//! caption = "Picture 5: image after dispersion (rainbow strip)"
+//! mode = "prism"                   # interior | prism
+//! [params]                         # the mode's parameters (as in experiments)
+//! scene = "amici-screen"
+//! photons = 4000000
+//! obj = "off/prism60.obj"          # meshes are referenced by path
+//! [quick]                          # overrides for --quick
+//! photons = 400000
+//! ```
+
+use super::params::{apply_interior, apply_prism, Mode};
+use super::spec::line_of;
+use anyhow::{anyhow, Result};
+use std::path::{Path, PathBuf};
+use toml::{Table, Value};
+
+#[derive(Clone, Debug)]
+pub struct SceneFile {
+    pub id: String,
+    pub report: String,
+    pub caption: String,
+    pub mode: Mode,
+    pub params: Vec<(String, Value)>,
+}
+
+impl SceneFile {
+    pub fn load(path: &Path, quick: bool) -> Result<SceneFile> {
+        let text = std::fs::read_to_string(path).map_err(|e| anyhow!("{}: cannot read: {e}", path.display()))?;
+        Self::parse(&text, &path.display().to_string(), quick)
+    }
+
+    pub fn parse(text: &str, file: &str, quick: bool) -> Result<SceneFile> {
+        let root: Table = text.parse::<Table>().map_err(|e| {
+            let line = e.span().map_or(1, |s| text[..s.start.min(text.len())].lines().count().max(1));
+            anyhow!("{file}:{line}: {}", e.message())
+        })?;
+        let err = |section: &str, key: &str, msg: String| anyhow!("{file}:{}: `{key}`: {msg}", line_of(text, section, 0, key));
+        for k in root.keys() {
+            if !["id", "report", "caption", "mode", "params", "quick"].contains(&k.as_str()) {
+                return Err(err("", k, "unknown key; expected id, report, caption, mode, params or quick".into()));
+            }
+        }
+        let s = |key: &str| -> Result<String> {
+            match root.get(key) {
+                Some(Value::String(v)) => Ok(v.clone()),
+                Some(_) => Err(err("", key, "must be a string".into())),
+                None => Err(anyhow!("{file}: missing `{key}`")),
+            }
+        };
+        let id = s("id")?;
+        if id.is_empty() || !id.chars().all(|c| c.is_ascii_alphanumeric() || c == '-' || c == '_' || c == '.') {
+            return Err(err("", "id", "use letters, digits, '.', '-' and '_' only (it names the output)".into()));
+        }
+        let mode = match s("mode")?.as_str() {
+            "interior" => Mode::Interior,
+            "prism" => Mode::Prism,
+            m => return Err(err("", "mode", format!("`{m}` is not interior or prism"))),
+        };
+        let mut params: Vec<(String, Value)> = Vec::new();
+        let sections: &[&str] = if quick { &["params", "quick"] } else { &["params"] };
+        for section in sections {
+            match root.get(*section) {
+                None => {}
+                Some(Value::Table(t)) => {
+                    for (k, v) in t {
+                        super::params::check(mode, k, v).map_err(|m| err(section, k, m))?;
+                        params.retain(|(p, _)| p != k);
+                        params.push((k.clone(), v.clone()));
+                    }
+                }
+                Some(_) => return Err(err("", section, "must be a table".into())),
+            }
+        }
+        Ok(SceneFile {
+            id,
+            report: root.get("report").and_then(Value::as_str).unwrap_or_default().into(),
+            caption: root.get("caption").and_then(Value::as_str).unwrap_or_default().into(),
+            mode,
+            params,
+        })
+    }
+
+    /// Renders to `out`; returns the render time in seconds (light pass,
+    /// map build and eye pass; for the interior mode, build and render).
+    pub fn render(&self, out: &Path) -> Result<f64> {
+        match self.mode {
+            Mode::Interior => {
+                let mut cfg = crate::interior::config::InteriorConfig::with_defaults(PathBuf::from("off/cube.off"), out.to_path_buf());
+                for (k, v) in &self.params {
+                    apply_interior(&mut cfg, k, v).map_err(|m| anyhow!("{k}: {m}"))?;
+                }
+                cfg.out = out.to_path_buf();
+                let r = crate::interior::run(&cfg)?;
+                Ok(r.build_s + r.render_s)
+            }
+            Mode::Prism => {
+                let mut cfg =
+                    crate::prism::PrismConfig::new(crate::prism::scenes::SceneOptions::new(crate::prism::scenes::SceneKind::AmiciScreen), out.to_path_buf());
+                for (k, v) in &self.params {
+                    apply_prism(&mut cfg, k, v).map_err(|m| anyhow!("{k}: {m}"))?;
+                }
+                let r = crate::prism::run(&cfg)?;
+                Ok(r.render.trace_s + r.render.build_s + r.render.render_s)
+            }
+        }
+    }
+
+    /// The parameters as `key = value` text, for the gallery.
+    pub fn describe(&self) -> String {
+        self.params.iter().map(|(k, v)| format!("{k} = {v}")).collect::<Vec<_>>().join(", ")
+    }
+}

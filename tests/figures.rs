@@ -1,0 +1,49 @@
+//! `refract figures` and `refract render`: images of the right size that are
+//! not blank, and a gallery listing every figure of FIGURES.md.
+
+use crate::common::*;
+
+#[test]
+fn quick_figures_render_and_the_gallery_lists_every_id() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("results");
+    let o = run(&["figures", "--quick", "--only", "css552-p5,lab-ior3.0,pm-dark-side,css552-p2", "--out", out.to_str().unwrap()], "", &repo(""));
+    assert!(o.status.success(), "{}", stderr(&o));
+    for (id, w, h) in [("css552-p5", 320, 120), ("lab-ior3.0", 201, 201), ("pm-dark-side", 240, 180), ("css552-p2", 900, 520)] {
+        let img = image::open(out.join("figures").join(format!("{id}.png"))).unwrap().to_rgb8();
+        assert_eq!(img.dimensions(), (w, h), "{id}");
+        let mut colours: Vec<[u8; 3]> = img.pixels().map(|p| p.0).collect();
+        colours.sort();
+        colours.dedup();
+        assert!(colours.len() > 20, "{id} is blank or uniform ({} colours)", colours.len());
+    }
+    let html = std::fs::read_to_string(out.join("index.html")).unwrap();
+    let ids = refract::experiment::figures::figure_ids(&std::fs::read_to_string(repo("scenes/FIGURES.md")).unwrap());
+    assert_eq!(ids.len(), 28);
+    for id in &ids {
+        assert!(html.contains(&format!("id=\"{id}\"")), "index.html lacks {id}");
+    }
+    // Every file the page links to exists.
+    for attr in ["src=\"", "href=\""] {
+        for part in html.split(attr).skip(1) {
+            let link = part.split('"').next().unwrap();
+            assert!(out.join(link).exists(), "broken link {link}");
+        }
+    }
+    assert!(html.contains("not rendered yet"), "figures left out by --only are marked");
+}
+
+#[test]
+fn render_takes_a_scene_file_and_names_a_bad_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = run(&["render", repo("scenes/lab-ior1.4.toml").to_str().unwrap(), "--quick", "--out", dir.path().join("x.png").to_str().unwrap()], "", &repo(""));
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(image::open(dir.path().join("x.png")).unwrap().width(), 201);
+    let bad = dir.path().join("bad.toml");
+    std::fs::write(&bad, "id = \"b\"\nmode = \"prism\"\n[params]\nscene = \"amici-screen\"\nphotons = \"many\"\n").unwrap();
+    let o = run(&["render", bad.to_str().unwrap()], "", dir.path());
+    assert_clean_failure(&o, "bad.toml:5: `photons`: `\"many\"` is not a whole number");
+    std::fs::write(&bad, "id = \"b\"\nmode = \"prism\"\ncolour = 1\n").unwrap();
+    let o = run(&["render", bad.to_str().unwrap()], "", dir.path());
+    assert_clean_failure(&o, "bad.toml:3: `colour`: unknown key");
+}
