@@ -6,7 +6,7 @@
 //!   black-body light slightly off centre: colour fringes at its edges.
 //! - `sphere-metal`: the sphere before a polished metal plate that reflects
 //!   a warm black-body light: a yellow-to-red fringe.
-//! - `spheres-final`: three flint spheres before a bright bar light, where
+//! - `spheres-final`: three flint spheres before two bright bar lights, where
 //!   the wavelength effects show clearly.
 //! - `cornell-pointlight`, `cornell-mirror-tube`, `cornell-laser`: a glass
 //!   prism on the floor of a Cornell box lit by a bare point light (a faint
@@ -110,21 +110,24 @@ pub fn spheres(o: &SceneOptions) -> Result<PrismScene> {
                 glass_sphere(&mut s, "sphere 2", DVec3::new(3.6, 0.15, -0.15), 0.45);
                 glass_sphere(&mut s, "sphere 3", DVec3::new(3.2, 0.85, 0.2), 0.3);
             }
-            // A tall bright bar behind them.
-            let light = s.lights.len();
-            s.faces.push(Face::rect(
-                "bar light",
-                DVec3::new(6.0, 0.05, -1.5),
-                DVec3::new(0.0, 0.0, 3.0),
-                DVec3::new(0.0, 0.2, 0.0),
-                Surface::Emitter { light },
-            ));
-            s.lights.push(Light {
-                name: "bar".into(),
-                emission: Emission::Area { face: s.faces.len() - 1 },
-                spectrum: light_spectrum(o, "blackbody:5500")?,
-                power: 1.0,
-            });
+            // Two tall bright bars behind them: each sphere shows them
+            // inverted, with coloured edges.
+            for (k, y) in [-0.55, 0.35].into_iter().enumerate() {
+                let light = s.lights.len();
+                s.faces.push(Face::rect(
+                    &format!("bar light {k}"),
+                    DVec3::new(5.0, y, -1.5),
+                    DVec3::new(0.0, 0.0, 3.0),
+                    DVec3::new(0.0, 0.3, 0.0),
+                    Surface::Emitter { light },
+                ));
+                s.lights.push(Light {
+                    name: format!("bar {k}"),
+                    emission: Emission::Area { face: s.faces.len() - 1 },
+                    spectrum: light_spectrum(o, "blackbody:5500")?,
+                    power: 1.0,
+                });
+            }
             s.camera = Camera::look_at(DVec3::ZERO, DVec3::new(3.0, 0.0, 0.0), DVec3::Z, 32.0, o.width, o.height);
         }
     }
