@@ -202,31 +202,13 @@ fn prism_config(params: &[(String, Value)]) -> Result<PrismConfig> {
 
 fn run_prism(params: &[(String, Value)]) -> Result<Outcome> {
     let cfg = prism_config(params)?;
-    let scene = crate::prism::scenes::build(&cfg.scene)?;
-    let radius = cfg.radius.unwrap_or_else(|| crate::prism::default_radius(&scene));
-    let lookup = match cfg.k {
-        Some(k) => crate::photon::gather::Lookup::Nearest(k),
-        None => crate::photon::gather::Lookup::Radius(radius),
-    };
-    let opts = crate::prism::render::RenderOptions {
-        photons: cfg.photons,
-        map: cfg.map,
-        filter: cfg.filter,
-        lookup,
-        spp: cfg.spp,
-        seed: cfg.seed,
-        eye: cfg.eye,
-        split: cfg.split,
-        colours: cfg.colours,
-    };
-    let pool = rayon::ThreadPoolBuilder::new().num_threads(cfg.threads).build()?;
     let hidden = indicatif::MultiProgress::with_draw_target(indicatif::ProgressDrawTarget::hidden());
-    let r = pool.install(|| crate::prism::render::render(&scene, &opts, &hidden));
-    let exposure = cfg.exposure.unwrap_or_else(|| r.image.auto_exposure());
+    let report = crate::prism::render_config(&cfg, &hidden)?;
+    let r = &report.render;
     let frame = Frame {
         width: r.image.width,
         height: r.image.height,
-        display: r.image.to_srgb8(exposure, cfg.gamut),
+        display: r.image.to_srgb8(report.exposure, cfg.gamut),
         luminance: r.image.xyz.iter().map(|v| v.y).collect(),
     };
     let c = crate::timing::cell;

@@ -115,6 +115,14 @@ pub struct PrismReport {
 
 /// Builds the scene, renders, writes the image.
 pub fn run(cfg: &PrismConfig) -> Result<PrismReport> {
+    let report = render_config(cfg, &indicatif::MultiProgress::new())?;
+    report.render.image.write(&cfg.out, report.exposure, cfg.gamut)?;
+    Ok(report)
+}
+
+/// Builds the scene and renders it, without writing anything: what `run`
+/// and the sweep runner share.
+pub fn render_config(cfg: &PrismConfig, bars: &indicatif::MultiProgress) -> Result<PrismReport> {
     cfg.validate()?;
     let scene = scenes::build(&cfg.scene)?;
     let radius = cfg.radius.unwrap_or_else(|| default_radius(&scene));
@@ -134,10 +142,8 @@ pub fn run(cfg: &PrismConfig) -> Result<PrismReport> {
         colours: cfg.colours,
     };
     let pool = rayon::ThreadPoolBuilder::new().num_threads(cfg.threads).build()?;
-    let bars = indicatif::MultiProgress::new();
-    let render = pool.install(|| render::render(&scene, &opts, &bars));
+    let render = pool.install(|| render::render(&scene, &opts, bars));
     let exposure = cfg.exposure.unwrap_or_else(|| render.image.auto_exposure() * cfg.exposure_gain);
-    render.image.write(&cfg.out, exposure, cfg.gamut)?;
     Ok(PrismReport { render, exposure, radius: lookup.radius(), threads: pool.current_num_threads(), peak_mem_mb: peak_memory_mb() })
 }
 

@@ -255,6 +255,21 @@ pub struct FaceHit {
 }
 
 impl PrismScene {
+    /// An empty scene with these media (air first), a placeholder camera
+    /// of the image's size, and nothing in it yet.
+    pub fn new(name: &str, media: Vec<Medium>, width: usize, height: usize) -> PrismScene {
+        PrismScene {
+            name: name.into(),
+            media,
+            faces: Vec::new(),
+            spheres: Vec::new(),
+            lights: Vec::new(),
+            camera: Camera::look_at(DVec3::ZERO, DVec3::X, DVec3::Z, 30.0, width, height),
+            maps: Vec::new(),
+            probe: (DVec3::ZERO, DVec3::X),
+        }
+    }
+
     /// Nearest hit along `o + t d`. `skip` is the surface the ray leaves: a
     /// face is ignored (a ray cannot meet its own plane again), a sphere
     /// only loses the root at the start.

@@ -177,16 +177,7 @@ fn amici(o: &SceneOptions) -> Result<PrismScene> {
     };
     let height = 0.03;
     let [left, mid, right] = cross_sections(a1, a2, height);
-    let mut scene = PrismScene {
-        name: o.kind.name().into(),
-        media: vec![Medium::Air, crown, flint],
-        faces: Vec::new(),
-        spheres: Vec::new(),
-        lights: Vec::new(),
-        camera: Camera::look_at(DVec3::ZERO, DVec3::X, DVec3::Z, 10.0, o.width, o.height),
-        maps: Vec::new(),
-        probe: (DVec3::ZERO, DVec3::X),
-    };
+    let mut scene = PrismScene::new(o.kind.name(), vec![Medium::Air, crown, flint], o.width, o.height);
     scene.add_extruded("amici", &[(left, 1), (mid, 2), (right, 1)], -0.015, 0.015);
     // Incidence on the entry face, whose inward normal is at h - a1 from +x.
     let h = a2 / 2.0;
@@ -268,16 +259,7 @@ fn single_prism(o: &SceneOptions) -> Result<PrismScene> {
     let tall = side * (apex / 2.0).cos();
     let c = tall / 3.0;
     let tri = [DVec2::new(-side / 2.0, -c), DVec2::new(side / 2.0, -c), DVec2::new(0.0, tall - c)];
-    let mut scene = PrismScene {
-        name: o.kind.name().into(),
-        media: vec![Medium::Air, g],
-        faces: Vec::new(),
-        spheres: Vec::new(),
-        lights: Vec::new(),
-        camera: Camera::look_at(DVec3::ZERO, DVec3::X, DVec3::Z, 10.0, o.width, o.height),
-        maps: Vec::new(),
-        probe: (DVec3::ZERO, DVec3::X),
-    };
+    let mut scene = PrismScene::new(o.kind.name(), vec![Medium::Air, g], o.width, o.height);
     scene.add_extruded("prism", &[(tri, 1)], -0.025, 0.025);
     let n_d = scene.media[1].n(Some(lines::LD)).unwrap_or(1.5);
     let min_dev_incidence = (n_d * (apex / 2.0).sin()).asin();

@@ -22,16 +22,7 @@ use anyhow::Result;
 use glam::{DVec2, DVec3};
 
 fn empty(o: &SceneOptions, glass: Medium) -> PrismScene {
-    PrismScene {
-        name: o.kind.name().into(),
-        media: vec![Medium::Air, glass],
-        faces: Vec::new(),
-        spheres: Vec::new(),
-        lights: Vec::new(),
-        camera: Camera::look_at(DVec3::ZERO, DVec3::X, DVec3::Z, 30.0, o.width, o.height),
-        maps: Vec::new(),
-        probe: (DVec3::ZERO, DVec3::X),
-    }
+    PrismScene::new(o.kind.name(), vec![Medium::Air, glass], o.width, o.height)
 }
 
 /// A matte parallelogram with its own photon map.
