@@ -488,7 +488,7 @@ impl InteriorArgs {
     }
 
     /// Flag mode: the report's fields from flags or their defaults.
-    fn from_flags(&self) -> Result<InteriorConfig> {
+    fn flag_config(&self) -> Result<InteriorConfig> {
         let mut c = self.base();
         let Some(off) = &self.off else {
             bail!("--off FILE is required when any of the report's flags (--trace, --opacity, --color, --out, --coff, --scale, --rot, --ior) is given");
@@ -558,7 +558,7 @@ pub fn run(cli: Cli) -> Result<()> {
 
 fn run_interior(args: InteriorArgs) -> Result<()> {
     let cfg = if args.flag_mode() {
-        args.from_flags()?
+        args.flag_config()?
     } else {
         let stdin = std::io::stdin();
         let mut input = stdin.lock();

@@ -1,9 +1,16 @@
 //! `refract`: rendering light through transparent objects.
 //!
 //! Modules follow the physics and the pipeline: `spectrum` (sampled
-//! wavelengths, light spectra, CIE colour), `optics` (Snell, Fresnel, IOR models),
-//! `geometry` (rays, triangles, BVH), `mesh` (OFF reader), `interior`
-//! (report 004's mode), `image_io` and `timing` for what a run writes.
+//! wavelengths, light spectra, CIE colour, the reports' colour maps),
+//! `optics` (Snell, Fresnel, glasses, IOR models), `geometry` (rays,
+//! triangles, BVH), `mesh` (OFF and OBJ readers), `interior` (report 004's
+//! mode), `photon` (light pass, photon maps, filters), `prism` (report
+//! 000's mode and the scenes of reports 001 and 003), `experiment` (sweeps,
+//! metrics, plots, figures), `image_io` and `timing` for what a run writes.
+
+// `!(a <= b)` is written on purpose throughout: unlike `a > b` it is true
+// for NaN, so a NaN fails every range check instead of slipping through.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 pub mod bench;
 pub mod cli;

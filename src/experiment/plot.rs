@@ -105,7 +105,10 @@ pub fn render(path: &Path, chart: &LineChart) -> Result<()> {
 
 /// Horizontal colour strips, one per row, each with its label: colour
 /// against wavelength. `rows[i].1(nm)` gives 8-bit sRGB.
-pub fn colour_strips(path: &Path, title: &str, x_range: (f64, f64), rows: &[(String, Box<dyn Fn(f64) -> [u8; 3] + '_>)]) -> Result<()> {
+/// A labelled strip: its name and the 8-bit sRGB colour at each wavelength.
+pub type StripRow<'a> = (String, Box<dyn Fn(f64) -> [u8; 3] + 'a>);
+
+pub fn colour_strips(path: &Path, title: &str, x_range: (f64, f64), rows: &[StripRow<'_>]) -> Result<()> {
     register_font();
     let size = (960u32, 120 + 70 * rows.len() as u32);
     let mut buf = vec![0u8; (size.0 * size.1 * 3) as usize];

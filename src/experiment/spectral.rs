@@ -138,7 +138,7 @@ pub fn write_report(dir: &Path, glass: &Glass) -> Result<String> {
     }
     write_text(&dir.join("colour_maps_summary.csv"), &summary)?;
     let enc = |c: glam::DVec3| [c.x, c.y, c.z].map(|v| (srgb_encode(v.clamp(0.0, 1.0)) * 255.0 + 0.5) as u8);
-    let rows: Vec<(String, Box<dyn Fn(f64) -> [u8; 3]>)> =
+    let rows: Vec<super::plot::StripRow<'static>> =
         ColorMap::ALL.iter().map(|&m| (m.name().to_string(), Box::new(move |l: f64| enc(m.rgb(l))) as Box<dyn Fn(f64) -> [u8; 3]>)).collect();
     colour_strips(&dir.join("colour_maps.png"), "wavelength to colour: CIE and the reports' maps", (380.0, 780.0), &rows)?;
     render(

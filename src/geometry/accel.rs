@@ -48,7 +48,7 @@ pub fn linear_intersect(tris: &[Triangle], ray: &Ray) -> Option<Hit> {
     let mut t_max = ray.t_max;
     for (i, tri) in tris.iter().enumerate() {
         if let Some(h) = tri.intersect(ray, t_max, i as u32) {
-            if best.map_or(true, |b| h.closer_than(&b)) {
+            if best.is_none_or(|b| h.closer_than(&b)) {
                 t_max = h.t;
                 best = Some(h);
             }

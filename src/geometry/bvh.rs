@@ -78,9 +78,7 @@ impl Bvh {
         let mut stack = [0u32; 64];
         let mut sp = 0usize;
         let root = &self.nodes[0];
-        if (Aabb { min: root.min, max: root.max }).hit(ray.origin, inv, ray.t_min, t_max).is_none() {
-            return None;
-        }
+        (Aabb { min: root.min, max: root.max }).hit(ray.origin, inv, ray.t_min, t_max)?;
         let mut index = 0usize;
         loop {
             let node = &self.nodes[index];
@@ -88,7 +86,7 @@ impl Bvh {
                 let first = node.first as usize;
                 for i in first..first + node.count as usize {
                     if let Some(h) = self.tris[i].intersect(ray, t_max, self.ids[i]) {
-                        if best.map_or(true, |b| h.closer_than(&b)) {
+                        if best.is_none_or(|b| h.closer_than(&b)) {
                             t_max = h.t;
                             best = Some(h);
                         }

@@ -5,6 +5,7 @@
 //! - `kdtree`: every photon kept (20 bytes: u, v in metres and XYZ flux as
 //!   f32) in an implicit, balanced 2-D kd-tree for radius or k-nearest
 //!   queries.
+//!
 //! Both answer the same question: irradiance (XYZ per m^2) at a point,
 //! estimated with a filter kernel (box, cone or Gaussian, see `gather`).
 
@@ -55,9 +56,8 @@ impl SurfaceMap {
                 for p in &photons {
                     let iu = ((p.pos[0] as f64 / size.x * nu as f64) as usize).min(nu - 1);
                     let iv = ((p.pos[1] as f64 / size.y * nv as f64) as usize).min(nv - 1);
-                    let t = &mut flux[iv * nu + iu];
-                    for k in 0..3 {
-                        t[k] += p.xyz[k];
+                    for (t, x) in flux[iv * nu + iu].iter_mut().zip(p.xyz) {
+                        *t += x;
                     }
                 }
                 SurfaceMap::Buffer { size, nu, nv, flux }

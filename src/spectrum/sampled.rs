@@ -85,7 +85,7 @@ pub fn visible_wavelength_pdf(nm: f32) -> f32 {
     if !(LAMBDA_MIN as f32..=LAMBDA_MAX as f32).contains(&nm) {
         return 0.0;
     }
-    0.003_939_804_2 / (0.0072 * (nm - 538.0)).cosh().powi(2)
+    0.003_939_804 / (0.0072 * (nm - 538.0)).cosh().powi(2)
 }
 
 pub fn sample_visible_wavelength(u: f32) -> f32 {
