@@ -94,7 +94,7 @@ pub fn read_ppm(path: &Path) -> Result<(usize, usize, Vec<u8>)> {
     }
     anyhow::ensure!(fields.len() == 4 && fields[0] == "P6" && fields[3] == "255", "{}: not an 8-bit P6 PPM", path.display());
     let (w, h): (usize, usize) = (fields[1].parse()?, fields[2].parse()?);
-    let body = &data[i + 1..];
+    let body = data.get(i + 1..).unwrap_or_default();
     anyhow::ensure!(body.len() == w * h * 3, "{}: expected {} bytes of pixels, found {}", path.display(), w * h * 3, body.len());
     Ok((w, h, body.to_vec()))
 }

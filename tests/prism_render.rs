@@ -91,7 +91,7 @@ fn each_narrow_band_lands_where_the_analytic_ray_lands() {
 fn no_dispersion_gives_a_patch_with_no_chroma() {
     let mut o = SceneOptions::new(SceneKind::AmiciScreen);
     o.no_dispersion = true;
-    [o.width, o.height] = [160, 60];
+    [o.width, o.height] = [320, 120];
     let s = build(&o).unwrap();
     let r = render(&s, &opts(100_000, 2), &hidden());
     let white = refract::spectrum::Xyz(WavelengthSampler::new(&s.lights[0].spectrum).mean_cmf()).xy();
@@ -233,4 +233,39 @@ mod cli {
             assert_clean_failure(&o, needle);
         }
     }
+}
+
+#[test]
+fn pictures_4_5_and_6_share_one_view() {
+    // Report 000's three sample outputs must be framed identically so the
+    // strip, the white patch and the undispersed beam can be compared.
+    for kind in [SceneKind::AmiciScreen, SceneKind::AmiciLamp, SceneKind::SinglePrism] {
+        let views: Vec<_> = [
+            (false, false, IorKindFor::Sellmeier),
+            (true, false, IorKindFor::Sellmeier),
+            (false, true, IorKindFor::Sellmeier),
+            (false, false, IorKindFor::Cauchy),
+        ]
+        .into_iter()
+        .map(|(no_prism, no_dispersion, ior)| {
+            let mut o = SceneOptions::new(kind);
+            (o.no_prism, o.no_dispersion) = (no_prism, no_dispersion);
+            o.ior = match ior {
+                IorKindFor::Sellmeier => refract::optics::ior::IorKind::Sellmeier,
+                IorKindFor::Cauchy => refract::optics::ior::IorKind::Cauchy,
+            };
+            let s = build(&o).unwrap();
+            let screen = s.maps.first().map(|&f| s.faces[f].verts.clone());
+            (s.camera.pos, s.camera.forward, screen)
+        })
+        .collect();
+        for v in &views[1..] {
+            assert_eq!(v, &views[0], "{kind:?}: the view changed");
+        }
+    }
+}
+
+enum IorKindFor {
+    Sellmeier,
+    Cauchy,
 }

@@ -162,7 +162,9 @@ pub(crate) fn light_spectrum(o: &SceneOptions, default: &str) -> Result<Spectrum
 fn amici(o: &SceneOptions) -> Result<PrismScene> {
     let crown = glass_medium(&o.crown, o.ior, o.no_dispersion)?;
     let flint = glass_medium(&o.flint, o.ior, o.no_dispersion)?;
-    let (nc, nf) = (crown.n(Some(DESIGN_NM)).unwrap_or(1.5), flint.n(Some(DESIGN_NM)).unwrap_or(1.5));
+    // The prism is designed from the catalogue (Sellmeier), whatever model
+    // the renderer then uses for its index.
+    let (nc, nf) = (glass::by_name(&o.crown)?.sellmeier(DESIGN_NM), glass::by_name(&o.flint)?.sellmeier(DESIGN_NM));
     if !(0.0 < o.flint_apex_deg && o.flint_apex_deg < 180.0) {
         bail!("--flint-apex: {} degrees is not between 0 and 180", o.flint_apex_deg);
     }
@@ -188,8 +190,13 @@ fn amici(o: &SceneOptions) -> Result<PrismScene> {
     let entry_mid = (left[0] + left[1]) / 2.0;
     let start = DVec3::new(entry_mid.x, entry_mid.y, 0.0) - dir * 0.3;
     scene.probe = (start, dir);
-    let exits = |scene: &PrismScene, nm: f64| probe(scene, nm);
-    let d_line = exits(&scene, DESIGN_NM);
+    // Screen and camera are placed from the glasses' Sellmeier dispersion
+    // whatever index model is chosen, so --no-prism, --no-dispersion and
+    // every model frame the same view (report 000's Pictures 4, 5 and 6).
+    let mut design = scene.clone();
+    design.media = vec![Medium::Air, glass_medium(&o.crown, IorKind::Sellmeier, false)?, glass_medium(&o.flint, IorKind::Sellmeier, false)?];
+    let exits = |nm: f64| probe(&design, nm);
+    let d_line = exits(DESIGN_NM);
     if d_line.tir {
         bail!("--incidence: at {:.3} degrees the d line is totally reflected inside the prism", incidence.to_degrees());
     }
@@ -198,7 +205,7 @@ fn amici(o: &SceneOptions) -> Result<PrismScene> {
             // Screen 2 m past the prism, across the strip from 400 to 700 nm.
             let dist = 2.0;
             let land = |nm: f64| {
-                let p = exits(&scene, nm);
+                let p = exits(nm);
                 p.exit_point + p.exit_dir * ((d_line.exit_point.x + dist - p.exit_point.x) / p.exit_dir.x.max(1e-9))
             };
             let (a, b) = (land(400.0), land(700.0));
@@ -240,7 +247,7 @@ fn amici(o: &SceneOptions) -> Result<PrismScene> {
             });
             // The camera sits just before the entry face, looking back the
             // way light from the lines between 404 and 700 nm arrives.
-            let mid_dev = (exits(&scene, 404.0).deviation_deg + exits(&scene, 700.0).deviation_deg) / 2.0;
+            let mid_dev = (exits(404.0).deviation_deg + exits(700.0).deviation_deg) / 2.0;
             let cam = DVec3::new(left[1].x - 0.03, 0.0, 0.0);
             let look = rotate_z(DVec3::X, (-mid_dev).to_radians());
             let hfov = 11.0f64.to_radians();
@@ -261,7 +268,8 @@ fn single_prism(o: &SceneOptions) -> Result<PrismScene> {
     let tri = [DVec2::new(-side / 2.0, -c), DVec2::new(side / 2.0, -c), DVec2::new(0.0, tall - c)];
     let mut scene = PrismScene::new(o.kind.name(), vec![Medium::Air, g], o.width, o.height);
     scene.add_extruded("prism", &[(tri, 1)], -0.025, 0.025);
-    let n_d = scene.media[1].n(Some(lines::LD)).unwrap_or(1.5);
+    // Placed from the catalogue (Sellmeier) whatever index model renders it.
+    let n_d = glass::by_name(&o.crown)?.sellmeier(lines::LD);
     let min_dev_incidence = (n_d * (apex / 2.0).sin()).asin();
     let incidence = o.incidence_deg.map_or(min_dev_incidence, f64::to_radians);
     // The left face's inward normal points at -apex/2 from +x.
@@ -269,7 +277,9 @@ fn single_prism(o: &SceneOptions) -> Result<PrismScene> {
     let face_mid = (tri[2] + tri[0]) / 2.0;
     let start = DVec3::new(face_mid.x, face_mid.y, 0.0) - dir * 0.3;
     scene.probe = (start, dir);
-    let d_line = probe(&scene, lines::LD);
+    let mut design = scene.clone();
+    design.media[1] = glass_medium(&o.crown, IorKind::Sellmeier, false)?;
+    let d_line = probe(&design, lines::LD);
     if d_line.tir {
         bail!("--incidence: at {:.3} degrees the d line is totally reflected inside the prism", incidence.to_degrees());
     }
