@@ -34,13 +34,14 @@ const DRAWN: [(&str, &str, &str); 3] = [
 ];
 
 /// The sweeps whose plots the gallery shows, with what they stand for.
-const SWEEPS: [(&str, &str); 7] = [
+const SWEEPS: [(&str, &str); 8] = [
     ("lab-trace", "Report 004's timing figure: render time against trace count; image change against trace count"),
     ("lab-timing", "Report 004's limitation: render time against polygons, linear scan against BVH"),
     ("lab-size", "Report 004's limitation: render time against pixels"),
     ("lab-ior", "Highlight area against refractive index"),
     ("lab-shininess", "Highlight area against shininess"),
     ("prism-photons", "Photon maps and filters: error against time on the single-prism anchor scene"),
+    ("eye-split", "The eye pass at a dispersive face: hero wavelength against report 001's split into N rays"),
     ("stability", "Where the methods fail"),
 ];
 

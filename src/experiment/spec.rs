@@ -148,15 +148,18 @@ impl Experiment {
             Some(_) => return Err(err("", 0, "figures", "must be a list of strings".into())),
         };
         let empty = Table::new();
-        let quick_t = if quick {
-            match root.get("quick") {
-                Some(Value::Table(t)) => t.clone(),
-                Some(_) => return Err(err("", 0, "quick", "must be a table".into())),
-                None => empty.clone(),
-            }
-        } else {
-            empty.clone()
+        // [quick] is checked whether or not --quick is given.
+        let quick_all = match root.get("quick") {
+            Some(Value::Table(t)) => t.clone(),
+            Some(_) => return Err(err("", 0, "quick", "must be a table".into())),
+            None => empty.clone(),
         };
+        for k in quick_all.keys() {
+            if !["fixed", "sweep", "repeats", "reference"].contains(&k.as_str()) {
+                return Err(err("quick", 0, k, "unknown key in [quick]; expected fixed, sweep, repeats or reference".into()));
+            }
+        }
+        let quick_t = if quick { quick_all } else { empty.clone() };
         let table = |key: &str| -> Result<Table> {
             match root.get(key) {
                 None => Ok(Table::new()),
@@ -230,11 +233,11 @@ impl Experiment {
         }
         let reference = match root.get("reference") {
             None => None,
-            Some(Value::Table(t)) => {
+            Some(Value::Table(_)) => {
                 let mut set = Vec::new();
-                for (k, v) in t {
-                    check("reference", 0, k, v)?;
-                    set.push((k.clone(), v.clone()));
+                for (k, v) in merged("reference")? {
+                    check("reference", 0, &k, &v)?;
+                    set.push((k, v));
                 }
                 Some(set)
             }
@@ -361,6 +364,7 @@ sweep = { trace = [0] }
             (GOOD.replace("step = 0.2", "step = 0"), "t.toml:9: `ior`: range from 1.1 to 1.5 step 0"),
             (GOOD.replace("[fixed]", "colour = 3\n[fixed]"), "t.toml:4: `colour`: unknown key"),
             (GOOD.replace("size = [16, 16]", "size = [16, 16"), "t.toml:6"),
+            (GOOD.replace("sweep = { trace = [0] }", "swep = { trace = [0] }"), "t.toml:11: `swep`: unknown key in [quick]"),
         ] {
             let e = Experiment::parse(&bad, "t.toml", false).unwrap_err().to_string();
             assert!(e.starts_with(needle), "{e}\n  expected: {needle}");

@@ -386,7 +386,14 @@ pub fn run(e: &Experiment, opts: &SweepOptions) -> Result<(PathBuf, String)> {
     }
     for wave in waves.values() {
         use rayon::prelude::*;
-        pool.install(|| wave.par_iter().with_max_len(1).for_each(do_run));
+        if opts.jobs <= 1 {
+            // One at a time, in order. (Not through a 1-thread pool: a
+            // worker waiting on a render's own pool steals the next run,
+            // so runs would overlap and their timings would be wrong.)
+            wave.iter().for_each(do_run);
+        } else {
+            pool.install(|| wave.par_iter().with_max_len(1).for_each(do_run));
+        }
     }
     bar.finish_and_clear();
     if let Some(err) = errors.into_inner().unwrap().into_iter().next() {

@@ -122,11 +122,16 @@ impl Eye<'_> {
                         };
                         let r = c.reflectance(p.pol);
                         p.d = match c.refracted {
-                            // Near the camera both branches are followed with
-                            // their Fresnel weights (no roulette noise); deeper,
-                            // one is chosen by Russian roulette.
+                            // Near the camera the transmitted part always goes
+                            // on with weight T (no roulette noise in the main
+                            // image); the weak reflected part is followed with
+                            // probability min(1, 4R) and weight R / that.
+                            // Deeper, one branch is chosen by Russian roulette.
                             Some(t) if p.depth < SPLIT_DEPTH => {
-                                stack.push(Path { o: x, d: c.reflected, skip: Some(hit.face), weight: p.weight * r, depth: p.depth + 1, ..p });
+                                let q = (4.0 * r).min(1.0);
+                                if q > 0.0 && rng.f64() < q {
+                                    stack.push(Path { o: x, d: c.reflected, skip: Some(hit.face), weight: p.weight * r / q, depth: p.depth + 1, ..p });
+                                }
                                 p.weight *= 1.0 - r;
                                 t
                             }
