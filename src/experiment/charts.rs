@@ -27,6 +27,16 @@ fn col(header: &[String], name: &str) -> Result<usize> {
     header.iter().position(|h| h == name).ok_or_else(|| anyhow!("plot column `{name}` is not in runs.csv; columns: {}", header.join(", ")))
 }
 
+/// Median of sorted values (the mean of the middle two for an even count).
+fn median(sorted: &[f64]) -> f64 {
+    let n = sorted.len();
+    if n % 2 == 1 {
+        sorted[n / 2]
+    } else {
+        (sorted[n / 2 - 1] + sorted[n / 2]) / 2.0
+    }
+}
+
 /// Least-squares slope of y on x.
 pub fn slope(points: &[(f64, f64)]) -> Option<f64> {
     let n = points.len() as f64;
@@ -42,7 +52,8 @@ pub fn line_chart(p: &PlotSpec, header: &[String], rows: &[Vec<String>]) -> Resu
     let (xi, yi) = (col(header, &p.x)?, col(header, &p.y)?);
     let si: Vec<usize> = p.series.iter().map(|s| col(header, s)).collect::<Result<_>>()?;
     let status = col(header, "status")?;
-    // Group rows into series; average repeats at equal x.
+    // Group rows into series; the median of repeats at equal x (timings
+    // have outliers: a median ignores one slow run).
     let mut groups: Vec<(String, Vec<(f64, f64)>)> = Vec::new();
     for r in rows.iter().filter(|r| r[status] == "ok") {
         let (Ok(x), Ok(y)) = (r[xi].parse::<f64>(), r[yi].parse::<f64>()) else { continue };
@@ -58,18 +69,15 @@ pub fn line_chart(p: &PlotSpec, header: &[String], rows: &[Vec<String>]) -> Resu
         .into_iter()
         .zip(PALETTE.iter().cycle())
         .map(|((name, mut pts), color)| {
-            pts.sort_by(|a, b| a.0.total_cmp(&b.0));
-            let mut avg: Vec<(f64, f64, usize)> = Vec::new();
+            pts.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
+            let mut groups: Vec<(f64, Vec<f64>)> = Vec::new();
             for (x, y) in pts {
-                match avg.last_mut() {
-                    Some(l) if l.0 == x => {
-                        l.1 += y;
-                        l.2 += 1;
-                    }
-                    _ => avg.push((x, y, 1)),
+                match groups.last_mut() {
+                    Some(g) if g.0 == x => g.1.push(y),
+                    _ => groups.push((x, vec![y])),
                 }
             }
-            let points: Vec<(f64, f64)> = avg.into_iter().map(|(x, y, n)| (x, y / n as f64)).collect();
+            let points: Vec<(f64, f64)> = groups.into_iter().map(|(x, ys)| (x, median(&ys))).collect();
             let label = if name.is_empty() { p.y.clone() } else { name };
             let label = match (p.fit, slope(&points)) {
                 (true, Some(s)) => format!("{label} (slope {s:.2})"),
@@ -134,6 +142,12 @@ fn status_table(p: &PlotSpec, dir: &Path, header: &[String], rows: &[Vec<String>
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn median_of_repeats() {
+        assert_eq!(median(&[1.0, 2.0, 9.0]), 2.0);
+        assert_eq!(median(&[1.0, 2.0, 3.0, 9.0]), 2.5);
+    }
 
     #[test]
     fn slope_of_a_line() {
