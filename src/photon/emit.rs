@@ -172,6 +172,7 @@ fn trace_photon(
     let mut nm: Option<f64> = None;
     let mut xyz = white * power;
     let mut skip = None;
+    let mut bounces = 0;
     for _ in 0..MAX_BOUNCES {
         let Some(hit) = scene.intersect(o, d, skip) else { return };
         let p = o + hit.t * d;
@@ -204,22 +205,78 @@ fn trace_photon(
                 }
                 d = crate::optics::snell::reflect_f64(d, scene.normal(hit.face, p));
             }
-            Surface::Diffuse { map, .. } => {
+            Surface::Diffuse { map, albedo } => {
                 let face = &scene.faces[hit.face];
-                if d.dot(face.normal) < 0.0 {
-                    let (_, eu, ev) = face.frame.expect("matte surfaces are parallelograms");
-                    if let Some(uv) = face.uv(p) {
-                        let pos = [(uv.x * eu.length()) as f32, (uv.y * ev.length()) as f32];
-                        maps[map].push(Photon { pos, xyz: [xyz.x as f32, xyz.y as f32, xyz.z as f32] });
-                        stats.stored += 1;
+                if d.dot(face.normal) >= 0.0 {
+                    return;
+                }
+                let (_, eu, ev) = face.frame.expect("matte surfaces are parallelograms");
+                if let Some(uv) = face.uv(p) {
+                    let pos = [(uv.x * eu.length()) as f32, (uv.y * ev.length()) as f32];
+                    maps[map].push(Photon { pos, xyz: [xyz.x as f32, xyz.y as f32, xyz.z as f32] });
+                    stats.stored += 1;
+                    if bounces == 0 {
+                        // Counted once, at the first matte surface it reaches.
                         stats.stored_power += power;
                     }
                 }
-                return;
+                // Diffuse inter-reflection, where the scene allows it: go on
+                // with probability = mean albedo, colour tinted by it.
+                let keep = (albedo[0] + albedo[1] + albedo[2]) / 3.0;
+                if bounces >= scene.bounces || !(rng.f64() < keep) {
+                    return;
+                }
+                bounces += 1;
+                xyz = crate::spectrum::cie::tint(xyz, albedo) / keep;
+                d = cosine_direction(face.normal, rng);
             }
             Surface::Emitter { .. } => return,
         }
         o = p;
         skip = Some(hit.face);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::prism::scene::{Face, Light, Medium, PrismScene};
+    use crate::spectrum::Spectrum;
+
+    /// A closed cube of matte walls (albedo rho, normals inward) with a
+    /// point light at its centre: every photon lands, and after k bounces it
+    /// carries rho^k on average, so the flux stored over all maps is
+    /// Phi (1 + rho + ... + rho^B) for B bounces.
+    #[test]
+    fn bounces_store_the_geometric_series_of_the_albedo() {
+        let rho = 0.5;
+        let mut s = PrismScene::new("box", vec![Medium::Air], 8, 8);
+        let v = DVec3::new;
+        let walls = [
+            (v(-1.0, -1.0, -1.0), v(0.0, 2.0, 0.0), v(2.0, 0.0, 0.0)),
+            (v(-1.0, -1.0, 1.0), v(2.0, 0.0, 0.0), v(0.0, 2.0, 0.0)),
+            (v(-1.0, -1.0, -1.0), v(2.0, 0.0, 0.0), v(0.0, 0.0, 2.0)),
+            (v(-1.0, 1.0, -1.0), v(0.0, 0.0, 2.0), v(2.0, 0.0, 0.0)),
+            (v(-1.0, -1.0, -1.0), v(0.0, 0.0, 2.0), v(0.0, 2.0, 0.0)),
+            (v(1.0, -1.0, -1.0), v(0.0, 2.0, 0.0), v(0.0, 0.0, 2.0)),
+        ];
+        for (i, (c, eu, ev)) in walls.into_iter().enumerate() {
+            // Wound so the normal (eu x ev) points into the box.
+            let (eu, ev) = if eu.cross(ev).dot(-c) > 0.0 { (eu, ev) } else { (ev, eu) };
+            let f = Face::rect(&format!("wall {i}"), c, eu, ev, Surface::Diffuse { albedo: [rho; 3], map: i });
+            assert!(f.normal.dot(-c) > 0.0, "wall {i} must face inward");
+            s.faces.push(f);
+            s.maps.push(i);
+        }
+        s.lights.push(Light { name: "point".into(), emission: Emission::Point { pos: DVec3::ZERO }, spectrum: Spectrum::Constant(1.0), power: 1.0 });
+        for bounces in [0u32, 4] {
+            s.bounces = bounces;
+            let pass = light_pass(&s, 200_000, 1, ColorMap::Cie, &indicatif::ProgressBar::hidden());
+            let stored: f64 = pass.photons.iter().flatten().map(|p| p.xyz[1] as f64).sum();
+            let emitted = WavelengthSampler::new(&Spectrum::Constant(1.0)).mean_cmf().y;
+            let want: f64 = (0..=bounces).map(|k| rho.powi(k as i32)).sum();
+            assert!((stored / emitted / want - 1.0).abs() < 0.01, "{bounces} bounces: {} vs {want}", stored / emitted);
+            assert!((pass.stats.stored_power - 1.0).abs() < 1e-9, "first landings carry all the power");
+        }
     }
 }

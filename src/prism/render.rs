@@ -149,7 +149,7 @@ impl Eye<'_> {
                             if let (Some(uv), Some((_, eu, ev))) = (face.uv(x), face.frame) {
                                 let pos = DVec2::new(uv.x * eu.length(), uv.y * ev.length());
                                 let e = self.maps[map].irradiance(pos, self.opts.filter, self.opts.lookup);
-                                let l = tint(e, albedo) / std::f64::consts::PI;
+                                let l = crate::spectrum::cie::tint(e, albedo) / std::f64::consts::PI;
                                 sum += match p.nm {
                                     None => l * p.weight,
                                     // Seen through a dispersive face: the map holds
@@ -179,15 +179,6 @@ impl Eye<'_> {
         }
         sum
     }
-}
-
-/// XYZ times a linear-sRGB albedo (exact for grey).
-fn tint(xyz: DVec3, albedo: [f64; 3]) -> DVec3 {
-    if albedo[0] == albedo[1] && albedo[1] == albedo[2] {
-        return xyz * albedo[0];
-    }
-    let rgb = crate::spectrum::Xyz(xyz).to_linear_srgb().0 * DVec3::from(albedo);
-    crate::spectrum::LinearRgb(rgb).to_xyz().0
 }
 
 /// Runs the light pass and the eye pass.

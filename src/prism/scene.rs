@@ -245,6 +245,9 @@ pub struct PrismScene {
     pub maps: Vec<usize>,
     /// The ray the probe follows: origin and direction (the beam's axis).
     pub probe: (DVec3, DVec3),
+    /// Diffuse bounces a photon may make after its first matte surface:
+    /// 0 is report 000's map of where light lands; a room needs a few.
+    pub bounces: u32,
 }
 
 /// Nearest face hit by a ray.
@@ -267,6 +270,7 @@ impl PrismScene {
             camera: Camera::look_at(DVec3::ZERO, DVec3::X, DVec3::Z, 30.0, width, height),
             maps: Vec::new(),
             probe: (DVec3::ZERO, DVec3::X),
+            bounces: 0,
         }
     }
 

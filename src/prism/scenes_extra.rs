@@ -142,6 +142,7 @@ pub fn cornell(o: &SceneOptions) -> Result<PrismScene> {
     let glass = glass_medium(&o.crown, o.ior, o.no_dispersion)?;
     let mut s = empty(o, glass);
     cornell_box(&mut s);
+    s.bounces = 4;
     let n_d = crate::optics::glass::by_name(&o.crown)?.sellmeier(crate::optics::glass::lines::LD);
     // The spectrum fans toward the back wall, a little to the right.
     let cross = prism_cross_section(DVec2::new(-0.1, -0.3), 0.3, n_d, 70f64.to_radians());

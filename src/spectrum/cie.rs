@@ -186,6 +186,16 @@ pub fn desaturate(v: DVec3) -> DVec3 {
     }
 }
 
+/// XYZ times a linear-sRGB albedo: what a coloured matte surface sends on
+/// (an RGB product, not spectral; exact for grey).
+pub fn tint(xyz: DVec3, albedo: [f64; 3]) -> DVec3 {
+    if albedo[0] == albedo[1] && albedo[1] == albedo[2] {
+        return xyz * albedo[0];
+    }
+    let rgb = XYZ_TO_SRGB * xyz * DVec3::from(albedo);
+    XYZ_TO_SRGB.inverse() * rgb
+}
+
 /// Linear sRGB to 8-bit display values: exposure, gamut map, encode.
 pub fn to_srgb8(c: LinearRgb, exposure: f64, map: GamutMap) -> [u8; 3] {
     let v = map.apply(LinearRgb(c.0 * exposure));
