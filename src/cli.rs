@@ -35,9 +35,9 @@ pub enum Command {
         /// Only these figure ids, comma-separated (then no sweeps run)
         #[arg(long, value_delimiter = ',')]
         only: Vec<String>,
-        /// Results folder
-        #[arg(long, default_value = "results")]
-        out: PathBuf,
+        /// Results folder [default: results, or results/quick with --quick so the committed full-quality set stays]
+        #[arg(long)]
+        out: Option<PathBuf>,
         /// Folder of the scene files and FIGURES.md
         #[arg(long, default_value = "scenes")]
         scenes: PathBuf,
@@ -528,6 +528,7 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Meshes { dir } => write_meshes(&dir),
         Command::Prism(args) => run_prism(args),
         Command::Figures { quick, only, out, scenes } => {
+            let out = out.unwrap_or_else(|| PathBuf::from(if quick { "results/quick" } else { "results" }));
             let msg = crate::experiment::figures::run(&crate::experiment::figures::FigureOptions { quick, only, out, scenes })?;
             eprintln!("{msg}");
             if msg.contains("figures failed") {
