@@ -15,10 +15,10 @@
 //! ```
 
 use super::params::{apply_interior, apply_prism, Mode};
-use super::spec::line_of;
+use super::spec::{line_of, parse_toml};
 use anyhow::{anyhow, Result};
 use std::path::{Path, PathBuf};
-use toml::{Table, Value};
+use toml::Value;
 
 #[derive(Clone, Debug)]
 pub struct SceneFile {
@@ -36,10 +36,7 @@ impl SceneFile {
     }
 
     pub fn parse(text: &str, file: &str, quick: bool) -> Result<SceneFile> {
-        let root: Table = text.parse::<Table>().map_err(|e| {
-            let line = e.span().map_or(1, |s| text[..s.start.min(text.len())].lines().count().max(1));
-            anyhow!("{file}:{line}: {}", e.message())
-        })?;
+        let root = parse_toml(text, file)?;
         let err = |section: &str, key: &str, msg: String| anyhow!("{file}:{}: `{key}`: {msg}", line_of(text, section, 0, key));
         for k in root.keys() {
             if !["id", "report", "caption", "mode", "params", "quick"].contains(&k.as_str()) {

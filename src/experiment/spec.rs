@@ -100,6 +100,14 @@ pub fn line_of(text: &str, section: &str, nth: usize, key: &str) -> usize {
     text.lines().position(|l| l.contains(key)).map_or(1, |i| i + 1)
 }
 
+/// Parses TOML text; a syntax error names `file` and its line.
+pub fn parse_toml(text: &str, file: &str) -> Result<Table> {
+    text.parse::<Table>().map_err(|e| {
+        let line = e.span().map_or(1, |s| text[..s.start.min(text.len())].lines().count().max(1));
+        anyhow!("{file}:{line}: {}", e.message())
+    })
+}
+
 impl Experiment {
     pub fn load(path: &Path, quick: bool) -> Result<Experiment> {
         let text = std::fs::read_to_string(path).map_err(|e| anyhow!("{}: cannot read: {e}", path.display()))?;
@@ -107,10 +115,7 @@ impl Experiment {
     }
 
     pub fn parse(text: &str, file: &str, quick: bool) -> Result<Experiment> {
-        let root: Table = text.parse::<Table>().map_err(|e| {
-            let line = e.span().map_or(1, |s| text[..s.start.min(text.len())].lines().count().max(1));
-            anyhow!("{file}:{line}: {}", e.message())
-        })?;
+        let root = parse_toml(text, file)?;
         let err = |section: &str, nth: usize, key: &str, msg: String| anyhow!("{file}:{}: `{key}`: {msg}", line_of(text, section, nth, key));
         for k in root.keys() {
             if !["name", "mode", "description", "figures", "repeats", "fixed", "sweep", "case", "reference", "quick", "outputs"].contains(&k.as_str()) {
