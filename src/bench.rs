@@ -245,7 +245,7 @@ pub fn prism(quick: bool, out_dir: &std::path::Path) -> Result<String> {
         }
     }
     std::fs::create_dir_all(out_dir)?;
-    crate::image_io::atomic_write(&out_dir.join("prism_error_vs_time.csv"), |f| Ok(std::io::Write::write_all(f, csv.as_bytes())?))?;
+    crate::image_io::write_text(&out_dir.join("prism_error_vs_time.csv"), &csv)?;
     let chart = crate::experiment::plot::LineChart {
         title: "single-prism strip: error against time (log10 axes)".into(),
         x_label: "log10 time (s)".into(),

@@ -595,12 +595,12 @@ fn write_meshes(dir: &std::path::Path) -> Result<()> {
     for (name, what, mesh) in crate::mesh::generate::shipped() {
         let path = dir.join(name);
         let text = mesh.to_off(&format!("{what}\nmade by `refract meshes {}`", dir.display()));
-        crate::image_io::atomic_write(&path, |f| Ok(std::io::Write::write_all(f, text.as_bytes())?))?;
+        crate::image_io::write_text(&path, &text)?;
         eprintln!("wrote {}", path.display());
     }
     let path = dir.join("prism60.obj");
     let text = crate::mesh::generate::prism60_obj();
-    crate::image_io::atomic_write(&path, |f| Ok(std::io::Write::write_all(f, text.as_bytes())?))?;
+    crate::image_io::write_text(&path, &text)?;
     eprintln!("wrote {}", path.display());
     Ok(())
 }
@@ -752,7 +752,7 @@ fn run_sweep(args: SweepArgs) -> Result<()> {
     if args.jobs == 0 || args.jobs > 256 {
         bail!("--jobs: {} is not between 1 and 256", args.jobs);
     }
-    let opts = sweep::SweepOptions { quick: args.quick, resume: args.resume, jobs: args.jobs, out: args.out, shard: args.shard, max_runs: args.max_runs };
+    let opts = sweep::SweepOptions { resume: args.resume, jobs: args.jobs, out: args.out, shard: args.shard, max_runs: args.max_runs };
     let (_, summary) = sweep::run(&e, &opts)?;
     eprintln!("{summary}");
     Ok(())

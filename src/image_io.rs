@@ -55,6 +55,11 @@ pub fn write_image(path: &Path, img: &Image) -> Result<()> {
     write_rgb8(path, img.width, img.height, &img.to_rgb8())
 }
 
+/// Writes text to `path` through a temporary file and a rename.
+pub fn write_text(path: &Path, text: &str) -> Result<()> {
+    atomic_write(path, |f| Ok(f.write_all(text.as_bytes())?))
+}
+
 /// Creates `path` through a temporary sibling file and a rename.
 pub fn atomic_write(path: &Path, fill: impl FnOnce(&mut std::io::BufWriter<std::fs::File>) -> Result<()>) -> Result<()> {
     let tmp = temp_sibling(path);

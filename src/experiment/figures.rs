@@ -154,7 +154,7 @@ pub fn run(o: &FigureOptions) -> Result<String> {
     }
     bar.finish_and_clear();
     if o.only.is_empty() {
-        let opts = super::sweep::SweepOptions { quick: o.quick, jobs: 1, ..Default::default() };
+        let opts = super::sweep::SweepOptions { jobs: 1, ..Default::default() };
         for (name, _) in SWEEPS {
             let e = super::spec::Experiment::load(&PathBuf::from("experiments").join(format!("{name}.toml")), o.quick)?;
             super::sweep::run(&e, &super::sweep::SweepOptions { out: Some(o.out.join(name)), ..opts.clone() })?;
@@ -239,7 +239,7 @@ fn write_index(out: &Path, ids: &[String], records: &BTreeMap<String, Record>) -
         }
     }
     writeln!(h, "</body></html>")?;
-    atomic_write(&out.join("index.html"), |f| Ok(std::io::Write::write_all(f, h.as_bytes())?))
+    crate::image_io::write_text(&out.join("index.html"), &h)
 }
 
 /// Draws one of the figures made in code; returns its parameter text.

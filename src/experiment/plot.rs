@@ -3,7 +3,7 @@
 //! font library is needed. Each figure is written as PNG or SVG (by the
 //! file's extension) through a temporary file and a rename.
 
-use crate::image_io::{atomic_write, write_rgb8};
+use crate::image_io::{write_rgb8, write_text};
 use anyhow::{anyhow, Result};
 use plotters::prelude::*;
 use std::path::Path;
@@ -95,7 +95,7 @@ pub fn render(path: &Path, chart: &LineChart) -> Result<()> {
     if path.extension().is_some_and(|e| e == "svg") {
         let mut svg = String::new();
         draw(SVGBackend::with_string(&mut svg, SIZE).into_drawing_area(), chart)?;
-        atomic_write(path, |f| Ok(std::io::Write::write_all(f, svg.as_bytes())?))
+        write_text(path, &svg)
     } else {
         let mut buf = vec![0u8; (SIZE.0 * SIZE.1 * 3) as usize];
         draw(BitMapBackend::with_buffer(&mut buf, SIZE).into_drawing_area(), chart)?;

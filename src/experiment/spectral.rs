@@ -3,6 +3,7 @@
 //! wavelength-to-colour map against CIE, as CSVs and plots.
 
 use super::plot::{colour_strips, render, LineChart, Series, PALETTE};
+use crate::image_io::write_text;
 use crate::optics::glass::Glass;
 use crate::optics::ior::{IorKind, IorModel};
 use crate::spectrum::cie::srgb_encode;
@@ -59,10 +60,6 @@ pub fn map_summaries() -> Vec<MapSummary> {
             }
         })
         .collect()
-}
-
-fn write_text(path: &Path, text: &str) -> Result<()> {
-    crate::image_io::atomic_write(path, |f| Ok(std::io::Write::write_all(f, text.as_bytes())?))
 }
 
 /// Writes the CSVs and plots into `dir`; returns a short text summary.

@@ -125,7 +125,6 @@ pub fn header(e: &Experiment) -> Vec<String> {
 
 #[derive(Clone, Debug, Default)]
 pub struct SweepOptions {
-    pub quick: bool,
     pub resume: bool,
     pub jobs: usize,
     pub out: Option<PathBuf>,

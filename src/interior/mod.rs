@@ -84,15 +84,14 @@ pub fn render_mesh(mesh: Mesh, cfg: &InteriorConfig) -> Result<RunReport> {
     let scene = InteriorScene::new(mesh, cfg);
     let pool = rayon::ThreadPoolBuilder::new().num_threads(cfg.threads).build()?;
     let threads = pool.current_num_threads();
-    let (accel, build_s, render, render_s) = pool.install(|| {
+    let (build_s, render, render_s) = pool.install(|| {
         let t = Instant::now();
         let accel = scene.accel(cfg.accel);
         let build_s = t.elapsed().as_secs_f64();
         let t = Instant::now();
         let render = Tracer::new(&scene, &accel, cfg).render(cfg.spp, cfg.seed);
-        (accel, build_s, render, t.elapsed().as_secs_f64())
+        (build_s, render, t.elapsed().as_secs_f64())
     });
-    drop(accel);
     Ok(RunReport { image: render.image, triangles, threads, load_s: 0.0, build_s, render_s, rays: render.rays, tir: render.tir, notes })
 }
 
