@@ -121,7 +121,7 @@ pub fn interior(quick: bool) -> Result<String> {
 }
 
 /// Relative RMSE of luminance: ||Y - Y_ref|| / ||Y_ref|| over all pixels.
-pub fn relative_rmse(img: &crate::prism::film::XyzImage, reference: &crate::prism::film::XyzImage) -> f64 {
+pub fn relative_rmse(img: &crate::spectral::film::XyzImage, reference: &crate::spectral::film::XyzImage) -> f64 {
     let (mut num, mut den) = (0.0, 0.0);
     for (a, b) in img.xyz.iter().zip(&reference.xyz) {
         num += (a.y - b.y).powi(2);
@@ -157,13 +157,13 @@ pub fn time_to_error(runs: &[(f64, f64)], target: f64) -> Option<f64> {
 pub fn prism(quick: bool, out_dir: &std::path::Path) -> Result<String> {
     use crate::photon::gather::{Filter, Lookup};
     use crate::photon::map::MapKind;
-    use crate::prism::render::{render, EyeMode, RenderOptions};
-    use crate::prism::scenes::{build, SceneKind, SceneOptions};
+    use crate::scenes::{build, SceneKind, SceneOptions};
+    use crate::spectral::eye::EyeMode;
+    use crate::spectral::render::{render, RenderOptions};
     let mut so = SceneOptions::new(SceneKind::SinglePrism);
     (so.width, so.height, so.incidence_deg) = (320, 240, Some(49.4));
     let scene = build(&so)?;
-    let radius = crate::prism::default_radius(&scene);
-    let hidden = indicatif::MultiProgress::with_draw_target(indicatif::ProgressDrawTarget::hidden());
+    let radius = crate::spectral::default_radius(&scene);
     let opts = |photons: u64, map: MapKind, filter: Filter, r: f64| RenderOptions {
         photons,
         map,
@@ -182,7 +182,7 @@ pub fn prism(quick: bool, out_dir: &std::path::Path) -> Result<String> {
     let n = if quick { 200_000 } else { 2_000_000 };
     let pass = one.install(|| {
         let t = Instant::now();
-        let p = crate::photon::emit::light_pass(&scene, n, 1, crate::spectrum::colormap::ColorMap::Cie, &indicatif::ProgressBar::hidden());
+        let p = crate::photon::emit::light_pass(&scene, n, 1, crate::spectrum::colormap::ColorMap::Cie, &crate::progress::Silent);
         (p.stats, t.elapsed().as_secs_f64())
     });
     writeln!(out, "prism bench: single-prism, 320x240, 49.4 deg, D65 beam; radius {:.2} mm", radius * 1e3)?;
@@ -197,7 +197,7 @@ pub fn prism(quick: bool, out_dir: &std::path::Path) -> Result<String> {
     let counts: Vec<u64> = if quick { vec![20_000, 80_000] } else { vec![25_000, 50_000, 100_000, 200_000, 400_000, 800_000, 1_600_000] };
     let mid = counts[counts.len() / 2];
     let t = Instant::now();
-    let reference = render(&scene, &opts(mid * 100, MapKind::Kdtree, Filter::Box, radius / 2.0), &hidden);
+    let reference = render(&scene, &opts(mid * 100, MapKind::Kdtree, Filter::Box, radius / 2.0), &crate::progress::Silent);
     writeln!(out, "reference: {} photons, kd-tree, box, radius {:.2} mm ({:.1} s)", mid * 100, radius * 0.5e3, t.elapsed().as_secs_f64())?;
     let mut csv = String::from("map,filter,photons,time_s,rel_rmse\n");
     let mut series = Vec::new();
@@ -206,7 +206,7 @@ pub fn prism(quick: bool, out_dir: &std::path::Path) -> Result<String> {
         for filter in [Filter::Box, Filter::Cone, Filter::Gaussian] {
             let mut runs = Vec::new();
             for &c in &counts {
-                let r = render(&scene, &opts(c, map, filter, radius), &hidden);
+                let r = render(&scene, &opts(c, map, filter, radius), &crate::progress::Silent);
                 let time = r.trace_s + r.build_s + r.render_s;
                 let err = relative_rmse(&r.image, &reference.image);
                 writeln!(csv, "{},{},{c},{},{}", map.name(), filter.name(), crate::timing::cell(time), crate::timing::cell(err))?;
@@ -229,10 +229,14 @@ pub fn prism(quick: bool, out_dir: &std::path::Path) -> Result<String> {
             so.incidence_deg = Some(49.4);
         }
         let s = build(&so)?;
-        let r = render(&s, &opts(if quick { 200_000 } else { 2_000_000 }, MapKind::Kdtree, Filter::Cone, crate::prism::default_radius(&s)), &hidden);
+        let r = render(
+            &s,
+            &opts(if quick { 200_000 } else { 2_000_000 }, MapKind::Kdtree, Filter::Cone, crate::spectral::default_radius(&s)),
+            &crate::progress::Silent,
+        );
         let exposure = r.image.auto_exposure();
         for gamut in [crate::spectrum::cie::GamutMap::Desaturate, crate::spectrum::cie::GamutMap::Clip] {
-            let h = crate::prism::metrics::strip_hue_error(&s, &r.image, exposure, gamut);
+            let h = crate::spectral::strip::strip_hue_error(&s, &r.image, exposure, gamut);
             writeln!(
                 out,
                 "hue error along the strip, {} ({:?} gamut map): mean {:.1} deg, max {:.1} deg over {} columns",

@@ -8,8 +8,8 @@ use crate::optics::glass;
 use crate::optics::ior::{IorKind, IorModel};
 use crate::photon::gather::Filter;
 use crate::photon::map::MapKind;
-use crate::prism::render::EyeMode;
-use crate::prism::scenes::{SceneKind as PrismSceneKind, SceneOptions};
+use crate::scenes::{SceneKind as WorldKind, SceneOptions};
+use crate::spectral::eye::EyeMode;
 use crate::spectrum::cie::GamutMap;
 use crate::spectrum::cie::{cmf, srgb_encode_odd, Xyz};
 use crate::spectrum::Spectrum;
@@ -112,9 +112,9 @@ pub struct PrismArgs {
     #[command(subcommand)]
     pub probe: Option<PrismCommand>,
     #[command(flatten)]
-    pub scene: PrismSceneArgs,
+    pub scene: WorldArgs,
     #[command(flatten)]
-    pub render: PrismRenderArgs,
+    pub render: SpectralRenderArgs,
 }
 
 #[derive(Subcommand, Debug)]
@@ -124,7 +124,7 @@ pub enum PrismCommand {
     /// (counter-clockwise positive, toward the crown apices), transmittance.
     Trace {
         #[command(flatten)]
-        scene: PrismSceneArgs,
+        scene: WorldArgs,
         /// Wavelengths in nm, comma-separated
         #[arg(long, value_delimiter = ',', value_parser = parse_visible_nm, default_value = "486.1327,587.5618,656.2725")]
         wavelengths: Vec<f64>,
@@ -133,10 +133,10 @@ pub enum PrismCommand {
 
 /// What shapes the prism scene (shared by rendering and the probe).
 #[derive(Args, Debug, Clone)]
-pub struct PrismSceneArgs {
+pub struct WorldArgs {
     /// Scene: amici-screen (rainbow strip), amici-lamp (a CFL seen through the prism), single-prism (60 degrees)
-    #[arg(long, value_enum, default_value_t = PrismSceneKind::AmiciScreen)]
-    pub scene: PrismSceneKind,
+    #[arg(long, value_enum, default_value_t = WorldKind::AmiciScreen)]
+    pub scene: WorldKind,
     /// Crown glass (the single prism's glass); see `refract glass --list`
     #[arg(long, default_value = "N-BK7")]
     pub glass: String,
@@ -164,7 +164,7 @@ pub struct PrismSceneArgs {
 }
 
 #[derive(Args, Debug)]
-pub struct PrismRenderArgs {
+pub struct SpectralRenderArgs {
     /// Light spectrum: d65, e, fl1..fl12, fl3.1..fl3.15, cfl-lines, blackbody:K, laser:NM [default: d65 beams, cfl-lines lamp]
     #[arg(long)]
     pub light: Option<String>,
@@ -229,7 +229,7 @@ fn parse_visible_nm(s: &str) -> Result<f64, String> {
     Ok(v)
 }
 
-impl PrismSceneArgs {
+impl WorldArgs {
     fn options(&self, size: [usize; 2], light: Option<String>) -> SceneOptions {
         SceneOptions {
             kind: self.scene,
@@ -681,11 +681,11 @@ fn run_glass(args: GlassArgs) -> Result<()> {
 
 fn run_prism(args: PrismArgs) -> Result<()> {
     if let Some(PrismCommand::Trace { scene, wavelengths }) = args.probe {
-        let built = crate::prism::scenes::build(&scene.options([64, 64], None))?;
+        let built = crate::scenes::build(&scene.options([64, 64], None))?;
         let mut o = String::new();
         outln!(o, "wavelength_nm,exit_x,exit_y,exit_z,deviation_deg,transmittance");
         for nm in wavelengths {
-            let p = crate::prism::probe::probe(&built, nm);
+            let p = crate::world::probe::probe(&built, nm);
             if p.tir {
                 outln!(o, "{nm},nan,nan,nan,nan,0");
             } else {
@@ -695,7 +695,7 @@ fn run_prism(args: PrismArgs) -> Result<()> {
         return write_stdout(&o);
     }
     let r = args.render;
-    let mut cfg = crate::prism::PrismConfig::new(args.scene.options(r.size, r.light.clone()), r.out.clone());
+    let mut cfg = crate::spectral::SpectralConfig::new(args.scene.options(r.size, r.light.clone()), r.out.clone());
     cfg.photons = r.photons;
     cfg.map = r.map;
     cfg.filter = r.filter;
@@ -718,11 +718,11 @@ fn run_prism(args: PrismArgs) -> Result<()> {
         }
     }
     if let Some(path) = &r.timing_csv {
-        crate::timing::check_header(path, &crate::prism::TIMING_HEADER)?;
+        crate::timing::check_header(path, &crate::spectral::TIMING_HEADER)?;
     }
-    let report = crate::prism::run(&cfg)?;
+    let report = crate::spectral::run(&cfg, &crate::terminal::Bars::new())?;
     if let Some(path) = &r.timing_csv {
-        crate::prism::append_timing(path, &cfg, &report)?;
+        crate::spectral::append_timing(path, &cfg, &report)?;
     }
     let s = &report.render.stats;
     eprintln!(

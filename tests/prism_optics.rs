@@ -4,8 +4,8 @@
 use crate::common::*;
 use refract::data::Table;
 use refract::optics::glass::{by_name, lines};
-use refract::prism::probe::probe;
-use refract::prism::scenes::{build, SceneKind, SceneOptions};
+use refract::scenes::{build, SceneKind, SceneOptions};
+use refract::world::probe::probe;
 
 #[test]
 fn amici_matches_the_deviation_oracle_at_every_wavelength() {

@@ -4,17 +4,18 @@ use glam::{DVec2, DVec3};
 use refract::photon::emit::light_pass;
 use refract::photon::gather::{Filter, Lookup};
 use refract::photon::map::MapKind;
-use refract::prism::probe::probe;
-use refract::prism::render::{render, EyeMode, PrismRender, RenderOptions};
-use refract::prism::scene::{Face, PrismScene, Surface};
-use refract::prism::scenes::{build, SceneKind, SceneOptions};
+use refract::scenes::{build, SceneKind, SceneOptions};
+use refract::spectral::eye::EyeMode;
+use refract::spectral::render::{render, RenderOptions, SpectralRender};
 use refract::spectrum::sampler::WavelengthSampler;
+use refract::world::probe::probe;
+use refract::world::{Face, Surface, World};
 
-fn hidden() -> indicatif::MultiProgress {
-    indicatif::MultiProgress::with_draw_target(indicatif::ProgressDrawTarget::hidden())
+fn hidden() -> refract::progress::Silent {
+    refract::progress::Silent
 }
 
-fn scene(kind: SceneKind, light: Option<&str>, size: [usize; 2]) -> PrismScene {
+fn scene(kind: SceneKind, light: Option<&str>, size: [usize; 2]) -> World {
     let mut o = SceneOptions::new(kind);
     o.light = light.map(str::to_string);
     [o.width, o.height] = size;
@@ -36,7 +37,7 @@ fn opts(photons: u64, spp: u32) -> RenderOptions {
 }
 
 /// Luminance-weighted centroid of an image, in pixels.
-fn centroid(r: &PrismRender) -> DVec2 {
+fn centroid(r: &SpectralRender) -> DVec2 {
     let (mut sum, mut w) = (DVec2::ZERO, 0.0);
     for y in 0..r.image.height {
         for x in 0..r.image.width {
@@ -58,7 +59,7 @@ fn energy_on_the_screen_is_the_emitted_power_times_fresnel_transmittance() {
         let (c, eu, ev) = s.faces[f].frame.unwrap();
         let mid = c + eu / 2.0 + ev / 2.0;
         s.faces[f] = Face::rect("big screen", mid - eu * 5.0 - ev * 5.0, eu * 10.0, ev * 10.0, Surface::Diffuse { albedo: [0.8; 3], map: 0 });
-        let pass = light_pass(&s, 400_000, 3, refract::spectrum::colormap::ColorMap::Cie, &indicatif::ProgressBar::hidden());
+        let pass = light_pass(&s, 400_000, 3, refract::spectrum::colormap::ColorMap::Cie, &refract::progress::Silent);
         let measured = pass.stats.stored_power / pass.stats.emitted_power;
         // Analytic: the light's spectrum-weighted (prod Ts + prod Tp) / 2.
         let sampler = WavelengthSampler::new(&s.lights[0].spectrum);

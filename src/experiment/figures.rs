@@ -10,7 +10,7 @@
 
 use super::scene_file::SceneFile;
 use crate::image_io::{atomic_write, write_rgb8};
-use crate::prism::scenes::{build, SceneKind, SceneOptions};
+use crate::scenes::{build, SceneKind, SceneOptions};
 use anyhow::{anyhow, Context, Result};
 use plotters::prelude::*;
 use std::collections::BTreeMap;
@@ -251,15 +251,15 @@ fn draw(id: &str, png: &Path, quick: bool) -> Result<String> {
     }
 }
 
-fn amici() -> Result<crate::prism::scene::PrismScene> {
+fn amici() -> Result<crate::world::World> {
     build(&SceneOptions::new(SceneKind::AmiciScreen))
 }
 
 /// Prism faces in the z < 0 cap plane as segments (top view).
-fn outline(s: &crate::prism::scene::PrismScene) -> Vec<[(f64, f64); 2]> {
+fn outline(s: &crate::world::World) -> Vec<[(f64, f64); 2]> {
     s.faces
         .iter()
-        .filter(|f| matches!(f.surface, crate::prism::scene::Surface::Interface { .. }) && f.normal.z.abs() < 1e-9)
+        .filter(|f| matches!(f.surface, crate::world::Surface::Interface { .. }) && f.normal.z.abs() < 1e-9)
         .map(|f| {
             let low: Vec<_> = f.verts.iter().filter(|v| v.z < 0.0).collect();
             [(low[0].x, low[0].y), (low[1].x, low[1].y)]
@@ -292,7 +292,7 @@ fn ray_diagram(png: &Path) -> Result<String> {
             c.draw_series(LineSeries::new(seg, BLACK.stroke_width(2))).map_err(plot_err)?;
         }
         for nm in lambdas {
-            let p = crate::prism::probe::probe(&s, nm);
+            let p = crate::world::probe::probe(&s, nm);
             let rgb = crate::spectrum::colormap::ColorMap::Cie.rgb(nm);
             let scale = 1.0 / rgb.max_element().max(1e-9);
             let enc = |v: f64| (crate::spectrum::cie::srgb_encode((v * scale).clamp(0.0, 1.0)) * 255.0) as u8;
@@ -348,7 +348,7 @@ fn overview(png: &Path) -> Result<String> {
             .label("matte screen")
             .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], RGBColor(120, 120, 120).stroke_width(5)));
         for (nm, colour) in [(450.0, RGBColor(40, 60, 255)), (587.5618, RGBColor(0, 0, 0)), (650.0, RGBColor(230, 0, 0))] {
-            let p = crate::prism::probe::probe(&s, nm);
+            let p = crate::world::probe::probe(&s, nm);
             let t = (sx - p.exit_point.x) / p.exit_dir.x;
             let mut pts: Vec<(f64, f64)> = p.path.iter().map(|v| (v.x, v.y)).collect();
             pts.push((sx, p.exit_point.y + t * p.exit_dir.y));
@@ -392,12 +392,12 @@ fn colour_compare(png: &Path, quick: bool) -> Result<String> {
         let mut so = SceneOptions::new(SceneKind::DarkSide);
         so.crown = "N-SF11".into();
         (so.width, so.height) = (tw, th);
-        let mut cfg = crate::prism::PrismConfig::new(so, PathBuf::new());
+        let mut cfg = crate::spectral::SpectralConfig::new(so, PathBuf::new());
         cfg.photons = photons;
         cfg.colours = *map;
         let scene = build(&cfg.scene)?;
-        let r = crate::prism::default_radius(&scene);
-        let opts = crate::prism::render::RenderOptions {
+        let r = crate::spectral::default_radius(&scene);
+        let opts = crate::spectral::render::RenderOptions {
             photons,
             map: cfg.map,
             filter: cfg.filter,
@@ -408,8 +408,7 @@ fn colour_compare(png: &Path, quick: bool) -> Result<String> {
             split: 8,
             colours: *map,
         };
-        let hidden = indicatif::MultiProgress::with_draw_target(indicatif::ProgressDrawTarget::hidden());
-        let img = crate::prism::render::render(&scene, &opts, &hidden).image;
+        let img = crate::spectral::render::render(&scene, &opts, &crate::progress::Silent).image;
         let tile = img.to_srgb8(img.auto_exposure(), crate::spectrum::cie::GamutMap::Desaturate);
         let (x0, y0) = ((k % cols) * tw, (k / cols) * (th + 28) + 28);
         for y in 0..th {

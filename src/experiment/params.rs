@@ -6,9 +6,9 @@ use crate::interior::config::{self as icfg, InteriorConfig, SceneKind as Interio
 use crate::optics::ior::IorKind;
 use crate::photon::gather::Filter;
 use crate::photon::map::MapKind;
-use crate::prism::render::EyeMode;
-use crate::prism::scenes::{SceneKind as PrismScene, SceneOptions};
-use crate::prism::PrismConfig;
+use crate::scenes::{SceneKind as World, SceneOptions};
+use crate::spectral::eye::EyeMode;
+use crate::spectral::SpectralConfig;
 use crate::spectrum::cie::GamutMap;
 use clap::ValueEnum;
 use std::path::PathBuf;
@@ -141,7 +141,7 @@ fn count(v: &Value, lo: i64, hi: i64) -> Result<i64, String> {
 pub fn check(mode: Mode, key: &str, v: &Value) -> Result<(), String> {
     match mode {
         Mode::Interior => apply_interior(&mut InteriorConfig::with_defaults(PathBuf::new(), PathBuf::new()), key, v),
-        Mode::Prism => apply_prism(&mut PrismConfig::new(SceneOptions::new(PrismScene::AmiciScreen), PathBuf::new()), key, v),
+        Mode::Prism => apply_prism(&mut SpectralConfig::new(SceneOptions::new(World::AmiciScreen), PathBuf::new()), key, v),
     }
 }
 
@@ -184,10 +184,10 @@ fn non_negative(v: &Value) -> Result<f64, String> {
     Ok(x)
 }
 
-pub fn apply_prism(c: &mut PrismConfig, key: &str, v: &Value) -> Result<(), String> {
+pub fn apply_prism(c: &mut SpectralConfig, key: &str, v: &Value) -> Result<(), String> {
     let s = &mut c.scene;
     match key {
-        "scene" => s.kind = choice::<PrismScene>(v)?,
+        "scene" => s.kind = choice::<World>(v)?,
         "glass" => s.crown = text(v)?.to_string(),
         "flint" => s.flint = text(v)?.to_string(),
         "flint_apex" => s.flint_apex_deg = num(v)?,

@@ -97,12 +97,11 @@ impl SceneFile {
                 Ok(r.build_s + r.render_s)
             }
             Mode::Prism => {
-                let mut cfg =
-                    crate::prism::PrismConfig::new(crate::prism::scenes::SceneOptions::new(crate::prism::scenes::SceneKind::AmiciScreen), out.to_path_buf());
+                let mut cfg = crate::spectral::SpectralConfig::new(crate::scenes::SceneOptions::new(crate::scenes::SceneKind::AmiciScreen), out.to_path_buf());
                 for (k, v) in &self.params {
                     apply_prism(&mut cfg, k, v).map_err(|m| anyhow!("{k}: {m}"))?;
                 }
-                let r = crate::prism::run(&cfg)?;
+                let r = crate::spectral::run(&cfg, &crate::terminal::Bars::new())?;
                 Ok(r.render.trace_s + r.render.build_s + r.render.render_s)
             }
         }

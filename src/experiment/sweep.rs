@@ -9,8 +9,8 @@ use super::spec::{Case, Experiment};
 use crate::image_io::{atomic_write, write_rgb8};
 use crate::interior::config::InteriorConfig;
 use crate::mesh::Mesh;
-use crate::prism::scenes::{SceneKind, SceneOptions};
-use crate::prism::PrismConfig;
+use crate::scenes::{SceneKind, SceneOptions};
+use crate::spectral::SpectralConfig;
 use anyhow::{bail, Context, Result};
 use std::collections::{HashMap, HashSet};
 use std::io::Write;
@@ -187,10 +187,10 @@ fn run_interior(params: &[(String, Value)], meshes: &MeshCache) -> Result<Outcom
     Ok(Outcome { frame: Some(frame), cells })
 }
 
-fn prism_config(params: &[(String, Value)]) -> Result<PrismConfig> {
+fn prism_config(params: &[(String, Value)]) -> Result<SpectralConfig> {
     let mut so = SceneOptions::new(SceneKind::AmiciScreen);
     (so.width, so.height) = (320, 120);
-    let mut cfg = PrismConfig::new(so, PathBuf::new());
+    let mut cfg = SpectralConfig::new(so, PathBuf::new());
     cfg.photons = 200_000;
     for (k, v) in params {
         apply_prism(&mut cfg, k, v).map_err(|m| anyhow::anyhow!("{k}: {m}"))?;
@@ -201,8 +201,7 @@ fn prism_config(params: &[(String, Value)]) -> Result<PrismConfig> {
 
 fn run_prism(params: &[(String, Value)]) -> Result<Outcome> {
     let cfg = prism_config(params)?;
-    let hidden = indicatif::MultiProgress::with_draw_target(indicatif::ProgressDrawTarget::hidden());
-    let report = crate::prism::render_config(&cfg, &hidden)?;
+    let report = crate::spectral::render_config(&cfg, &crate::progress::Silent)?;
     let r = &report.render;
     let frame = Frame {
         width: r.image.width,

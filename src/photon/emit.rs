@@ -1,5 +1,5 @@
 //! The light pass (report 000's "light ray-tracing"): photons leave every
-//! light, cross the prism's faces by Snell's law with Fresnel reflection
+//! light, cross the world's interfaces by Snell's law with Fresnel reflection
 //! chosen by Russian roulette (s or p polarisation kept along the path),
 //! reflect totally where they must, and are stored where they land on a
 //! matte surface.
@@ -12,11 +12,12 @@
 //! done only where something disperses.
 
 use super::map::Photon;
-use crate::prism::scene::{Emission, PrismScene, Surface};
-use crate::prism::trace::{cross, Polarisation};
+use crate::progress::Progress;
 use crate::sampling::{radical_inverse, rotate, Rng};
 use crate::spectrum::colormap::ColorMap;
 use crate::spectrum::sampler::WavelengthSampler;
+use crate::world::interface::{cross, Polarisation};
+use crate::world::{Emission, Surface, World};
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 
@@ -56,12 +57,13 @@ const CHUNK: u64 = 8192;
 
 /// Traces `total` photons, shared among the lights by power. The result
 /// depends only on the scene, `total` and `seed`, not on thread count.
-pub fn light_pass(scene: &PrismScene, total: u64, seed: u64, colours: ColorMap, progress: &indicatif::ProgressBar) -> LightPass {
+pub fn light_pass(scene: &World, total: u64, seed: u64, colours: ColorMap, progress: &dyn Progress) -> LightPass {
     let mut out = LightPass { photons: vec![Vec::new(); scene.maps.len()], stats: LightStats::default() };
     let power: f64 = scene.lights.iter().map(|l| l.power).sum();
     if scene.maps.is_empty() || power <= 0.0 {
         return out;
     }
+    progress.start("light", total);
     for (li, light) in scene.lights.iter().enumerate() {
         let n = ((total as f64 * light.power / power).round() as u64).max(1);
         let sampler = WavelengthSampler::new(&light.spectrum);
@@ -88,7 +90,7 @@ pub fn light_pass(scene: &PrismScene, total: u64, seed: u64, colours: ColorMap, 
                     let (o, d) = emit(scene, &light.emission, a, b, &mut rng);
                     trace_photon(scene, o, d, per_photon, white, &sampler, colours, u[2], &mut rng, &mut maps, &mut stats);
                 }
-                progress.inc(b - a);
+                progress.advance("light", b - a);
                 (maps, stats)
             })
             .collect();
@@ -99,12 +101,13 @@ pub fn light_pass(scene: &PrismScene, total: u64, seed: u64, colours: ColorMap, 
             out.stats.add(&stats);
         }
     }
+    progress.finish("light");
     out
 }
 
 /// Start point and direction of a photon from two stratified numbers (and
 /// the photon's own stream where a direction is random too).
-fn emit(scene: &PrismScene, e: &Emission, a: f64, b: f64, rng: &mut Rng) -> (DVec3, DVec3) {
+fn emit(scene: &World, e: &Emission, a: f64, b: f64, rng: &mut Rng) -> (DVec3, DVec3) {
     match e {
         Emission::Beam { centre, dir, u, v, half, disc } => {
             let p = if *disc { concentric_disc(a, b) } else { DVec2::new(2.0 * a - 1.0, 2.0 * b - 1.0) };
@@ -154,7 +157,7 @@ pub fn concentric_disc(a: f64, b: f64) -> DVec2 {
 
 #[allow(clippy::too_many_arguments)]
 fn trace_photon(
-    scene: &PrismScene,
+    scene: &World,
     mut o: DVec3,
     mut d: DVec3,
     power: f64,
@@ -240,8 +243,8 @@ fn trace_photon(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::prism::scene::{Face, Light, Medium, PrismScene};
     use crate::spectrum::Spectrum;
+    use crate::world::{Face, Light, Medium};
 
     /// A closed cube of matte walls (albedo rho, normals inward) with a
     /// point light at its centre: every photon lands, and after k bounces it
@@ -250,7 +253,7 @@ mod tests {
     #[test]
     fn bounces_store_the_geometric_series_of_the_albedo() {
         let rho = 0.5;
-        let mut s = PrismScene::new("box", vec![Medium::Air], 8, 8);
+        let mut s = World::new("box", vec![Medium::Air], 8, 8);
         let v = DVec3::new;
         let walls = [
             (v(-1.0, -1.0, -1.0), v(0.0, 2.0, 0.0), v(2.0, 0.0, 0.0)),
@@ -271,7 +274,7 @@ mod tests {
         s.lights.push(Light { name: "point".into(), emission: Emission::Point { pos: DVec3::ZERO }, spectrum: Spectrum::Constant(1.0), power: 1.0 });
         for bounces in [0u32, 4] {
             s.bounces = bounces;
-            let pass = light_pass(&s, 200_000, 1, ColorMap::Cie, &indicatif::ProgressBar::hidden());
+            let pass = light_pass(&s, 200_000, 1, ColorMap::Cie, &crate::progress::Silent);
             let stored: f64 = pass.photons.iter().flatten().map(|p| p.xyz[1] as f64).sum();
             let emitted = WavelengthSampler::new(&Spectrum::Constant(1.0)).mean_cmf().y;
             let want: f64 = (0..=bounces).map(|k| rho.powi(k as i32)).sum();

@@ -4,10 +4,10 @@
 //! locus colour of that wavelength (as sRGB can show it).
 
 use super::film::XyzImage;
-use super::probe::probe;
-use super::scene::PrismScene;
 use crate::spectrum::cie::{GamutMap, LinearRgb};
 use crate::spectrum::colormap::ColorMap;
+use crate::world::probe::probe;
+use crate::world::World;
 
 /// Hue error along the strip, degrees.
 #[derive(Clone, Debug)]
@@ -21,14 +21,14 @@ pub struct StripHue {
 }
 
 /// Image column where the beam axis of wavelength `nm` lands on the screen.
-fn landing_column(scene: &PrismScene, nm: f64) -> Option<f64> {
+fn landing_column(scene: &World, nm: f64) -> Option<f64> {
     let p = probe(scene, nm);
     let f = &scene.faces[*scene.maps.first()?];
     let t = (f.verts[0] - p.exit_point).dot(f.normal) / p.exit_dir.dot(f.normal);
     scene.camera.project(p.exit_point + t * p.exit_dir).map(|q| q.x)
 }
 
-pub fn strip_hue_error(scene: &PrismScene, img: &XyzImage, exposure: f64, gamut: GamutMap) -> StripHue {
+pub fn strip_hue_error(scene: &World, img: &XyzImage, exposure: f64, gamut: GamutMap) -> StripHue {
     // Column -> wavelength, from the landing points of 400-700 nm.
     let marks: Vec<(f64, f64)> = (0..=300).filter_map(|k| landing_column(scene, 400.0 + k as f64).map(|x| (x, 400.0 + k as f64))).collect();
     let centre_row = img.height / 2;

@@ -1,13 +1,5 @@
-//! The scenes of reports 001 and 003, built in code (units: metres; z up
-//! in the Cornell boxes and the album cover, where prisms stand on the
-//! floor; light travels along +x for the spheres).
+//! Report 003's scenes (z up; prisms stand on the floor):
 //!
-//! - `sphere-arealight`: a glass sphere hanging before a spherical
-//!   black-body light slightly off centre: colour fringes at its edges.
-//! - `sphere-metal`: the sphere before a polished metal plate that reflects
-//!   a warm black-body light: a yellow-to-red fringe.
-//! - `spheres-final`: three flint spheres before two bright bar lights, where
-//!   the wavelength effects show clearly.
 //! - `cornell-pointlight`, `cornell-mirror-tube`, `cornell-laser`: a glass
 //!   prism on the floor of a Cornell box lit by a bare point light (a faint
 //!   rainbow), by the same light at the end of a mirror tube (brighter),
@@ -15,37 +7,17 @@
 //! - `dark-side`: a white beam grazing a dark backdrop through a prism
 //!   standing on it, fanning into a spectrum (the album cover).
 
-use super::scene::{Camera, Emission, Face, Light, Medium, PrismScene, Sphere, Surface};
-use super::scenes::{glass_medium, light_spectrum, rotate_z, SceneKind, SceneOptions};
+use super::{glass_medium, light_spectrum, rotate_z, SceneKind, SceneOptions};
 use crate::spectrum::Spectrum;
+use crate::world::{Camera, Emission, Face, Light, Surface, World};
 use anyhow::Result;
 use glam::{DVec2, DVec3};
 
-fn empty(o: &SceneOptions, glass: Medium) -> PrismScene {
-    PrismScene::new(o.kind.name(), vec![Medium::Air, glass], o.width, o.height)
-}
-
 /// A matte parallelogram with its own photon map.
-fn matte(s: &mut PrismScene, name: &str, corner: DVec3, eu: DVec3, ev: DVec3, albedo: [f64; 3]) {
+fn matte(s: &mut World, name: &str, corner: DVec3, eu: DVec3, ev: DVec3, albedo: [f64; 3]) {
     let map = s.maps.len();
     s.faces.push(Face::rect(name, corner, eu, ev, Surface::Diffuse { albedo, map }));
     s.maps.push(s.faces.len() - 1);
-}
-
-fn glass_sphere(s: &mut PrismScene, name: &str, centre: DVec3, radius: f64) {
-    s.spheres.push(Sphere { name: name.into(), centre, radius, surface: Surface::Interface { front: 0, back: 1 } });
-}
-
-fn sphere_light(s: &mut PrismScene, o: &SceneOptions, centre: DVec3, radius: f64, default: &str) -> Result<()> {
-    let light = s.lights.len();
-    s.spheres.push(Sphere { name: "light".into(), centre, radius, surface: Surface::Emitter { light } });
-    s.lights.push(Light {
-        name: "sphere light".into(),
-        emission: Emission::Sphere { sphere: s.spheres.len() - 1 },
-        spectrum: light_spectrum(o, default)?,
-        power: 1.0,
-    });
-    Ok(())
 }
 
 /// An equilateral prism's cross-section centred at `c`, turned so that
@@ -71,64 +43,9 @@ fn into_left_face(cross: [DVec2; 3], incidence: f64) -> (DVec3, DVec3) {
     (DVec3::new(mid.x, mid.y, 0.0), dir)
 }
 
-pub fn spheres(o: &SceneOptions) -> Result<PrismScene> {
-    let glass = glass_medium(&o.crown, o.ior, o.no_dispersion)?;
-    let mut s = empty(o, glass);
-    match o.kind {
-        SceneKind::SphereArealight => {
-            if !o.no_prism {
-                glass_sphere(&mut s, "glass sphere", DVec3::new(3.0, 0.0, 0.0), 0.5);
-            }
-            sphere_light(&mut s, o, DVec3::new(6.0, 0.35, 0.15), 0.9, "blackbody:6500")?;
-            s.camera = Camera::look_at(DVec3::ZERO, DVec3::new(3.0, 0.0, 0.0), DVec3::Z, 30.0, o.width, o.height);
-        }
-        SceneKind::SphereMetal => {
-            if !o.no_prism {
-                glass_sphere(&mut s, "glass sphere", DVec3::new(3.0, 0.0, 0.0), 0.5);
-            }
-            // A metal plate at 45 degrees behind the sphere reflects a warm
-            // light standing off to the side.
-            let (c, n) = (DVec3::new(5.5, 0.0, 0.0), DVec3::new(-1.0, 1.0, 0.0).normalize());
-            let u = DVec3::Z.cross(n).normalize();
-            s.faces.push(Face::rect("metal plate", c - u * 2.0 - DVec3::Z * 2.0, u * 4.0, DVec3::Z * 4.0, Surface::Mirror { reflectance: 0.9 }));
-            // Out of the camera's view; the plate shows it behind the sphere.
-            sphere_light(&mut s, o, DVec3::new(5.5, 6.5, 0.0), 3.5, "blackbody:3200")?;
-            s.camera = Camera::look_at(DVec3::ZERO, DVec3::new(3.0, 0.0, 0.0), DVec3::Z, 30.0, o.width, o.height);
-        }
-        _ => {
-            if !o.no_prism {
-                glass_sphere(&mut s, "sphere 1", DVec3::new(3.0, -0.7, 0.1), 0.38);
-                glass_sphere(&mut s, "sphere 2", DVec3::new(3.6, 0.15, -0.15), 0.45);
-                glass_sphere(&mut s, "sphere 3", DVec3::new(3.2, 0.85, 0.2), 0.3);
-            }
-            // Two tall bright bars behind them: each sphere shows them
-            // inverted, with coloured edges.
-            for (k, y) in [-0.55, 0.35].into_iter().enumerate() {
-                let light = s.lights.len();
-                s.faces.push(Face::rect(
-                    &format!("bar light {k}"),
-                    DVec3::new(5.0, y, -1.5),
-                    DVec3::new(0.0, 0.0, 3.0),
-                    DVec3::new(0.0, 0.3, 0.0),
-                    Surface::Emitter { light },
-                ));
-                s.lights.push(Light {
-                    name: format!("bar {k}"),
-                    emission: Emission::Area { face: s.faces.len() - 1 },
-                    spectrum: light_spectrum(o, "blackbody:5500")?,
-                    power: 1.0,
-                });
-            }
-            s.camera = Camera::look_at(DVec3::ZERO, DVec3::new(3.0, 0.0, 0.0), DVec3::Z, 32.0, o.width, o.height);
-        }
-    }
-    s.probe = (DVec3::ZERO, DVec3::X);
-    Ok(s)
-}
-
 /// The Cornell box: x in [-1, 1], y in [-1, 1] (back wall at y = 1), z in
 /// [0, 2], open toward the camera at y = -1.
-fn cornell_box(s: &mut PrismScene) {
+fn cornell_box(s: &mut World) {
     let (white, red, green) = ([0.75; 3], [0.75, 0.12, 0.1], [0.12, 0.55, 0.12]);
     let v = DVec3::new;
     matte(s, "floor", v(-1.0, -1.0, 0.0), v(2.0, 0.0, 0.0), v(0.0, 2.0, 0.0), white);
@@ -138,9 +55,9 @@ fn cornell_box(s: &mut PrismScene) {
     matte(s, "right wall", v(1.0, -1.0, 0.0), v(0.0, 0.0, 2.0), v(0.0, 2.0, 0.0), green);
 }
 
-pub fn cornell(o: &SceneOptions) -> Result<PrismScene> {
+pub fn build(o: &SceneOptions) -> Result<World> {
     let glass = glass_medium(&o.crown, o.ior, o.no_dispersion)?;
-    let mut s = empty(o, glass);
+    let mut s = super::with_glass(o, glass);
     cornell_box(&mut s);
     s.bounces = 4;
     let n_d = crate::optics::glass::by_name(&o.crown)?.sellmeier(crate::optics::glass::lines::LD);
@@ -213,9 +130,9 @@ pub fn cornell(o: &SceneOptions) -> Result<PrismScene> {
     Ok(s)
 }
 
-pub fn dark_side(o: &SceneOptions) -> Result<PrismScene> {
+pub fn dark_side(o: &SceneOptions) -> Result<World> {
     let glass = glass_medium(&o.crown, o.ior, o.no_dispersion)?;
-    let mut s = empty(o, glass);
+    let mut s = super::with_glass(o, glass);
     // A dark backdrop the beam grazes, so its path shows (like a light sheet).
     matte(&mut s, "backdrop", DVec3::new(-1.2, -0.9, 0.0), DVec3::new(2.4, 0.0, 0.0), DVec3::new(0.0, 1.8, 0.0), [0.35; 3]);
     let n_d = crate::optics::glass::by_name(&o.crown)?.sellmeier(crate::optics::glass::lines::LD);

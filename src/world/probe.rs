@@ -3,8 +3,8 @@
 //! until it is back in air: exit direction, signed deviation and the
 //! Fresnel transmittance (prod Ts + prod Tp) / 2 along the way.
 
-use super::scene::{PrismScene, Surface};
-use super::trace::cross;
+use super::interface::cross;
+use super::{Surface, World};
 use glam::DVec3;
 
 #[derive(Clone, Debug, PartialEq)]
@@ -25,7 +25,7 @@ pub struct ProbeRay {
     pub path: Vec<DVec3>,
 }
 
-pub fn probe(scene: &PrismScene, nm: f64) -> ProbeRay {
+pub fn probe(scene: &World, nm: f64) -> ProbeRay {
     let (mut o, d0) = scene.probe;
     let mut d = d0;
     let (mut ts, mut tp) = (1.0, 1.0);

@@ -3,7 +3,7 @@
 //! internal reflection. Shared by the light pass, the eye pass and the probe,
 //! so all three follow the same optics.
 
-use super::scene::{PrismScene, Surface};
+use super::{Surface, World};
 use crate::optics::{snell::reflect_f64, snell::refract_f64, Fresnel};
 use glam::DVec3;
 
@@ -51,7 +51,7 @@ pub struct NeedsWavelength;
 /// Crossing of interface `id` (a face or sphere) at point `p` by direction
 /// `d` at wavelength `nm` (`None` = white, allowed only where no medium
 /// here disperses).
-pub fn cross(scene: &PrismScene, id: usize, p: DVec3, d: DVec3, nm: Option<f64>) -> Result<Crossing, NeedsWavelength> {
+pub fn cross(scene: &World, id: usize, p: DVec3, d: DVec3, nm: Option<f64>) -> Result<Crossing, NeedsWavelength> {
     let Surface::Interface { front, back } = *scene.surface(id) else {
         panic!("cross() on a surface that is not an interface: {}", scene.name(id));
     };

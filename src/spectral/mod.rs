@@ -1,29 +1,30 @@
-//! `refract prism`: report 000, white light dispersed by an Amici
-//! direct-vision prism, rendered by photon mapping: a light pass deposits
-//! photons (each with its own wavelength once something disperses) on the
-//! matte surfaces, an eye pass without Phong reads the colour back.
+//! The spectral two-pass renderer (report 000's photon mapping, used by
+//! the scenes of reports 000, 001 and 003; `refract prism` runs it): a
+//! light pass deposits photons (each with its own wavelength once
+//! something disperses) on the matte surfaces, an eye pass without Phong
+//! reads the colour back. `render` is the two passes over a `World`;
+//! this module turns a run's configuration (a scene to build, the passes'
+//! settings, the display transform) into an image.
 
-pub mod amici;
+pub mod eye;
 pub mod film;
-pub mod metrics;
-pub mod probe;
 pub mod render;
-pub mod scene;
-pub mod scenes;
-pub mod scenes_extra;
-pub mod trace;
+pub mod strip;
 
 use crate::photon::gather::{Filter, Lookup};
 use crate::photon::map::MapKind;
+use crate::progress::Progress;
+use crate::scenes::SceneOptions;
 use crate::spectrum::cie::GamutMap;
 use anyhow::{bail, Result};
-use render::{EyeMode, PrismRender, RenderOptions};
-use scenes::SceneOptions;
+use eye::EyeMode;
+use render::{RenderOptions, SpectralRender};
 use std::path::{Path, PathBuf};
 
-/// A whole `refract prism` run: scene, passes and output.
+/// A whole run (`refract prism`, a scene file, a sweep row): the scene,
+/// both passes and the output.
 #[derive(Clone, Debug)]
-pub struct PrismConfig {
+pub struct SpectralConfig {
     pub scene: SceneOptions,
     pub photons: u64,
     pub map: MapKind,
@@ -48,9 +49,9 @@ pub struct PrismConfig {
     pub out: PathBuf,
 }
 
-impl PrismConfig {
+impl SpectralConfig {
     pub fn new(scene: SceneOptions, out: PathBuf) -> Self {
-        PrismConfig {
+        SpectralConfig {
             scene,
             photons: 1_000_000,
             map: MapKind::Kdtree,
@@ -105,8 +106,8 @@ impl PrismConfig {
 }
 
 /// Everything a run measured.
-pub struct PrismReport {
-    pub render: PrismRender,
+pub struct SpectralReport {
+    pub render: SpectralRender,
     pub exposure: f64,
     pub radius: f64,
     pub threads: usize,
@@ -114,17 +115,17 @@ pub struct PrismReport {
 }
 
 /// Builds the scene, renders, writes the image.
-pub fn run(cfg: &PrismConfig) -> Result<PrismReport> {
-    let report = render_config(cfg, &indicatif::MultiProgress::new())?;
+pub fn run(cfg: &SpectralConfig, progress: &dyn Progress) -> Result<SpectralReport> {
+    let report = render_config(cfg, progress)?;
     report.render.image.write(&cfg.out, report.exposure, cfg.gamut)?;
     Ok(report)
 }
 
 /// Builds the scene and renders it, without writing anything: what `run`
 /// and the sweep runner share.
-pub fn render_config(cfg: &PrismConfig, bars: &indicatif::MultiProgress) -> Result<PrismReport> {
+pub fn render_config(cfg: &SpectralConfig, progress: &dyn Progress) -> Result<SpectralReport> {
     cfg.validate()?;
-    let scene = scenes::build(&cfg.scene)?;
+    let scene = crate::scenes::build(&cfg.scene)?;
     let radius = cfg.radius.unwrap_or_else(|| default_radius(&scene));
     let lookup = match cfg.k {
         Some(k) => Lookup::Nearest(k),
@@ -142,13 +143,13 @@ pub fn render_config(cfg: &PrismConfig, bars: &indicatif::MultiProgress) -> Resu
         colours: cfg.colours,
     };
     let pool = rayon::ThreadPoolBuilder::new().num_threads(cfg.threads).build()?;
-    let render = pool.install(|| render::render(&scene, &opts, bars));
+    let render = pool.install(|| render::render(&scene, &opts, progress));
     let exposure = cfg.exposure.unwrap_or_else(|| render.image.auto_exposure() * cfg.exposure_gain);
-    Ok(PrismReport { render, exposure, radius: lookup.radius(), threads: pool.current_num_threads(), peak_mem_mb: peak_memory_mb() })
+    Ok(SpectralReport { render, exposure, radius: lookup.radius(), threads: pool.current_num_threads(), peak_mem_mb: peak_memory_mb() })
 }
 
 /// Two pixels' footprint on the first matte surface (1 mm without one).
-pub fn default_radius(scene: &scene::PrismScene) -> f64 {
+pub fn default_radius(scene: &crate::world::World) -> f64 {
     scene
         .maps
         .first()
@@ -192,7 +193,7 @@ pub const TIMING_HEADER: [&str; 20] = [
     "peak_mem_mb",
 ];
 
-pub fn timing_row(cfg: &PrismConfig, r: &PrismReport) -> Vec<String> {
+pub fn timing_row(cfg: &SpectralConfig, r: &SpectralReport) -> Vec<String> {
     use crate::timing::cell;
     let s = &r.render.stats;
     vec![
@@ -222,6 +223,6 @@ pub fn timing_row(cfg: &PrismConfig, r: &PrismReport) -> Vec<String> {
     ]
 }
 
-pub fn append_timing(path: &Path, cfg: &PrismConfig, r: &PrismReport) -> Result<()> {
+pub fn append_timing(path: &Path, cfg: &SpectralConfig, r: &SpectralReport) -> Result<()> {
     crate::timing::append_row(path, &TIMING_HEADER, &timing_row(cfg, r))
 }

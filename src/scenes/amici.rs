@@ -1,0 +1,211 @@
+//! The Amici direct-vision prism: crown | flint | crown, cemented, the crown
+//! apices solved so the design wavelength leaves parallel to its entry
+//! (docs/physics.md §4; Hagen & Tkaczyk, Appl. Opt. 50, 4998 (2011)).
+//!
+//! Geometry in the xy plane, extruded along z; light travels along +x. The
+//! flint's apex points -y, the crowns' apices +y. With h = alpha2 / 2 the
+//! outward normals of the four faces a ray crosses make these angles with
+//! +x: entry (h - alpha1), crown|flint +h, flint|crown -h, exit (alpha1 - h).
+//!
+//! Report 000's scenes: `amici-screen`, a white slit beam (2 mm x 2 cm)
+//! through the prism onto a matte screen 2 m away, the rainbow strip
+//! (Picture 5; `--no-prism` gives Picture 4, `--no-dispersion` Picture 6);
+//! `amici-lamp`, the camera looks through the prism at a fluorescent tube
+//! 1 m away: one image of the tube per spectral line (Picture 1).
+
+use super::{glass_medium, light_spectrum, rotate_z, SceneKind, SceneOptions};
+use crate::optics::glass;
+use crate::optics::ior::IorKind;
+use crate::world::probe::{probe, ProbeRay};
+use crate::world::{Camera, Emission, Face, Light, Medium, Surface, World};
+use anyhow::{bail, Result};
+use glam::{DVec2, DVec3};
+
+/// The d line (He, 587.5618 nm), the usual design wavelength.
+pub const DESIGN_NM: f64 = 587.5618;
+
+/// Crown apex angle (radians) that makes the design wavelength leave
+/// undeviated, given the crown and flint indices there and the flint apex.
+/// `None` if no such crown exists (the flint's face would reflect totally).
+pub fn solve_crown_apex(n_crown: f64, n_flint: f64, flint_apex: f64) -> Option<f64> {
+    let h = flint_apex / 2.0;
+    // Snell at the cemented face, with the ray parallel to the flint's base.
+    let s = n_flint / n_crown * h.sin();
+    if !(s.abs() < 1.0) {
+        return None;
+    }
+    let beta = s.asin();
+    // tan a1 = (sin h - n_c sin b) / (cos h - n_c cos b), a1 in (0, pi).
+    let a1 = (h.sin() - n_crown * beta.sin()).atan2(h.cos() - n_crown * beta.cos());
+    let a1 = if a1 <= 0.0 { a1 + std::f64::consts::PI } else { a1 };
+    (a1 > 0.0 && a1 < std::f64::consts::PI && a1 > h).then_some(a1)
+}
+
+/// The three cross-sections (counter-clockwise triangles in the xy plane)
+/// of an Amici prism of height `height` along y, centred on the origin:
+/// left crown, flint, right crown.
+pub fn cross_sections(crown_apex: f64, flint_apex: f64, height: f64) -> [[DVec2; 3]; 3] {
+    let h = flint_apex / 2.0;
+    let (y0, y1) = (-height / 2.0, height / 2.0);
+    let top = height * h.tan(); // half-width of the flint's top
+    let reach = height * (crown_apex - h).tan(); // how far a crown's base extends past the flint
+    let flint = [DVec2::new(0.0, y0), DVec2::new(top, y1), DVec2::new(-top, y1)];
+    let left = [DVec2::new(-top, y1), DVec2::new(-top - reach, y0), DVec2::new(0.0, y0)];
+    let right = [DVec2::new(top, y1), DVec2::new(0.0, y0), DVec2::new(top + reach, y0)];
+    [left, flint, right]
+}
+
+/// Builds `amici-screen` or `amici-lamp`.
+pub fn build(o: &SceneOptions) -> Result<World> {
+    let prism = AmiciPrism::design(o)?;
+    let mut scene = World::new(
+        o.kind.name(),
+        vec![Medium::Air, glass_medium(&o.crown, o.ior, o.no_dispersion)?, glass_medium(&o.flint, o.ior, o.no_dispersion)?],
+        o.width,
+        o.height,
+    );
+    scene.add_extruded("amici", &[(prism.parts[0], 1), (prism.parts[1], 2), (prism.parts[2], 1)], -0.015, 0.015);
+    scene.probe = (prism.start, prism.dir);
+    // Screen and camera are placed from the glasses' Sellmeier dispersion
+    // whatever index model is chosen, so --no-prism, --no-dispersion and
+    // every model frame the same view (report 000's Pictures 4, 5 and 6).
+    let mut design = scene.clone();
+    design.media = vec![Medium::Air, glass_medium(&o.crown, IorKind::Sellmeier, false)?, glass_medium(&o.flint, IorKind::Sellmeier, false)?];
+    let d_line = probe(&design, DESIGN_NM);
+    if d_line.tir {
+        bail!("--incidence: at {:.3} degrees the d line is totally reflected inside the prism", prism.incidence.to_degrees());
+    }
+    match o.kind {
+        SceneKind::AmiciScreen => add_screen(&mut scene, o, &prism, &design, &d_line)?,
+        _ => add_lamp(&mut scene, o, &prism, &design, &d_line)?,
+    }
+    Ok(scene)
+}
+
+/// The prism designed for the options, and the beam aimed at it.
+struct AmiciPrism {
+    /// Left crown, flint, right crown cross-sections.
+    parts: [[DVec2; 3]; 3],
+    /// Crown apex and half the flint apex, radians.
+    a1: f64,
+    h: f64,
+    /// Angle of incidence on the entry face, radians.
+    incidence: f64,
+    start: DVec3,
+    dir: DVec3,
+}
+
+impl AmiciPrism {
+    fn design(o: &SceneOptions) -> Result<AmiciPrism> {
+        // The prism is designed from the catalogue (Sellmeier), whatever
+        // model the renderer then uses for its index.
+        let (nc, nf) = (glass::by_name(&o.crown)?.sellmeier(DESIGN_NM), glass::by_name(&o.flint)?.sellmeier(DESIGN_NM));
+        if !(0.0 < o.flint_apex_deg && o.flint_apex_deg < 180.0) {
+            bail!("--flint-apex: {} degrees is not between 0 and 180", o.flint_apex_deg);
+        }
+        let a2 = o.flint_apex_deg.to_radians();
+        let Some(a1) = solve_crown_apex(nc, nf, a2) else {
+            bail!(
+                "--flint-apex: no crown apex makes {} / {} direct-vision with a {} degree flint (the cemented face would reflect totally)",
+                o.crown,
+                o.flint,
+                o.flint_apex_deg
+            );
+        };
+        let parts = cross_sections(a1, a2, 0.03);
+        // Incidence on the entry face, whose inward normal is at h - a1 from +x.
+        let h = a2 / 2.0;
+        let incidence = o.incidence_deg.map_or(a1 - h, f64::to_radians);
+        let dir = rotate_z(DVec3::X, h - a1 + incidence);
+        // Aim the beam at the middle of the entry face.
+        let entry_mid = (parts[0][0] + parts[0][1]) / 2.0;
+        let start = DVec3::new(entry_mid.x, entry_mid.y, 0.0) - dir * 0.3;
+        Ok(AmiciPrism { parts, a1, h, incidence, start, dir })
+    }
+}
+
+/// Picture 5: a matte screen 2 m past the prism, across the strip from 400
+/// to 700 nm, the camera 1 m before it, and the white slit beam.
+fn add_screen(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism, design: &World, d_line: &ProbeRay) -> Result<()> {
+    let dist = 2.0;
+    let land = |nm: f64| {
+        let p = probe(design, nm);
+        p.exit_point + p.exit_dir * ((d_line.exit_point.x + dist - p.exit_point.x) / p.exit_dir.x.max(1e-9))
+    };
+    let (a, b) = (land(400.0), land(700.0));
+    let centre = (a + b) / 2.0;
+    let width = ((a.y - b.y).abs() * 1.4).max(0.1);
+    let tall = width * o.height as f64 / o.width as f64;
+    // Normal -x (facing the prism), u along -y, v along +z: u x v = -x.
+    let corner = centre + DVec3::new(0.0, width / 2.0, -tall / 2.0);
+    scene.faces.push(Face::rect("screen", corner, DVec3::new(0.0, -width, 0.0), DVec3::new(0.0, 0.0, tall), Surface::Diffuse { albedo: [0.8; 3], map: 0 }));
+    scene.maps.push(scene.faces.len() - 1);
+    let cam = centre - DVec3::X * 1.0;
+    let vfov = 2.0 * ((tall / 2.0) / 1.0).atan().to_degrees();
+    scene.camera = Camera::look_at(cam, centre, DVec3::Z, vfov, o.width, o.height);
+    let u = rotate_z(DVec3::Y, prism.h - prism.a1 + prism.incidence);
+    scene.lights.push(Light {
+        name: "beam".into(),
+        emission: Emission::Beam { centre: prism.start, dir: prism.dir, u, v: DVec3::Z, half: DVec2::new(0.001, 0.01), disc: false },
+        spectrum: light_spectrum(o, "D65")?,
+        power: 1.0,
+    });
+    Ok(())
+}
+
+/// Picture 1: a fluorescent tube 1 m past the prism, and the camera just
+/// before the entry face looking back through the prism at it.
+fn add_lamp(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism, design: &World, d_line: &ProbeRay) -> Result<()> {
+    let lamp_x = d_line.exit_point.x + 1.0;
+    let (w, tall) = (0.008, 0.12);
+    let corner = DVec3::new(lamp_x, -w / 2.0, -tall / 2.0);
+    scene.faces.push(Face::rect("lamp", corner, DVec3::new(0.0, 0.0, tall), DVec3::new(0.0, w, 0.0), Surface::Emitter { light: 0 }));
+    scene.lights.push(Light {
+        name: "cfl tube".into(),
+        emission: Emission::Area { face: scene.faces.len() - 1 },
+        spectrum: light_spectrum(o, "cfl-lines")?,
+        power: 1.0,
+    });
+    // The camera looks back the way light from the lines between 404 and
+    // 700 nm arrives.
+    let mid_dev = (probe(design, 404.0).deviation_deg + probe(design, 700.0).deviation_deg) / 2.0;
+    let cam = DVec3::new(prism.parts[0][1].x - 0.03, 0.0, 0.0);
+    let look = rotate_z(DVec3::X, (-mid_dev).to_radians());
+    let hfov = 11.0f64.to_radians();
+    let vfov = 2.0 * ((hfov / 2.0).tan() * o.height as f64 / o.width as f64).atan();
+    scene.camera = Camera::look_at(cam, cam + look, DVec3::Z, vfov.to_degrees(), o.width, o.height);
+    scene.probe = (cam, DVec3::X);
+    Ok(())
+}
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::optics::glass::by_name;
+
+    #[test]
+    fn solves_the_worked_examples_of_physics_md() {
+        let nc = by_name("N-BK7").unwrap().sellmeier(DESIGN_NM);
+        for (flint, apex, want) in [("N-SF11", 90.0, 76.3881), ("F2", 90.0, 56.7834), ("N-SF11", 100.0, 88.6553)] {
+            let nf = by_name(flint).unwrap().sellmeier(DESIGN_NM);
+            let a1 = solve_crown_apex(nc, nf, f64::to_radians(apex)).unwrap().to_degrees();
+            assert!((a1 - want).abs() < 1e-4, "{flint} {apex}: {a1} vs {want}");
+        }
+        assert!(solve_crown_apex(1.5, 3.0, f64::to_radians(120.0)).is_none());
+    }
+
+    #[test]
+    fn cross_sections_have_the_apex_angles() {
+        let (a1, a2) = (76.3881f64.to_radians(), 90f64.to_radians());
+        let [l, f, r] = cross_sections(a1, a2, 0.03);
+        let angle = |t: [DVec2; 3], at: usize| {
+            let (p, a, b) = (t[at], t[(at + 1) % 3], t[(at + 2) % 3]);
+            (a - p).angle_to(b - p).abs()
+        };
+        assert!((angle(f, 0) - a2).abs() < 1e-12);
+        assert!((angle(l, 0) - a1).abs() < 1e-12);
+        assert!((angle(r, 0) - a1).abs() < 1e-12);
+        for t in [l, f, r] {
+            assert!((t[1] - t[0]).perp_dot(t[2] - t[0]) > 0.0, "counter-clockwise");
+        }
+    }
+}

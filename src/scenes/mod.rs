@@ -1,0 +1,187 @@
+//! Builders of the worlds the spectral renderer draws, one file per
+//! report: `amici` (report 000: the Amici prism before a screen or a lamp),
+//! `single_prism` (the 60 degree anchor scene), `spheres` (report 001's
+//! glass spheres) and `cornell` (report 003's Cornell boxes and the album
+//! cover). Units are metres.
+
+pub mod amici;
+pub mod cornell;
+pub mod single_prism;
+pub mod spheres;
+
+use crate::optics::glass;
+use crate::optics::ior::{IorKind, IorModel};
+use crate::spectrum::Spectrum;
+use crate::world::{Emission, Face, Medium, Surface, World};
+use anyhow::{bail, Result};
+use glam::DVec3;
+
+#[derive(Copy, Clone, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum SceneKind {
+    /// Report 000: a white slit beam through an Amici prism onto a screen.
+    AmiciScreen,
+    /// Report 000: a fluorescent tube seen through an Amici prism.
+    AmiciLamp,
+    /// The anchor: a 60 degree prism, a 2 cm beam, a screen 4 m behind.
+    SinglePrism,
+    /// Report 001: a glass sphere before a spherical black-body light, off centre.
+    SphereArealight,
+    /// Report 001: a glass sphere before a polished metal plate reflecting a warm light.
+    SphereMetal,
+    /// Report 001's final image: glass spheres before a bright bar light.
+    SpheresFinal,
+    /// Report 003: a point light and a glass prism in a Cornell box (a faint rainbow).
+    CornellPointlight,
+    /// Report 003: the point light at the end of a mirror tube (a brighter rainbow).
+    CornellMirrorTube,
+    /// Report 003: a laser into a glass prism in a Cornell box.
+    CornellLaser,
+    /// Report 003's album-cover remake: a white beam through a prism fanning into a spectrum.
+    DarkSide,
+}
+
+impl SceneKind {
+    pub fn name(self) -> &'static str {
+        match self {
+            SceneKind::AmiciScreen => "amici-screen",
+            SceneKind::AmiciLamp => "amici-lamp",
+            SceneKind::SinglePrism => "single-prism",
+            SceneKind::SphereArealight => "sphere-arealight",
+            SceneKind::SphereMetal => "sphere-metal",
+            SceneKind::SpheresFinal => "spheres-final",
+            SceneKind::CornellPointlight => "cornell-pointlight",
+            SceneKind::CornellMirrorTube => "cornell-mirror-tube",
+            SceneKind::CornellLaser => "cornell-laser",
+            SceneKind::DarkSide => "dark-side",
+        }
+    }
+}
+
+/// Everything that shapes a scene.
+#[derive(Clone, Debug)]
+pub struct SceneOptions {
+    pub kind: SceneKind,
+    /// Crown glass (the single prism's glass).
+    pub crown: String,
+    pub flint: String,
+    pub flint_apex_deg: f64,
+    pub ior: IorKind,
+    /// Light spectrum name (see `Spectrum::light`); `None` = the scene's own.
+    pub light: Option<String>,
+    /// Angle of incidence on the first face, degrees; `None` = the design
+    /// (Amici: along the axis; single prism: minimum deviation at d).
+    pub incidence_deg: Option<f64>,
+    pub no_prism: bool,
+    pub no_dispersion: bool,
+    /// A user's OBJ mesh (metres) of `crown` glass in place of the prism.
+    pub obj: Option<std::path::PathBuf>,
+    pub width: usize,
+    pub height: usize,
+}
+
+impl SceneOptions {
+    pub fn new(kind: SceneKind) -> Self {
+        SceneOptions {
+            kind,
+            crown: "N-BK7".into(),
+            flint: "N-SF11".into(),
+            flint_apex_deg: 90.0,
+            ior: IorKind::Sellmeier,
+            light: None,
+            incidence_deg: None,
+            no_prism: false,
+            no_dispersion: false,
+            obj: None,
+            width: 640,
+            height: 240,
+        }
+    }
+}
+
+pub(crate) fn glass_medium(name: &str, kind: IorKind, no_dispersion: bool) -> Result<Medium> {
+    let g = glass::by_name(name)?;
+    let kind = if no_dispersion { IorKind::Constant } else { kind };
+    Ok(Medium::Glass { name: g.name.clone(), ior: IorModel::for_glass(g, kind) })
+}
+
+/// An empty world of air and one glass, of the options' image size.
+fn with_glass(o: &SceneOptions, glass: Medium) -> World {
+    World::new(o.kind.name(), vec![Medium::Air, glass], o.width, o.height)
+}
+
+pub(crate) fn rotate_z(v: DVec3, angle: f64) -> DVec3 {
+    let (s, c) = angle.sin_cos();
+    DVec3::new(c * v.x - s * v.y, s * v.x + c * v.y, v.z)
+}
+
+/// Builds the scene the options describe.
+pub fn build(o: &SceneOptions) -> Result<World> {
+    if o.width == 0 || o.height == 0 {
+        bail!("--size: width and height must be at least 1");
+    }
+    let mut scene = match o.kind {
+        SceneKind::AmiciScreen | SceneKind::AmiciLamp => amici::build(o)?,
+        SceneKind::SinglePrism => single_prism::build(o)?,
+        SceneKind::SphereArealight | SceneKind::SphereMetal | SceneKind::SpheresFinal => spheres::build(o)?,
+        SceneKind::CornellPointlight | SceneKind::CornellMirrorTube | SceneKind::CornellLaser => cornell::build(o)?,
+        SceneKind::DarkSide => cornell::dark_side(o)?,
+    };
+    if let Some(path) = &o.obj {
+        // The user's mesh replaces the prism; beam, screen and camera stay
+        // where the built-in prism put them.
+        let mesh = crate::mesh::obj::read_obj(path)?;
+        let keep: Vec<Face> = scene.faces.drain(..).filter(|f| !matches!(f.surface, Surface::Interface { .. })).collect();
+        for (i, t) in mesh.triangles.iter().enumerate() {
+            let v: Vec<DVec3> = t.iter().map(|&k| mesh.positions[k as usize].as_dvec3()).collect();
+            let n = (v[1] - v[0]).cross(v[2] - v[0]);
+            scene.faces.push(Face::polygon(&format!("obj triangle {i}"), v, n, Surface::Interface { front: 0, back: 1 }));
+        }
+        scene.faces.extend(keep);
+        reindex(&mut scene);
+    }
+    if o.no_prism {
+        scene.faces.retain(|f| !matches!(f.surface, Surface::Interface { .. }));
+        reindex(&mut scene);
+    }
+    Ok(scene)
+}
+
+/// After faces were removed or added: the matte-surface list and the area
+/// lights' face indices follow the faces.
+fn reindex(scene: &mut World) {
+    scene.maps = scene.faces.iter().enumerate().filter(|(_, f)| matches!(f.surface, Surface::Diffuse { .. })).map(|(i, _)| i).collect();
+    for (li, l) in scene.lights.iter_mut().enumerate() {
+        if let Emission::Area { face } = &mut l.emission {
+            *face = scene.faces.iter().position(|f| f.surface == Surface::Emitter { light: li }).expect("each area light keeps its face");
+        }
+    }
+}
+
+pub(crate) fn light_spectrum(o: &SceneOptions, default: &str) -> Result<Spectrum> {
+    Ok(Spectrum::light(o.light.as_deref().unwrap_or(default))?)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn scenes_build_with_consistent_faces() {
+        for kind in [SceneKind::AmiciScreen, SceneKind::AmiciLamp, SceneKind::SinglePrism] {
+            let s = build(&SceneOptions::new(kind)).unwrap();
+            // Amici: 3 parts x 3 sides - 2 cemented + 6 caps = 13; single: 5.
+            let interfaces = s.faces.iter().filter(|f| matches!(f.surface, Surface::Interface { .. })).count();
+            assert_eq!(interfaces, if kind == SceneKind::SinglePrism { 5 } else { 13 }, "{kind:?}");
+            let mut o = SceneOptions::new(kind);
+            o.no_prism = true;
+            let s = build(&o).unwrap();
+            assert!(s.faces.iter().all(|f| !matches!(f.surface, Surface::Interface { .. })));
+        }
+        let mut o = SceneOptions::new(SceneKind::AmiciScreen);
+        o.flint_apex_deg = 150.0;
+        assert!(build(&o).unwrap_err().to_string().contains("--flint-apex"));
+        o.flint_apex_deg = 90.0;
+        o.flint = "unobtainium".into();
+        assert!(build(&o).unwrap_err().to_string().contains("unknown glass"));
+    }
+}

@@ -1,0 +1,90 @@
+//! Report 001's scenes: glass spheres (the Fraunhofer-line index model by
+//! default in its figures) before black-body lights. Light travels along
+//! +x; z is up.
+//!
+//! - `sphere-arealight`: a glass sphere hanging before a spherical
+//!   black-body light slightly off centre: colour fringes at its edges.
+//! - `sphere-metal`: the sphere before a polished metal plate that reflects
+//!   a warm black-body light: a yellow-to-red fringe.
+//! - `spheres-final`: three flint spheres before two bright bar lights, where
+//!   the wavelength effects show clearly.
+
+use super::{glass_medium, light_spectrum, SceneKind, SceneOptions};
+use crate::world::{Camera, Emission, Face, Light, Sphere, Surface, World};
+use anyhow::Result;
+use glam::DVec3;
+
+/// A matte parallelogram with its own photon map.
+fn glass_sphere(s: &mut World, name: &str, centre: DVec3, radius: f64) {
+    s.spheres.push(Sphere { name: name.into(), centre, radius, surface: Surface::Interface { front: 0, back: 1 } });
+}
+
+fn sphere_light(s: &mut World, o: &SceneOptions, centre: DVec3, radius: f64, default: &str) -> Result<()> {
+    let light = s.lights.len();
+    s.spheres.push(Sphere { name: "light".into(), centre, radius, surface: Surface::Emitter { light } });
+    s.lights.push(Light {
+        name: "sphere light".into(),
+        emission: Emission::Sphere { sphere: s.spheres.len() - 1 },
+        spectrum: light_spectrum(o, default)?,
+        power: 1.0,
+    });
+    Ok(())
+}
+
+/// An equilateral prism's cross-section centred at `c`, turned so that
+/// light of index `n` passing at minimum deviation leaves along `exit`
+/// (radians from +x). Unturned, the apex points +y and that light leaves
+pub fn build(o: &SceneOptions) -> Result<World> {
+    let glass = glass_medium(&o.crown, o.ior, o.no_dispersion)?;
+    let mut s = super::with_glass(o, glass);
+    match o.kind {
+        SceneKind::SphereArealight => {
+            if !o.no_prism {
+                glass_sphere(&mut s, "glass sphere", DVec3::new(3.0, 0.0, 0.0), 0.5);
+            }
+            sphere_light(&mut s, o, DVec3::new(6.0, 0.35, 0.15), 0.9, "blackbody:6500")?;
+            s.camera = Camera::look_at(DVec3::ZERO, DVec3::new(3.0, 0.0, 0.0), DVec3::Z, 30.0, o.width, o.height);
+        }
+        SceneKind::SphereMetal => {
+            if !o.no_prism {
+                glass_sphere(&mut s, "glass sphere", DVec3::new(3.0, 0.0, 0.0), 0.5);
+            }
+            // A metal plate at 45 degrees behind the sphere reflects a warm
+            // light standing off to the side.
+            let (c, n) = (DVec3::new(5.5, 0.0, 0.0), DVec3::new(-1.0, 1.0, 0.0).normalize());
+            let u = DVec3::Z.cross(n).normalize();
+            s.faces.push(Face::rect("metal plate", c - u * 2.0 - DVec3::Z * 2.0, u * 4.0, DVec3::Z * 4.0, Surface::Mirror { reflectance: 0.9 }));
+            // Out of the camera's view; the plate shows it behind the sphere.
+            sphere_light(&mut s, o, DVec3::new(5.5, 6.5, 0.0), 3.5, "blackbody:3200")?;
+            s.camera = Camera::look_at(DVec3::ZERO, DVec3::new(3.0, 0.0, 0.0), DVec3::Z, 30.0, o.width, o.height);
+        }
+        _ => {
+            if !o.no_prism {
+                glass_sphere(&mut s, "sphere 1", DVec3::new(3.0, -0.7, 0.1), 0.38);
+                glass_sphere(&mut s, "sphere 2", DVec3::new(3.6, 0.15, -0.15), 0.45);
+                glass_sphere(&mut s, "sphere 3", DVec3::new(3.2, 0.85, 0.2), 0.3);
+            }
+            // Two tall bright bars behind them: each sphere shows them
+            // inverted, with coloured edges.
+            for (k, y) in [-0.55, 0.35].into_iter().enumerate() {
+                let light = s.lights.len();
+                s.faces.push(Face::rect(
+                    &format!("bar light {k}"),
+                    DVec3::new(5.0, y, -1.5),
+                    DVec3::new(0.0, 0.0, 3.0),
+                    DVec3::new(0.0, 0.3, 0.0),
+                    Surface::Emitter { light },
+                ));
+                s.lights.push(Light {
+                    name: format!("bar {k}"),
+                    emission: Emission::Area { face: s.faces.len() - 1 },
+                    spectrum: light_spectrum(o, "blackbody:5500")?,
+                    power: 1.0,
+                });
+            }
+            s.camera = Camera::look_at(DVec3::ZERO, DVec3::new(3.0, 0.0, 0.0), DVec3::Z, 32.0, o.width, o.height);
+        }
+    }
+    s.probe = (DVec3::ZERO, DVec3::X);
+    Ok(s)
+}

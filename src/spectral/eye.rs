@@ -1,0 +1,185 @@
+//! The eye pass ("regular ray tracing without Phong", report 000 §3): a
+//! camera ray follows the prism's interfaces and reads colour from the
+//! photon maps where it lands on a matte surface, or the light's own
+//! spectrum where it sees a lamp.
+//!
+//! Eye paths are white until they meet a dispersive face; there they take
+//! wavelengths sampled from the lights' spectra (stratified over a pixel's
+//! samples), and either one hero wavelength goes on (as pbrt-v4 does) or,
+//! with `--eye split`, the ray splits into N monochromatic rays at once
+//! (report 001's method).
+
+use super::render::RenderOptions;
+use crate::photon::map::SurfaceMap;
+use crate::sampling::Rng;
+use crate::spectrum::cie::cie_y_integral;
+use crate::spectrum::sampler::WavelengthSampler;
+use crate::world::interface::{cross, Polarisation};
+use crate::world::{Surface, World};
+use glam::{DVec2, DVec3};
+
+#[derive(Copy, Clone, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum EyeMode {
+    /// One sampled wavelength goes on (pbrt-v4's hero wavelength).
+    Hero,
+    /// Split into `--split` monochromatic rays at the first dispersive face (report 001).
+    Split,
+}
+
+const MAX_DEPTH: usize = 64;
+/// Interfaces up to this depth split an eye path into its reflected and
+/// refracted parts instead of choosing one.
+const SPLIT_DEPTH: usize = 4;
+
+/// The eye pass's view of a render: the world, its filled photon maps, and
+/// what it needs to sample wavelengths and to see emitters.
+pub(super) struct Eye<'a> {
+    pub scene: &'a World,
+    pub maps: Vec<SurfaceMap>,
+    pub opts: &'a RenderOptions,
+    /// Wavelengths for white paths at a dispersive face (all lights' spectra).
+    pub sampler: WavelengthSampler,
+    /// Per light: (radiance per watt-spectrum unit, its sampler) for emitters.
+    pub lights: Vec<(f64, WavelengthSampler)>,
+}
+
+/// One eye path: where it is, where it goes, its wavelength once it has
+/// one, its weight and polarisation.
+#[derive(Copy, Clone)]
+struct Path {
+    o: DVec3,
+    d: DVec3,
+    skip: Option<usize>,
+    nm: Option<f64>,
+    weight: f64,
+    pol: Polarisation,
+    depth: usize,
+}
+
+/// What a path does after meeting a surface.
+enum Step {
+    /// Goes on from the hit point in the path's (new) direction.
+    Continue,
+    /// Ends here, adding this XYZ radiance.
+    End(DVec3),
+}
+
+impl Eye<'_> {
+    /// XYZ radiance along a camera ray; `u_lambda` stratifies wavelengths.
+    pub fn radiance(&self, o: DVec3, d: DVec3, u_lambda: f64, rng: &mut Rng, rays: &mut u64) -> DVec3 {
+        let pol = if rng.f64() < 0.5 { Polarisation::S } else { Polarisation::P };
+        let mut stack = vec![Path { o, d, skip: None, nm: None, weight: 1.0, pol, depth: 0 }];
+        let mut sum = DVec3::ZERO;
+        while let Some(mut p) = stack.pop() {
+            while p.depth < MAX_DEPTH {
+                *rays += 1;
+                let Some(hit) = self.scene.intersect(p.o, p.d, p.skip) else { break };
+                let x = p.o + hit.t * p.d;
+                match self.step(&mut p, hit.face, x, u_lambda, rng, &mut stack) {
+                    Step::Continue => {}
+                    Step::End(l) => {
+                        sum += l;
+                        break;
+                    }
+                }
+                p.o = x;
+                p.skip = Some(hit.face);
+                p.depth += 1;
+            }
+        }
+        sum
+    }
+
+    /// The path meets surface `id` at `x`.
+    fn step(&self, p: &mut Path, id: usize, x: DVec3, u_lambda: f64, rng: &mut Rng, stack: &mut Vec<Path>) -> Step {
+        let normal = self.scene.normal(id, x);
+        match *self.scene.surface(id) {
+            Surface::Interface { .. } => {
+                self.cross_interface(p, id, x, u_lambda, rng, stack);
+                Step::Continue
+            }
+            Surface::Mirror { reflectance } => {
+                p.weight *= reflectance;
+                p.d = crate::optics::snell::reflect_f64(p.d, normal);
+                Step::Continue
+            }
+            Surface::Diffuse { albedo, map } => Step::End(if p.d.dot(normal) < 0.0 { self.matte(p, id, x, albedo, map) } else { DVec3::ZERO }),
+            Surface::Emitter { light } => Step::End(if p.d.dot(normal) < 0.0 { self.emitted(p, light) } else { DVec3::ZERO }),
+        }
+    }
+
+    /// A white path at a dispersive face takes its wavelength: one hero
+    /// wavelength, or (report 001) `--split` rays, all but one pushed on
+    /// the stack.
+    fn pick_wavelength(&self, p: &mut Path, u_lambda: f64, stack: &mut Vec<Path>) {
+        if self.opts.eye == EyeMode::Split {
+            let n = self.opts.split.max(1);
+            for k in 1..n {
+                let (l, pdf) = self.sampler.sample((k as f64 + u_lambda) / n as f64);
+                stack.push(Path { nm: Some(l), weight: p.weight / (pdf * n as f64), ..*p });
+            }
+            let (l, pdf) = self.sampler.sample(u_lambda / n as f64);
+            p.nm = Some(l);
+            p.weight /= pdf * n as f64;
+        } else {
+            let (l, pdf) = self.sampler.sample(u_lambda);
+            p.nm = Some(l);
+            p.weight /= pdf;
+        }
+    }
+
+    /// Refraction or reflection at a smooth interface (Fresnel, TIR).
+    fn cross_interface(&self, p: &mut Path, id: usize, x: DVec3, u_lambda: f64, rng: &mut Rng, stack: &mut Vec<Path>) {
+        let c = match cross(self.scene, id, x, p.d, p.nm) {
+            Ok(c) => c,
+            Err(_) => {
+                self.pick_wavelength(p, u_lambda, stack);
+                cross(self.scene, id, x, p.d, p.nm).expect("a wavelength is set")
+            }
+        };
+        let r = c.reflectance(p.pol);
+        p.d = match c.refracted {
+            // Near the camera the transmitted part always goes on with
+            // weight T (no roulette noise in the main image); the weak
+            // reflected part is followed with probability min(1, 4R) and
+            // weight R / that. Deeper, one branch is chosen by Russian
+            // roulette.
+            Some(t) if p.depth < SPLIT_DEPTH => {
+                let q = (4.0 * r).min(1.0);
+                if q > 0.0 && rng.f64() < q {
+                    stack.push(Path { o: x, d: c.reflected, skip: Some(id), weight: p.weight * r / q, depth: p.depth + 1, ..*p });
+                }
+                p.weight *= 1.0 - r;
+                t
+            }
+            Some(t) if rng.f64() >= r => t,
+            _ => c.reflected,
+        };
+    }
+
+    /// Radiance leaving a matte surface toward the path: the photon map's
+    /// irradiance times albedo over pi.
+    fn matte(&self, p: &Path, id: usize, x: DVec3, albedo: [f64; 3], map: usize) -> DVec3 {
+        let face = &self.scene.faces[id];
+        let (Some(uv), Some((_, eu, ev))) = (face.uv(x), face.frame) else { return DVec3::ZERO };
+        let pos = DVec2::new(uv.x * eu.length(), uv.y * ev.length());
+        let e = self.maps[map].irradiance(pos, self.opts.filter, self.opts.lookup);
+        let l = crate::spectrum::cie::tint(e, albedo) / std::f64::consts::PI;
+        match p.nm {
+            None => l * p.weight,
+            // Seen through a dispersive face: the map holds XYZ, not a
+            // spectrum; its luminance is spread evenly over wavelength (an
+            // approximation).
+            Some(nm) => self.opts.colours.xyz_weight(nm) * (l.y / cie_y_integral()) * p.weight,
+        }
+    }
+
+    /// Radiance of an emitter seen directly.
+    fn emitted(&self, p: &Path, light: usize) -> DVec3 {
+        let (scale, s) = &self.lights[light];
+        match p.nm {
+            None => s.mean_weight(self.opts.colours) * scale * p.weight,
+            Some(nm) => self.opts.colours.xyz_weight(nm) * (s.pdf(nm) * scale) * p.weight,
+        }
+    }
+}

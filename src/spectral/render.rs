@@ -1,0 +1,114 @@
+//! Report 000's two passes over a world: the light pass fills the photon
+//! maps (`photon`), then the eye pass (`eye`) reads them back through the
+//! camera. Times each pass and counts what it did.
+
+use super::eye::{Eye, EyeMode};
+use super::film::XyzImage;
+use crate::photon::emit::{light_pass, LightStats};
+use crate::photon::gather::{Filter, Lookup};
+use crate::photon::map::{MapKind, SurfaceMap};
+use crate::progress::Progress;
+use crate::sampling::Rng;
+use crate::spectrum::colormap::ColorMap;
+use crate::spectrum::sampler::WavelengthSampler;
+use crate::spectrum::Spectrum;
+use crate::world::{Emission, World};
+use glam::{DVec2, DVec3};
+use rayon::prelude::*;
+use std::time::Instant;
+
+#[derive(Clone, Debug)]
+pub struct RenderOptions {
+    pub photons: u64,
+    pub map: MapKind,
+    pub filter: Filter,
+    pub lookup: Lookup,
+    pub spp: u32,
+    pub seed: u64,
+    pub eye: EyeMode,
+    pub split: u32,
+    /// How a wavelength becomes colour: CIE, or one of the reports' maps.
+    pub colours: ColorMap,
+}
+
+/// A finished render and what it measured.
+pub struct SpectralRender {
+    pub image: XyzImage,
+    pub stats: LightStats,
+    pub trace_s: f64,
+    pub build_s: f64,
+    pub render_s: f64,
+    /// Bytes the photon maps hold.
+    pub map_bytes: usize,
+    pub eye_rays: u64,
+}
+
+/// Runs the light pass and the eye pass.
+pub fn render(scene: &World, opts: &RenderOptions, progress: &dyn Progress) -> SpectralRender {
+    let t = Instant::now();
+    let pass = if scene.maps.is_empty() {
+        crate::photon::emit::LightPass { photons: Vec::new(), stats: LightStats::default() }
+    } else {
+        light_pass(scene, opts.photons, opts.seed, opts.colours, progress)
+    };
+    let trace_s = t.elapsed().as_secs_f64();
+
+    let t = Instant::now();
+    let texel = (opts.lookup.radius() / 2.0).max(1e-5);
+    let maps: Vec<SurfaceMap> = scene
+        .maps
+        .iter()
+        .zip(pass.photons)
+        .map(|(&f, photons)| {
+            let (_, eu, ev) = scene.faces[f].frame.expect("matte surfaces are parallelograms");
+            SurfaceMap::build(opts.map, DVec2::new(eu.length(), ev.length()), photons, texel)
+        })
+        .collect();
+    let build_s = t.elapsed().as_secs_f64();
+    let map_bytes = maps.iter().map(SurfaceMap::bytes).sum();
+
+    // Eye wavelengths follow the lights' spectra.
+    let eye_spectrum = Spectrum::Sum(scene.lights.iter().map(|l| l.spectrum.clone()).collect());
+    let lights = scene
+        .lights
+        .iter()
+        .map(|l| {
+            let area = match l.emission {
+                Emission::Area { face } => scene.faces[face].area(),
+                Emission::Sphere { sphere } => 4.0 * std::f64::consts::PI * scene.spheres[sphere].radius.powi(2),
+                _ => 1.0,
+            };
+            // Lambertian emitter: radiance P / (pi A), spread over wavelength by the spectrum's pdf.
+            (l.power / (std::f64::consts::PI * area), WavelengthSampler::new(&l.spectrum))
+        })
+        .collect();
+    let eye = Eye { scene, maps, opts, sampler: WavelengthSampler::new(&eye_spectrum), lights };
+
+    let cam = &scene.camera;
+    progress.start("eye", cam.height as u64);
+    let t = Instant::now();
+    let mut xyz = vec![DVec3::ZERO; cam.width * cam.height];
+    let rays: u64 = xyz
+        .par_chunks_mut(cam.width)
+        .enumerate()
+        .map(|(y, row)| {
+            let mut rays = 0;
+            for (x, px) in row.iter_mut().enumerate() {
+                let mut sum = DVec3::ZERO;
+                for s in 0..opts.spp {
+                    let mut rng = Rng::new(opts.seed, (y * cam.width + x) as u64, 0x1000 + s as u64);
+                    let (jx, jy) = if opts.spp == 1 { (0.5, 0.5) } else { (rng.f64(), rng.f64()) };
+                    let u_lambda = (s as f64 + rng.f64()) / opts.spp as f64;
+                    let d = cam.ray(x as f64 + jx, y as f64 + jy);
+                    sum += eye.radiance(cam.pos, d, u_lambda, &mut rng, &mut rays);
+                }
+                *px = sum / opts.spp as f64;
+            }
+            progress.advance("eye", 1);
+            rays
+        })
+        .sum();
+    progress.finish("eye");
+    let render_s = t.elapsed().as_secs_f64();
+    SpectralRender { image: XyzImage { width: cam.width, height: cam.height, xyz }, stats: pass.stats, trace_s, build_s, render_s, map_bytes, eye_rays: rays }
+}

@@ -1,0 +1,42 @@
+//! Lights: how each emits (a collimated beam or laser, a point, a
+//! Lambertian face or sphere), its spectrum and its power.
+
+use crate::spectrum::Spectrum;
+use glam::{DVec2, DVec3};
+
+/// How a light emits.
+#[derive(Clone, Debug)]
+pub enum Emission {
+    /// A collimated beam (or laser): parallel rays along `dir` from a disc
+    /// or rectangle of half-sizes `half` in the (u, v) frame round `centre`.
+    /// No inverse-square fall-off.
+    Beam { centre: DVec3, dir: DVec3, u: DVec3, v: DVec3, half: DVec2, disc: bool },
+    /// A point light, uniform in all directions.
+    Point { pos: DVec3 },
+    /// A one-sided Lambertian emitter covering face `face`.
+    Area { face: usize },
+    /// A Lambertian spherical emitter: sphere `sphere` of the scene.
+    Sphere { sphere: usize },
+}
+
+#[derive(Clone, Debug)]
+pub struct Light {
+    pub name: String,
+    pub emission: Emission,
+    /// Relative spectral power distribution.
+    pub spectrum: Spectrum,
+    /// Emitted power in watts (the spectrum is scaled to integrate to it
+    /// over 360-830 nm).
+    pub power: f64,
+}
+
+impl Light {
+    /// Area the beam's cross-section covers, m^2 (0 for other lights).
+    pub fn beam_area(&self) -> f64 {
+        match &self.emission {
+            Emission::Beam { half, disc: true, .. } => std::f64::consts::PI * half.x * half.y,
+            Emission::Beam { half, disc: false, .. } => 4.0 * half.x * half.y,
+            _ => 0.0,
+        }
+    }
+}

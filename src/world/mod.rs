@@ -1,0 +1,186 @@
+//! The f64 spectral world shared by the light pass and the eye pass:
+//! planar convex faces, each with the medium on either side (so cemented
+//! prisms need no special case), analytic spheres, matte screens, emitters,
+//! mirrors, lights and a pinhole camera. Few surfaces, so a linear scan in
+//! f64: the optics tests need better than f32 precision.
+//!
+//! `interface` is what a ray does at a smooth boundary (Snell, Fresnel,
+//! total internal reflection); `probe` follows one ray per wavelength.
+
+pub mod camera;
+pub mod interface;
+pub mod light;
+pub mod medium;
+pub mod probe;
+pub mod shape;
+
+pub use camera::Camera;
+pub use light::{Emission, Light};
+pub use medium::{Medium, Surface};
+pub use shape::{Face, Sphere};
+
+use glam::{DVec2, DVec3};
+
+/// Everything a render needs: the scene as the two passes see it.
+#[derive(Clone, Debug)]
+pub struct World {
+    pub name: String,
+    pub media: Vec<Medium>,
+    pub faces: Vec<Face>,
+    /// Analytic spheres; their ids follow the faces' (`faces.len() + k`).
+    pub spheres: Vec<Sphere>,
+    pub lights: Vec<Light>,
+    pub camera: Camera,
+    /// Diffuse faces, in photon-map order: `maps[i]` is a face index.
+    pub maps: Vec<usize>,
+    /// The ray the probe follows: origin and direction (the beam's axis).
+    pub probe: (DVec3, DVec3),
+    /// Diffuse bounces a photon may make after its first matte surface:
+    /// 0 is report 000's map of where light lands; a room needs a few.
+    pub bounces: u32,
+}
+
+/// Nearest face hit by a ray.
+#[derive(Copy, Clone, Debug)]
+pub struct FaceHit {
+    pub t: f64,
+    pub face: usize,
+}
+
+impl World {
+    /// An empty scene with these media (air first), a placeholder camera
+    /// of the image's size, and nothing in it yet.
+    pub fn new(name: &str, media: Vec<Medium>, width: usize, height: usize) -> World {
+        World {
+            name: name.into(),
+            media,
+            faces: Vec::new(),
+            spheres: Vec::new(),
+            lights: Vec::new(),
+            camera: Camera::look_at(DVec3::ZERO, DVec3::X, DVec3::Z, 30.0, width, height),
+            maps: Vec::new(),
+            probe: (DVec3::ZERO, DVec3::X),
+            bounces: 0,
+        }
+    }
+
+    /// Nearest hit along `o + t d`. `skip` is the surface the ray leaves: a
+    /// face is ignored (a ray cannot meet its own plane again), a sphere
+    /// only loses the root at the start.
+    pub fn intersect(&self, o: DVec3, d: DVec3, skip: Option<usize>) -> Option<FaceHit> {
+        let mut best: Option<FaceHit> = None;
+        for (i, f) in self.faces.iter().enumerate() {
+            if Some(i) == skip {
+                continue;
+            }
+            if let Some(t) = f.intersect(o, d) {
+                if best.is_none_or(|b| t < b.t) {
+                    best = Some(FaceHit { t, face: i });
+                }
+            }
+        }
+        let n = self.faces.len();
+        for (k, s) in self.spheres.iter().enumerate() {
+            if let Some(t) = s.intersect(o, d, skip == Some(n + k)) {
+                if best.is_none_or(|b| t < b.t) {
+                    best = Some(FaceHit { t, face: n + k });
+                }
+            }
+        }
+        best
+    }
+
+    /// What happens at surface `id` (a face or a sphere).
+    pub fn surface(&self, id: usize) -> &Surface {
+        match self.faces.get(id) {
+            Some(f) => &f.surface,
+            None => &self.spheres[id - self.faces.len()].surface,
+        }
+    }
+
+    /// Unit normal of surface `id` at `p` (the face's, or outward).
+    pub fn normal(&self, id: usize, p: DVec3) -> DVec3 {
+        match self.faces.get(id) {
+            Some(f) => f.normal,
+            None => {
+                let s = &self.spheres[id - self.faces.len()];
+                (p - s.centre) / s.radius
+            }
+        }
+    }
+
+    pub fn name(&self, id: usize) -> &str {
+        match self.faces.get(id) {
+            Some(f) => &f.name,
+            None => &self.spheres[id - self.faces.len()].name,
+        }
+    }
+
+    /// Adds the faces of an extruded prism train: counter-clockwise
+    /// cross-sections in the xy plane, each with its medium, from z0 to z1.
+    /// Edges shared by two cross-sections become one cemented interface.
+    pub fn add_extruded(&mut self, name: &str, parts: &[([DVec2; 3], usize)], z0: f64, z1: f64) {
+        let at = |p: DVec2, z: f64| DVec3::new(p.x, p.y, z);
+        let same = |a: DVec2, b: DVec2| (a - b).length() < 1e-12;
+        let mut done: Vec<(usize, usize)> = Vec::new();
+        for (k, (tri, medium)) in parts.iter().enumerate() {
+            for e in 0..3 {
+                if done.contains(&(k, e)) {
+                    continue;
+                }
+                let (a, b) = (tri[e], tri[(e + 1) % 3]);
+                let outward = DVec2::new(b.y - a.y, a.x - b.x).normalize();
+                // Another part with the same edge (reversed) is cemented to this one.
+                let twin = parts
+                    .iter()
+                    .enumerate()
+                    .find_map(|(j, (t2, m2))| (j != k).then(|| (0..3).find(|&f| same(t2[f], b) && same(t2[(f + 1) % 3], a)).map(|f| (j, f, *m2))).flatten());
+                let front = match twin {
+                    Some((j, f, m2)) => {
+                        done.push((j, f));
+                        m2
+                    }
+                    None => 0,
+                };
+                let verts = vec![at(a, z0), at(b, z0), at(b, z1), at(a, z1)];
+                let n = DVec3::new(outward.x, outward.y, 0.0);
+                self.faces.push(Face::polygon(&format!("{name} part {k} side {e}"), verts, n, Surface::Interface { front, back: *medium }));
+            }
+            for (z, nz) in [(z0, -1.0), (z1, 1.0)] {
+                let verts = tri.iter().map(|&p| at(p, z)).collect();
+                self.faces.push(Face::polygon(
+                    &format!("{name} part {k} cap"),
+                    verts,
+                    DVec3::new(0.0, 0.0, nz),
+                    Surface::Interface { front: 0, back: *medium },
+                ));
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn camera_projects_its_own_rays() {
+        let cam = Camera::look_at(DVec3::new(1.0, 2.0, 3.0), DVec3::ZERO, DVec3::Z, 30.0, 320, 240);
+        for (x, y) in [(0.0, 0.0), (160.0, 120.0), (319.5, 7.25)] {
+            let p = cam.pos + 5.0 * cam.ray(x, y);
+            let q = cam.project(p).unwrap();
+            assert!((q.x - x).abs() < 1e-9 && (q.y - y).abs() < 1e-9);
+        }
+    }
+
+    #[test]
+    fn rect_uv_and_hits() {
+        let f = Face::rect("s", DVec3::ZERO, DVec3::new(2.0, 0.0, 0.0), DVec3::new(0.0, 0.0, 1.0), Surface::Diffuse { albedo: [0.8; 3], map: 0 });
+        let t = f.intersect(DVec3::new(0.5, 3.0, 0.25), DVec3::NEG_Y).unwrap();
+        assert!((t - 3.0).abs() < 1e-12);
+        let uv = f.uv(DVec3::new(0.5, 0.0, 0.25)).unwrap();
+        assert!((uv - DVec2::new(0.25, 0.25)).length() < 1e-12);
+        assert!(f.intersect(DVec3::new(2.5, 3.0, 0.25), DVec3::NEG_Y).is_none());
+        assert!((f.area() - 2.0).abs() < 1e-12);
+    }
+}

@@ -1,0 +1,103 @@
+//! The world's two shapes: planar convex polygons (prism faces, screens,
+//! walls, area lights) and analytic spheres (report 001's glass balls and
+//! spherical lights), each with its exact f64 ray intersection.
+
+use super::medium::Surface;
+use glam::{DVec2, DVec3};
+
+/// A planar convex polygon.
+#[derive(Clone, Debug)]
+pub struct Face {
+    pub name: String,
+    /// Vertices, counter-clockwise seen from the normal's side.
+    pub verts: Vec<DVec3>,
+    pub normal: DVec3,
+    pub surface: Surface,
+    /// For parallelogram faces: corner and edge vectors, the (u, v) frame
+    /// of the report's per-object photon buffer.
+    pub frame: Option<(DVec3, DVec3, DVec3)>,
+}
+
+impl Face {
+    pub fn polygon(name: &str, verts: Vec<DVec3>, normal: DVec3, surface: Surface) -> Face {
+        let n = normal.normalize();
+        let mut verts = verts;
+        if (verts[1] - verts[0]).cross(verts[2] - verts[0]).dot(n) < 0.0 {
+            verts.reverse();
+        }
+        Face { name: name.into(), verts, normal: n, surface, frame: None }
+    }
+
+    /// Parallelogram from a corner and two edges; normal eu x ev.
+    pub fn rect(name: &str, corner: DVec3, eu: DVec3, ev: DVec3, surface: Surface) -> Face {
+        let mut f = Face::polygon(name, vec![corner, corner + eu, corner + eu + ev, corner + ev], eu.cross(ev), surface);
+        f.frame = Some((corner, eu, ev));
+        f
+    }
+
+    /// Ray-plane distance if the hit lies inside the polygon.
+    #[inline]
+    pub fn intersect(&self, o: DVec3, d: DVec3) -> Option<f64> {
+        let denom = d.dot(self.normal);
+        if denom == 0.0 || !denom.is_finite() {
+            return None;
+        }
+        let t = (self.verts[0] - o).dot(self.normal) / denom;
+        if !(t > 0.0) {
+            return None;
+        }
+        let p = o + t * d;
+        let k = self.verts.len();
+        for i in 0..k {
+            let (a, b) = (self.verts[i], self.verts[(i + 1) % k]);
+            if (b - a).cross(p - a).dot(self.normal) < -1e-12 * (b - a).length_squared().max(1e-30) {
+                return None;
+            }
+        }
+        Some(t)
+    }
+
+    /// (u, v) in [0, 1]^2 of a point on a parallelogram face.
+    pub fn uv(&self, p: DVec3) -> Option<DVec2> {
+        let (c, eu, ev) = self.frame?;
+        let r = p - c;
+        // Solve r = u eu + v ev in the face's plane.
+        let (uu, uv, vv) = (eu.dot(eu), eu.dot(ev), ev.dot(ev));
+        let (ru, rv) = (r.dot(eu), r.dot(ev));
+        let det = uu * vv - uv * uv;
+        Some(DVec2::new((ru * vv - rv * uv) / det, (rv * uu - ru * uv) / det))
+    }
+
+    pub fn area(&self) -> f64 {
+        let k = self.verts.len();
+        (1..k - 1).map(|i| (self.verts[i] - self.verts[0]).cross(self.verts[i + 1] - self.verts[0]).length() / 2.0).sum()
+    }
+}
+
+/// An analytic sphere (report 001's glass spheres and spherical lights).
+#[derive(Clone, Debug)]
+pub struct Sphere {
+    pub name: String,
+    pub centre: DVec3,
+    pub radius: f64,
+    /// Outside is the front (the normal points out).
+    pub surface: Surface,
+}
+
+impl Sphere {
+    /// Nearest root beyond the start; `leaving` when the ray starts on this
+    /// sphere (then the root at the start is ignored).
+    #[inline]
+    pub fn intersect(&self, o: DVec3, d: DVec3, leaving: bool) -> Option<f64> {
+        let oc = o - self.centre;
+        let b = oc.dot(d);
+        let c = oc.length_squared() - self.radius * self.radius;
+        let disc = b * b - c;
+        if !(disc >= 0.0) {
+            return None;
+        }
+        let q = disc.sqrt();
+        let eps = if leaving { 1e-7 * self.radius } else { 0.0 };
+        [-b - q, -b + q].into_iter().find(|&t| t > eps)
+    }
+}
