@@ -2,13 +2,11 @@
 //! Timings are never asserted in tests; they are recorded here.
 
 use crate::geometry::{Accel, AccelKind, Ray};
-use crate::interior::config::InteriorConfig;
 use crate::interior::scene::InteriorScene;
 use crate::interior::trace::Tracer;
 use crate::mesh::generate::icosphere;
 use anyhow::{ensure, Result};
 use std::fmt::Write;
-use std::path::PathBuf;
 use std::time::Instant;
 
 /// Casts the camera's primary rays for `rows` and returns (hits, seconds).
@@ -62,7 +60,8 @@ pub fn interior(quick: bool) -> Result<String> {
     )?;
     for subdiv in [3, 5, 6] {
         let mesh = icosphere(subdiv);
-        let mut cfg = InteriorConfig::with_defaults(PathBuf::from("icosphere"), PathBuf::new());
+        let mut cfg = crate::params::interior::defaults();
+        cfg.off = crate::mesh::source::MeshSource::Icosphere(subdiv);
         (cfg.width, cfg.height) = (w, h);
         let scene = InteriorScene::new(mesh, &cfg);
         let tris = scene.triangles.len();

@@ -1,21 +1,13 @@
 //! `refract`: the thin binary. Parses the command line and hands it to the
-//! library; errors are printed as one line and exit with status 1 (2 for a
-//! bad command line).
+//! library; errors are printed as one line and exit with status 1. A bad
+//! command line gets clap's whole message (the reason, a suggestion or the
+//! possible values, the usage and the `--help` hint) and status 2.
 
 use clap::Parser;
 use std::process::ExitCode;
 
 fn main() -> ExitCode {
-    let cli = match refract::cli::Cli::try_parse() {
-        Ok(cli) => cli,
-        Err(e) if !e.use_stderr() => e.exit(), // --help, --version
-        Err(e) => {
-            // clap's first line names the flag and the reason; the rest is a hint.
-            let text = e.to_string();
-            eprintln!("refract: {}", text.lines().next().unwrap_or("bad command line").trim_start_matches("error: "));
-            return ExitCode::from(2);
-        }
-    };
+    let cli = refract::cli::Cli::parse();
     match refract::cli::run(cli) {
         Ok(()) => ExitCode::SUCCESS,
         Err(err) => {

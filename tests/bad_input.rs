@@ -45,14 +45,14 @@ fn impossible_parameters_name_the_flag() {
     let cube = repo("off/cube.off");
     let c = cube.to_str().unwrap();
     for (args, needle) in [
-        (vec!["--ior", "0"], "refractive index 0 must be > 0"),
+        (vec!["--ior", "0"], "invalid value '0' for '--ior <X>': 0 is not greater than 0 and at most 100"),
         (vec!["--ior", "nan"], "`nan` is not a finite number"),
-        (vec!["--opacity", "120"], "opacity 120 is outside 0-100"),
+        (vec!["--opacity", "120"], "120 is not between 0 and 100"),
         (vec!["--color", "1,2"], "`1,2` is not three comma-separated values"),
         (vec!["--size", "0,10"], "width and height must be whole numbers"),
-        (vec!["--scale", "-1"], "scale -1 must be > 0"),
-        (vec!["--atten", "-1"], "--atten: -1 must be a finite number >= 0"),
-        (vec!["--spp", "0"], "--spp: 0 is not between 1 and 4096"),
+        (vec!["--scale", "-1"], "-1 is not greater than 0"),
+        (vec!["--atten", "-1"], "for '--atten <X>': -1 is not at least 0"),
+        (vec!["--spp", "0"], "for '--spp <N>': 0 is not between 1 and 4096"),
         (vec!["--out", "no/such/dir/x.ppm"], "--out: folder no/such/dir does not exist"),
     ] {
         let mut full = vec!["interior", "--off", c];

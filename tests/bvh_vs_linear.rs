@@ -2,10 +2,9 @@ use refract::geometry::AccelKind;
 use refract::interior::config::{InteriorConfig, SceneKind, SpecularOpacity};
 use refract::interior::render_mesh;
 use refract::mesh::generate;
-use std::path::PathBuf;
 
 fn render(mesh: refract::mesh::Mesh, accel: AccelKind, tweak: impl Fn(&mut InteriorConfig)) -> refract::image_io::Image {
-    let mut cfg = InteriorConfig::with_defaults(PathBuf::from("mesh"), PathBuf::new());
+    let mut cfg = refract::params::interior::defaults();
     (cfg.width, cfg.height) = (96, 72);
     cfg.accel = accel;
     tweak(&mut cfg);

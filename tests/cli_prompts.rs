@@ -108,7 +108,7 @@ fn bad_answers_are_asked_again_and_early_end_fails() {
     let shown = String::from_utf8_lossy(&o.stdout);
     assert!(shown.contains("`many` is not a whole number"), "{shown}");
     assert!(shown.contains("missing.off: no such file"), "{shown}");
-    assert!(shown.contains("refractive index -1 must be > 0"), "{shown}");
+    assert!(shown.contains("-1 is not greater than 0 and at most 100"), "{shown}");
     assert!(dir.path().join("out.ppm").exists());
 
     let o = run(&["interior"], "0\n25\n255\n", dir.path());

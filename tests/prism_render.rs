@@ -17,7 +17,7 @@ fn hidden() -> refract::progress::Silent {
 
 fn scene(kind: SceneKind, light: Option<&str>, size: [usize; 2]) -> World {
     let mut o = SceneOptions::new(kind);
-    o.light = light.map(str::to_string);
+    o.light = light.map(|l| refract::spectrum::spectra::NamedSpectrum::parse(l).unwrap());
     [o.width, o.height] = size;
     build(&o).unwrap()
 }
@@ -216,9 +216,9 @@ mod cli {
     fn bad_parameters_fail_cleanly() {
         let dir = tempfile::tempdir().unwrap();
         for (args, needle) in [
-            (vec!["--glass", "BK9"], "unknown glass `BK9`"),
+            (vec!["--glass", "BK9"], "invalid value 'BK9' for '--glass <NAME>'"),
             (vec!["--flint-apex", "170"], "--flint-apex"),
-            (vec!["--photons", "0"], "--photons: 0"),
+            (vec!["--photons", "0"], "for '--photons <N>': 0 is not between 1 and 2000000000"),
             (vec!["--map", "buffer", "--k", "10"], "--k needs --map kdtree"),
             (vec!["--light", "sunshine"], "unknown light spectrum `sunshine`"),
             (vec!["--radius", "-1"], "--radius"),

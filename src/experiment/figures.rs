@@ -140,7 +140,7 @@ pub fn run(o: &FigureOptions) -> Result<String> {
                 status: "ok".into(),
             }),
             None => SceneFile::load(&o.scenes.join(format!("{id}.toml")), o.quick).and_then(|s| {
-                let secs = s.render(&png)?;
+                let secs = s.render(&png, &crate::terminal::Bars::new())?;
                 Ok(Record { report: s.report.clone(), caption: s.caption.clone(), params: s.describe(), seconds: format!("{secs:.2}"), status: "ok".into() })
             }),
         };
@@ -390,7 +390,7 @@ fn colour_compare(png: &Path, quick: bool) -> Result<String> {
     let mut buf = vec![0u8; w * h * 3];
     for (k, map) in maps.iter().enumerate() {
         let mut so = SceneOptions::new(SceneKind::DarkSide);
-        so.crown = "N-SF11".into();
+        so.crown = crate::optics::glass::by_name("N-SF11")?;
         (so.width, so.height) = (tw, th);
         let mut cfg = crate::spectral::SpectralConfig::new(so, PathBuf::new());
         cfg.photons = photons;

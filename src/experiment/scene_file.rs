@@ -14,10 +14,12 @@
 //! photons = 400000
 //! ```
 
-use super::params::{apply_interior, apply_prism, Mode};
+use super::params::{interior_config, prism_config, Mode};
 use super::spec::{line_of, parse_toml};
+use crate::names::Named;
+use crate::progress::Progress;
 use anyhow::{anyhow, Result};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use toml::Value;
 
 #[derive(Clone, Debug)]
@@ -54,11 +56,8 @@ impl SceneFile {
         if id.is_empty() || !id.chars().all(|c| c.is_ascii_alphanumeric() || c == '-' || c == '_' || c == '.') {
             return Err(err("", "id", "use letters, digits, '.', '-' and '_' only (it names the output)".into()));
         }
-        let mode = match s("mode")?.as_str() {
-            "interior" => Mode::Interior,
-            "prism" => Mode::Prism,
-            m => return Err(err("", "mode", format!("`{m}` is not interior or prism"))),
-        };
+        let mode = s("mode")?;
+        let mode = Mode::from_name(&mode).ok_or_else(|| err("", "mode", format!("`{mode}` is not interior or prism")))?;
         let mut params: Vec<(String, Value)> = Vec::new();
         let sections: &[&str] = if quick { &["params", "quick"] } else { &["params"] };
         for section in sections {
@@ -85,23 +84,18 @@ impl SceneFile {
 
     /// Renders to `out`; returns the render time in seconds (light pass,
     /// map build and eye pass; for the interior mode, build and render).
-    pub fn render(&self, out: &Path) -> Result<f64> {
+    pub fn render(&self, out: &Path, progress: &dyn Progress) -> Result<f64> {
         match self.mode {
             Mode::Interior => {
-                let mut cfg = crate::interior::config::InteriorConfig::with_defaults(PathBuf::from("off/cube.off"), out.to_path_buf());
-                for (k, v) in &self.params {
-                    apply_interior(&mut cfg, k, v).map_err(|m| anyhow!("{k}: {m}"))?;
-                }
+                let mut cfg = interior_config(&self.params)?;
                 cfg.out = out.to_path_buf();
                 let r = crate::interior::run(&cfg)?;
                 Ok(r.build_s + r.render_s)
             }
             Mode::Prism => {
-                let mut cfg = crate::spectral::SpectralConfig::new(crate::scenes::SceneOptions::new(crate::scenes::SceneKind::AmiciScreen), out.to_path_buf());
-                for (k, v) in &self.params {
-                    apply_prism(&mut cfg, k, v).map_err(|m| anyhow!("{k}: {m}"))?;
-                }
-                let r = crate::spectral::run(&cfg, &crate::terminal::Bars::new())?;
+                let mut cfg = prism_config(&self.params)?;
+                cfg.out = out.to_path_buf();
+                let r = crate::spectral::run(&cfg, progress)?;
                 Ok(r.render.trace_s + r.render.build_s + r.render.render_s)
             }
         }

@@ -4,13 +4,11 @@
 //! A run that fails is a row with its error, never a crashed sweep.
 
 use super::metrics::{self, Frame};
-use super::params::{apply_interior, apply_prism, cell, Mode};
+use super::params::{cell, interior_config, known, prism_config, Mode};
 use super::spec::{Case, Experiment};
 use crate::image_io::{atomic_write, write_rgb8};
-use crate::interior::config::InteriorConfig;
+use crate::mesh::source::MeshSource;
 use crate::mesh::Mesh;
-use crate::scenes::{SceneKind, SceneOptions};
-use crate::spectral::SpectralConfig;
 use anyhow::{bail, Context, Result};
 use std::collections::{HashMap, HashSet};
 use std::io::Write;
@@ -60,11 +58,7 @@ pub fn expand(e: &Experiment) -> Vec<RunSpec> {
             }
             // Fixed parameters of the file's mode that a case of the other
             // mode does not have are left out for it.
-            let known = |k: &str| match mode {
-                Mode::Interior => super::params::INTERIOR.contains(&k),
-                Mode::Prism => super::params::PRISM.contains(&k),
-            };
-            let mut params: Vec<(String, Value)> = e.fixed.iter().filter(|(k, _)| known(k)).cloned().collect();
+            let mut params: Vec<(String, Value)> = e.fixed.iter().filter(|(k, _)| known(*mode, k)).cloned().collect();
             let swept = axes.iter().zip(&at).map(|((k, vals), &i)| (k.clone(), vals[i].clone()));
             for (k, v) in overrides.iter().cloned().chain(swept) {
                 params.retain(|(p, _)| *p != k);
@@ -144,29 +138,23 @@ struct Outcome {
 
 /// Meshes loaded once per sweep, with their load time.
 #[derive(Default)]
-struct MeshCache(Mutex<HashMap<PathBuf, (Mesh, f64)>>);
+struct MeshCache(Mutex<HashMap<MeshSource, (Mesh, f64)>>);
 
 impl MeshCache {
-    fn get(&self, p: &Path) -> Result<(Mesh, f64)> {
-        if let Some(m) = self.0.lock().unwrap().get(p) {
+    fn get(&self, source: &MeshSource) -> Result<(Mesh, f64)> {
+        if let Some(m) = self.0.lock().unwrap().get(source) {
             return Ok(m.clone());
         }
         let t = Instant::now();
-        let mesh = crate::interior::load_mesh(p)?;
+        let mesh = source.load()?;
         let entry = (mesh, t.elapsed().as_secs_f64());
-        self.0.lock().unwrap().insert(p.to_path_buf(), entry.clone());
+        self.0.lock().unwrap().insert(source.clone(), entry.clone());
         Ok(entry)
     }
 }
 
 fn run_interior(params: &[(String, Value)], meshes: &MeshCache) -> Result<Outcome> {
-    let mut cfg = InteriorConfig::with_defaults(PathBuf::from("off/cube.off"), PathBuf::new());
-    cfg.width = 201;
-    cfg.height = 201;
-    for (k, v) in params {
-        apply_interior(&mut cfg, k, v).map_err(|m| anyhow::anyhow!("{k}: {m}"))?;
-    }
-    cfg.validate().map_err(anyhow::Error::msg)?;
+    let cfg = interior_config(params)?;
     let (mesh, load_s) = meshes.get(&cfg.off)?;
     let r = crate::interior::render_mesh(mesh, &cfg)?;
     let luminance = r.image.pixels.iter().map(|p| p.0.dot(glam::Vec3::new(0.2126, 0.7152, 0.0722)) as f64).collect();
@@ -185,18 +173,6 @@ fn run_interior(params: &[(String, Value)], meshes: &MeshCache) -> Result<Outcom
         ("tir_fraction", c(r.tir as f64 / r.rays.max(1) as f64)),
     ];
     Ok(Outcome { frame: Some(frame), cells })
-}
-
-fn prism_config(params: &[(String, Value)]) -> Result<SpectralConfig> {
-    let mut so = SceneOptions::new(SceneKind::AmiciScreen);
-    (so.width, so.height) = (320, 120);
-    let mut cfg = SpectralConfig::new(so, PathBuf::new());
-    cfg.photons = 200_000;
-    for (k, v) in params {
-        apply_prism(&mut cfg, k, v).map_err(|m| anyhow::anyhow!("{k}: {m}"))?;
-    }
-    cfg.validate()?;
-    Ok(cfg)
 }
 
 fn run_prism(params: &[(String, Value)]) -> Result<Outcome> {

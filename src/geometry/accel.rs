@@ -4,22 +4,16 @@
 
 use super::{Bvh, Hit, Ray, Triangle};
 
-#[derive(Copy, Clone, Debug, PartialEq, Eq, clap::ValueEnum)]
-pub enum AccelKind {
-    /// Surface-area-heuristic bounding-volume hierarchy.
-    Bvh,
-    /// Report 004's method: test every triangle for every ray.
-    Linear,
-}
-
-impl AccelKind {
-    pub fn name(self) -> &'static str {
-        match self {
-            AccelKind::Bvh => "bvh",
-            AccelKind::Linear => "linear",
-        }
+crate::named_enum! {
+    pub enum AccelKind {
+        /// Surface-area-heuristic bounding-volume hierarchy.
+        Bvh = "bvh",
+        /// Report 004's method: test every triangle for every ray.
+        Linear = "linear",
     }
 }
+
+impl AccelKind {}
 
 pub enum Accel {
     Linear(Vec<Triangle>),

@@ -9,12 +9,11 @@
 
 pub mod config;
 pub mod phong;
-pub mod prompts;
 pub mod scene;
 pub mod trace;
 
 use crate::image_io::{self, Image};
-use crate::mesh::{off::read_off, Mesh, MeshColors};
+use crate::mesh::{Mesh, MeshColors};
 use anyhow::Result;
 pub use config::InteriorConfig;
 use scene::InteriorScene;
@@ -37,27 +36,10 @@ pub struct RunReport {
     pub notes: Vec<String>,
 }
 
-/// The mesh a configuration names: an OFF file, or a generated shape
-/// written `icosphere:S` (S subdivisions, 20 * 4^S triangles) or `torus:N`
-/// (N x N/2 quads), for sweeps over mesh size.
-pub fn load_mesh(path: &Path) -> Result<Mesh> {
-    let s = path.to_string_lossy();
-    if let Some(n) = s.strip_prefix("icosphere:") {
-        let n: u32 = n.parse().ok().filter(|n| *n <= 8).ok_or_else(|| anyhow::anyhow!("`{s}`: icosphere subdivisions must be 0-8"))?;
-        return Ok(crate::mesh::generate::icosphere(n));
-    }
-    if let Some(n) = s.strip_prefix("torus:") {
-        let n: u32 = n.parse().ok().filter(|n| (3..=4096).contains(n)).ok_or_else(|| anyhow::anyhow!("`{s}`: torus segments must be 3-4096"))?;
-        return Ok(crate::mesh::generate::torus(n, n / 2).to_mesh());
-    }
-    Ok(read_off(path)?)
-}
-
 /// Loads the mesh, renders and writes the image.
 pub fn run(cfg: &InteriorConfig) -> Result<RunReport> {
-    cfg.validate().map_err(anyhow::Error::msg)?;
     let t0 = Instant::now();
-    let mesh = load_mesh(&cfg.off)?;
+    let mesh = cfg.off.load()?;
     let load_s = t0.elapsed().as_secs_f64();
     let mut report = render_mesh(mesh, cfg)?;
     report.load_s = load_s;
@@ -69,15 +51,13 @@ pub fn run(cfg: &InteriorConfig) -> Result<RunReport> {
 pub fn render_mesh(mesh: Mesh, cfg: &InteriorConfig) -> Result<RunReport> {
     let mut notes = Vec::new();
     if cfg.coff && mesh.colors == MeshColors::None {
-        notes.push(format!("{} has no colours; using the object colour {:?}", cfg.off.display(), cfg.color));
+        notes.push(format!("{} has no colours; using the object colour {:?}", cfg.off, cfg.color));
     }
     let skipped = mesh.stats.skipped_degenerate + mesh.stats.skipped_small;
     if skipped > 0 {
         notes.push(format!(
             "{}: skipped {} zero-area triangles and {} faces of fewer than 3 vertices",
-            cfg.off.display(),
-            mesh.stats.skipped_degenerate,
-            mesh.stats.skipped_small
+            cfg.off, mesh.stats.skipped_degenerate, mesh.stats.skipped_small
         ));
     }
     let triangles = mesh.triangles.len();
@@ -104,7 +84,7 @@ pub fn timing_row(cfg: &InteriorConfig, r: &RunReport) -> Vec<String> {
     let rays_per_s = if r.render_s > 0.0 { r.rays as f64 / r.render_s } else { 0.0 };
     vec![
         "interior".into(),
-        cfg.off.display().to_string(),
+        cfg.off.to_string(),
         r.triangles.to_string(),
         cfg.width.to_string(),
         cfg.height.to_string(),

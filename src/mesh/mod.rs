@@ -5,6 +5,7 @@ pub mod generate;
 pub mod obj;
 pub mod off;
 pub mod orient;
+pub mod source;
 pub mod triangulate;
 
 use crate::color::Rgb;

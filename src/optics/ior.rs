@@ -25,33 +25,24 @@ pub enum IorModel {
     Musgrave { n_d: f64, k: f64 },
 }
 
-/// Which model to build for a glass.
-#[derive(Copy, Clone, Debug, PartialEq, Eq, clap::ValueEnum)]
-pub enum IorKind {
-    /// n_d at every wavelength: no dispersion.
-    Constant,
-    /// Two-term Cauchy through n_C and n_F.
-    Cauchy,
-    /// Sellmeier from the catalogue (the reference).
-    Sellmeier,
-    /// Report 001: linear in wavelength through the Fraunhofer B and G lines.
-    Fraunhofer,
-    /// Report 003: Musgrave's model, linear in normalised frequency.
-    Musgrave,
+crate::named_enum! {
+    /// Which model to build for a glass.
+    pub enum IorKind {
+        /// n_d at every wavelength: no dispersion.
+        Constant = "constant",
+        /// Two-term Cauchy through n_C and n_F.
+        Cauchy = "cauchy",
+        /// Sellmeier from the catalogue (the reference).
+        Sellmeier = "sellmeier",
+        /// Report 001: linear in wavelength through the Fraunhofer B and G lines.
+        Fraunhofer = "fraunhofer",
+        /// Report 003: Musgrave's model, linear in normalised frequency.
+        Musgrave = "musgrave",
+    }
 }
 
 impl IorKind {
     pub const ALL: [IorKind; 5] = [IorKind::Sellmeier, IorKind::Cauchy, IorKind::Fraunhofer, IorKind::Musgrave, IorKind::Constant];
-
-    pub fn name(self) -> &'static str {
-        match self {
-            IorKind::Constant => "constant",
-            IorKind::Cauchy => "cauchy",
-            IorKind::Sellmeier => "sellmeier",
-            IorKind::Fraunhofer => "fraunhofer",
-            IorKind::Musgrave => "musgrave",
-        }
-    }
 }
 
 /// Musgrave's normalised frequency: 0 at 700 nm, 1 at 380 nm.

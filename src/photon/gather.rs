@@ -7,26 +7,19 @@ use std::f64::consts::PI;
 const GAUSS_ALPHA: f64 = 0.918;
 const GAUSS_BETA: f64 = 1.953;
 
-#[derive(Copy, Clone, Debug, PartialEq, Eq, clap::ValueEnum)]
-pub enum Filter {
-    /// Constant over the disc: 1 / (pi r^2).
-    Box,
-    /// Jensen's cone filter (k = 1): weight 1 - d/r, normalised by 3 / (pi r^2).
-    Cone,
-    /// Jensen's Gaussian shape (alpha 0.918, beta 1.953), normalised here
-    /// exactly over the disc (his 1 / (pi r^2) leaves it at 0.53).
-    Gaussian,
+crate::named_enum! {
+    pub enum Filter {
+        /// Constant over the disc: 1 / (pi r^2).
+        Box = "box",
+        /// Jensen's cone filter (k = 1): weight 1 - d/r, normalised by 3 / (pi r^2).
+        Cone = "cone",
+        /// Jensen's Gaussian shape (alpha 0.918, beta 1.953), normalised here
+        /// exactly over the disc (his 1 / (pi r^2) leaves it at 0.53).
+        Gaussian = "gaussian",
+    }
 }
 
 impl Filter {
-    pub fn name(self) -> &'static str {
-        match self {
-            Filter::Box => "box",
-            Filter::Cone => "cone",
-            Filter::Gaussian => "gaussian",
-        }
-    }
-
     /// Unnormalised weight at distance `d` for radius `r` (0 outside).
     pub fn weight(self, d: f64, r: f64) -> f64 {
         if !(d <= r) || r <= 0.0 {

@@ -22,22 +22,16 @@ pub struct Photon {
     pub xyz: [f32; 3],
 }
 
-#[derive(Copy, Clone, Debug, PartialEq, Eq, clap::ValueEnum)]
-pub enum MapKind {
-    /// The report's per-object 2-D buffer of texels.
-    Buffer,
-    /// A kd-tree of individual photons.
-    Kdtree,
-}
-
-impl MapKind {
-    pub fn name(self) -> &'static str {
-        match self {
-            MapKind::Buffer => "buffer",
-            MapKind::Kdtree => "kdtree",
-        }
+crate::named_enum! {
+    pub enum MapKind {
+        /// The report's per-object 2-D buffer of texels.
+        Buffer = "buffer",
+        /// A kd-tree of individual photons.
+        Kdtree = "kdtree",
     }
 }
+
+impl MapKind {}
 
 pub enum SurfaceMap {
     Buffer { size: DVec2, nu: usize, nv: usize, flux: Vec<[f32; 3]> },

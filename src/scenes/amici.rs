@@ -14,7 +14,6 @@
 //! 1 m away: one image of the tube per spectral line (Picture 1).
 
 use super::{glass_medium, light_spectrum, rotate_z, SceneKind, SceneOptions};
-use crate::optics::glass;
 use crate::optics::ior::IorKind;
 use crate::world::probe::{probe, ProbeRay};
 use crate::world::{Camera, Emission, Face, Light, Medium, Surface, World};
@@ -60,7 +59,7 @@ pub fn build(o: &SceneOptions) -> Result<World> {
     let prism = AmiciPrism::design(o)?;
     let mut scene = World::new(
         o.kind.name(),
-        vec![Medium::Air, glass_medium(&o.crown, o.ior, o.no_dispersion)?, glass_medium(&o.flint, o.ior, o.no_dispersion)?],
+        vec![Medium::Air, glass_medium(o.crown, o.ior, o.no_dispersion), glass_medium(o.flint, o.ior, o.no_dispersion)],
         o.width,
         o.height,
     );
@@ -70,7 +69,7 @@ pub fn build(o: &SceneOptions) -> Result<World> {
     // whatever index model is chosen, so --no-prism, --no-dispersion and
     // every model frame the same view (report 000's Pictures 4, 5 and 6).
     let mut design = scene.clone();
-    design.media = vec![Medium::Air, glass_medium(&o.crown, IorKind::Sellmeier, false)?, glass_medium(&o.flint, IorKind::Sellmeier, false)?];
+    design.media = vec![Medium::Air, glass_medium(o.crown, IorKind::Sellmeier, false), glass_medium(o.flint, IorKind::Sellmeier, false)];
     let d_line = probe(&design, DESIGN_NM);
     if d_line.tir {
         bail!("--incidence: at {:.3} degrees the d line is totally reflected inside the prism", prism.incidence.to_degrees());
@@ -99,7 +98,7 @@ impl AmiciPrism {
     fn design(o: &SceneOptions) -> Result<AmiciPrism> {
         // The prism is designed from the catalogue (Sellmeier), whatever
         // model the renderer then uses for its index.
-        let (nc, nf) = (glass::by_name(&o.crown)?.sellmeier(DESIGN_NM), glass::by_name(&o.flint)?.sellmeier(DESIGN_NM));
+        let (nc, nf) = (o.crown.sellmeier(DESIGN_NM), o.flint.sellmeier(DESIGN_NM));
         if !(0.0 < o.flint_apex_deg && o.flint_apex_deg < 180.0) {
             bail!("--flint-apex: {} degrees is not between 0 and 180", o.flint_apex_deg);
         }
@@ -107,8 +106,8 @@ impl AmiciPrism {
         let Some(a1) = solve_crown_apex(nc, nf, a2) else {
             bail!(
                 "--flint-apex: no crown apex makes {} / {} direct-vision with a {} degree flint (the cemented face would reflect totally)",
-                o.crown,
-                o.flint,
+                o.crown.name,
+                o.flint.name,
                 o.flint_apex_deg
             );
         };

@@ -56,11 +56,11 @@ fn cornell_box(s: &mut World) {
 }
 
 pub fn build(o: &SceneOptions) -> Result<World> {
-    let glass = glass_medium(&o.crown, o.ior, o.no_dispersion)?;
+    let glass = glass_medium(o.crown, o.ior, o.no_dispersion);
     let mut s = super::with_glass(o, glass);
     cornell_box(&mut s);
     s.bounces = 4;
-    let n_d = crate::optics::glass::by_name(&o.crown)?.sellmeier(crate::optics::glass::lines::LD);
+    let n_d = o.crown.sellmeier(crate::optics::glass::lines::LD);
     // The spectrum fans toward the back wall, a little to the right.
     let cross = prism_cross_section(DVec2::new(-0.1, -0.3), 0.3, n_d, 70f64.to_radians());
     if !o.no_prism {
@@ -131,11 +131,11 @@ pub fn build(o: &SceneOptions) -> Result<World> {
 }
 
 pub fn dark_side(o: &SceneOptions) -> Result<World> {
-    let glass = glass_medium(&o.crown, o.ior, o.no_dispersion)?;
+    let glass = glass_medium(o.crown, o.ior, o.no_dispersion);
     let mut s = super::with_glass(o, glass);
     // A dark backdrop the beam grazes, so its path shows (like a light sheet).
     matte(&mut s, "backdrop", DVec3::new(-1.2, -0.9, 0.0), DVec3::new(2.4, 0.0, 0.0), DVec3::new(0.0, 1.8, 0.0), [0.35; 3]);
-    let n_d = crate::optics::glass::by_name(&o.crown)?.sellmeier(crate::optics::glass::lines::LD);
+    let n_d = o.crown.sellmeier(crate::optics::glass::lines::LD);
     // As on the cover: the beam comes up from the left, the fan leaves down to the right.
     let cross = prism_cross_section(DVec2::new(0.0, 0.0), 0.3, n_d, -20f64.to_radians());
     if !o.no_prism {

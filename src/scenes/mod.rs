@@ -9,65 +9,52 @@ pub mod cornell;
 pub mod single_prism;
 pub mod spheres;
 
-use crate::optics::glass;
+use crate::optics::glass::{self, Glass};
 use crate::optics::ior::{IorKind, IorModel};
+use crate::spectrum::spectra::NamedSpectrum;
 use crate::spectrum::Spectrum;
 use crate::world::{Emission, Face, Medium, Surface, World};
 use anyhow::{bail, Result};
 use glam::DVec3;
 
-#[derive(Copy, Clone, Debug, PartialEq, Eq, clap::ValueEnum)]
-pub enum SceneKind {
-    /// Report 000: a white slit beam through an Amici prism onto a screen.
-    AmiciScreen,
-    /// Report 000: a fluorescent tube seen through an Amici prism.
-    AmiciLamp,
-    /// The anchor: a 60 degree prism, a 2 cm beam, a screen 4 m behind.
-    SinglePrism,
-    /// Report 001: a glass sphere before a spherical black-body light, off centre.
-    SphereArealight,
-    /// Report 001: a glass sphere before a polished metal plate reflecting a warm light.
-    SphereMetal,
-    /// Report 001's final image: glass spheres before a bright bar light.
-    SpheresFinal,
-    /// Report 003: a point light and a glass prism in a Cornell box (a faint rainbow).
-    CornellPointlight,
-    /// Report 003: the point light at the end of a mirror tube (a brighter rainbow).
-    CornellMirrorTube,
-    /// Report 003: a laser into a glass prism in a Cornell box.
-    CornellLaser,
-    /// Report 003's album-cover remake: a white beam through a prism fanning into a spectrum.
-    DarkSide,
-}
-
-impl SceneKind {
-    pub fn name(self) -> &'static str {
-        match self {
-            SceneKind::AmiciScreen => "amici-screen",
-            SceneKind::AmiciLamp => "amici-lamp",
-            SceneKind::SinglePrism => "single-prism",
-            SceneKind::SphereArealight => "sphere-arealight",
-            SceneKind::SphereMetal => "sphere-metal",
-            SceneKind::SpheresFinal => "spheres-final",
-            SceneKind::CornellPointlight => "cornell-pointlight",
-            SceneKind::CornellMirrorTube => "cornell-mirror-tube",
-            SceneKind::CornellLaser => "cornell-laser",
-            SceneKind::DarkSide => "dark-side",
-        }
+crate::named_enum! {
+    pub enum SceneKind {
+        /// Report 000: a white slit beam through an Amici prism onto a screen.
+        AmiciScreen = "amici-screen",
+        /// Report 000: a fluorescent tube seen through an Amici prism.
+        AmiciLamp = "amici-lamp",
+        /// The anchor: a 60 degree prism, a 2 cm beam, a screen 4 m behind.
+        SinglePrism = "single-prism",
+        /// Report 001: a glass sphere before a spherical black-body light, off centre.
+        SphereArealight = "sphere-arealight",
+        /// Report 001: a glass sphere before a polished metal plate reflecting a warm light.
+        SphereMetal = "sphere-metal",
+        /// Report 001's final image: glass spheres before a bright bar light.
+        SpheresFinal = "spheres-final",
+        /// Report 003: a point light and a glass prism in a Cornell box (a faint rainbow).
+        CornellPointlight = "cornell-pointlight",
+        /// Report 003: the point light at the end of a mirror tube (a brighter rainbow).
+        CornellMirrorTube = "cornell-mirror-tube",
+        /// Report 003: a laser into a glass prism in a Cornell box.
+        CornellLaser = "cornell-laser",
+        /// Report 003's album-cover remake: a white beam through a prism fanning into a spectrum.
+        DarkSide = "dark-side",
     }
 }
+
+impl SceneKind {}
 
 /// Everything that shapes a scene.
 #[derive(Clone, Debug)]
 pub struct SceneOptions {
     pub kind: SceneKind,
-    /// Crown glass (the single prism's glass).
-    pub crown: String,
-    pub flint: String,
+    /// Crown glass (the single prism's, the spheres' and the Cornell prism's glass).
+    pub crown: &'static Glass,
+    pub flint: &'static Glass,
     pub flint_apex_deg: f64,
     pub ior: IorKind,
-    /// Light spectrum name (see `Spectrum::light`); `None` = the scene's own.
-    pub light: Option<String>,
+    /// The lights' spectrum; `None` = the scene's own.
+    pub light: Option<NamedSpectrum>,
     /// Angle of incidence on the first face, degrees; `None` = the design
     /// (Amici: along the axis; single prism: minimum deviation at d).
     pub incidence_deg: Option<f64>,
@@ -83,8 +70,8 @@ impl SceneOptions {
     pub fn new(kind: SceneKind) -> Self {
         SceneOptions {
             kind,
-            crown: "N-BK7".into(),
-            flint: "N-SF11".into(),
+            crown: glass::by_name("N-BK7").expect("N-BK7 is in the catalogue"),
+            flint: glass::by_name("N-SF11").expect("N-SF11 is in the catalogue"),
             flint_apex_deg: 90.0,
             ior: IorKind::Sellmeier,
             light: None,
@@ -98,10 +85,9 @@ impl SceneOptions {
     }
 }
 
-pub(crate) fn glass_medium(name: &str, kind: IorKind, no_dispersion: bool) -> Result<Medium> {
-    let g = glass::by_name(name)?;
+pub(crate) fn glass_medium(g: &Glass, kind: IorKind, no_dispersion: bool) -> Medium {
     let kind = if no_dispersion { IorKind::Constant } else { kind };
-    Ok(Medium::Glass { name: g.name.clone(), ior: IorModel::for_glass(g, kind) })
+    Medium::Glass { name: g.name.clone(), ior: IorModel::for_glass(g, kind) }
 }
 
 /// An empty world of air and one glass, of the options' image size.
@@ -158,7 +144,10 @@ fn reindex(scene: &mut World) {
 }
 
 pub(crate) fn light_spectrum(o: &SceneOptions, default: &str) -> Result<Spectrum> {
-    Ok(Spectrum::light(o.light.as_deref().unwrap_or(default))?)
+    match &o.light {
+        Some(l) => Ok(l.spectrum.clone()),
+        None => Ok(Spectrum::light(default)?),
+    }
 }
 
 #[cfg(test)]
@@ -181,7 +170,5 @@ mod tests {
         o.flint_apex_deg = 150.0;
         assert!(build(&o).unwrap_err().to_string().contains("--flint-apex"));
         o.flint_apex_deg = 90.0;
-        o.flint = "unobtainium".into();
-        assert!(build(&o).unwrap_err().to_string().contains("unknown glass"));
     }
 }

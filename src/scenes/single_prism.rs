@@ -3,7 +3,7 @@
 //! 4 m behind, perpendicular to the d line; the camera looks at the screen.
 
 use super::{glass_medium, light_spectrum, rotate_z, SceneOptions};
-use crate::optics::glass::{self, lines};
+use crate::optics::glass::lines;
 use crate::optics::ior::IorKind;
 use crate::world::probe::probe;
 use crate::world::{Camera, Emission, Face, Light, Medium, Surface, World};
@@ -11,7 +11,7 @@ use anyhow::{bail, Result};
 use glam::{DVec2, DVec3};
 
 pub fn build(o: &SceneOptions) -> Result<World> {
-    let g = glass_medium(&o.crown, o.ior, o.no_dispersion)?;
+    let g = glass_medium(o.crown, o.ior, o.no_dispersion);
     let apex = 60f64.to_radians();
     let side = 0.05;
     let tall = side * (apex / 2.0).cos();
@@ -20,7 +20,7 @@ pub fn build(o: &SceneOptions) -> Result<World> {
     let mut scene = World::new(o.kind.name(), vec![Medium::Air, g], o.width, o.height);
     scene.add_extruded("prism", &[(tri, 1)], -0.025, 0.025);
     // Placed from the catalogue (Sellmeier) whatever index model renders it.
-    let n_d = glass::by_name(&o.crown)?.sellmeier(lines::LD);
+    let n_d = o.crown.sellmeier(lines::LD);
     let min_dev_incidence = (n_d * (apex / 2.0).sin()).asin();
     let incidence = o.incidence_deg.map_or(min_dev_incidence, f64::to_radians);
     // The left face's inward normal points at -apex/2 from +x.
@@ -29,7 +29,7 @@ pub fn build(o: &SceneOptions) -> Result<World> {
     let start = DVec3::new(face_mid.x, face_mid.y, 0.0) - dir * 0.3;
     scene.probe = (start, dir);
     let mut design = scene.clone();
-    design.media[1] = glass_medium(&o.crown, IorKind::Sellmeier, false)?;
+    design.media[1] = glass_medium(o.crown, IorKind::Sellmeier, false);
     let d_line = probe(&design, lines::LD);
     if d_line.tir {
         bail!("--incidence: at {:.3} degrees the d line is totally reflected inside the prism", incidence.to_degrees());

@@ -35,7 +35,7 @@ fn sphere_light(s: &mut World, o: &SceneOptions, centre: DVec3, radius: f64, def
 /// light of index `n` passing at minimum deviation leaves along `exit`
 /// (radians from +x). Unturned, the apex points +y and that light leaves
 pub fn build(o: &SceneOptions) -> Result<World> {
-    let glass = glass_medium(&o.crown, o.ior, o.no_dispersion)?;
+    let glass = glass_medium(o.crown, o.ior, o.no_dispersion);
     let mut s = super::with_glass(o, glass);
     match o.kind {
         SceneKind::SphereArealight => {

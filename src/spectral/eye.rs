@@ -18,12 +18,13 @@ use crate::world::interface::{cross, Polarisation};
 use crate::world::{Surface, World};
 use glam::{DVec2, DVec3};
 
-#[derive(Copy, Clone, Debug, PartialEq, Eq, clap::ValueEnum)]
-pub enum EyeMode {
-    /// One sampled wavelength goes on (pbrt-v4's hero wavelength).
-    Hero,
-    /// Split into `--split` monochromatic rays at the first dispersive face (report 001).
-    Split,
+crate::named_enum! {
+    pub enum EyeMode {
+        /// One sampled wavelength goes on (pbrt-v4's hero wavelength).
+        Hero = "hero",
+        /// Split into `--split` monochromatic rays at the first dispersive face (report 001).
+        Split = "split",
+    }
 }
 
 const MAX_DEPTH: usize = 64;

@@ -135,16 +135,17 @@ pub fn srgb_encode_odd(c: f64) -> f64 {
     c.signum() * srgb_encode(c.abs())
 }
 
-/// How colours outside the sRGB gamut are brought into the image.
-#[derive(Copy, Clone, Debug, PartialEq, Eq, clap::ValueEnum)]
-pub enum GamutMap {
-    /// Clamp each channel to [0, 1]: hue shifts toward the primaries, so a
-    /// spectrum collapses into a few saturated bands.
-    Clip,
-    /// Keep luminance and hue: mix with the grey of the same luminance until
-    /// no channel is negative, then, if a channel exceeds 1, scale the whole
-    /// colour down (never clip one channel alone).
-    Desaturate,
+crate::named_enum! {
+    /// How colours outside the sRGB gamut are brought into the image.
+    pub enum GamutMap {
+        /// Clamp each channel to [0, 1]: hue shifts toward the primaries, so a
+        /// spectrum collapses into a few saturated bands.
+        Clip = "clip",
+        /// Keep luminance and hue: mix with the grey of the same luminance until
+        /// no channel is negative, then, if a channel exceeds 1, scale the whole
+        /// colour down (never clip one channel alone).
+        Desaturate = "desaturate",
+    }
 }
 
 impl GamutMap {

@@ -22,31 +22,27 @@ use super::cie::{cmf, srgb_decode, GamutMap, LinearRgb, Xyz};
 use glam::DVec3;
 use std::sync::OnceLock;
 
-#[derive(Copy, Clone, Debug, PartialEq, Eq, clap::ValueEnum)]
-pub enum ColorMap {
-    Cie,
-    Buckets81,
-    IfBuckets,
-    Gradient,
-    Hsl,
-    /// Report 003's custom map for its eagle: red (700 nm) through white
-    /// (540 nm) to blue (380 nm).
-    RedWhiteBlue,
+crate::named_enum! {
+    /// How a wavelength becomes a colour on screen.
+    pub enum ColorMap {
+        /// CIE 1931 colour matching (physical; the default).
+        Cie = "cie",
+        /// Report 001: 81 buckets of 5 nm, each the CIE colour of its centre.
+        Buckets81 = "buckets81",
+        /// Report 003: a series of if statements, six flat bands over 380-700 nm.
+        IfBuckets = "if-buckets",
+        /// Report 003: a gradient through the same six colours.
+        Gradient = "gradient",
+        /// Report 003: hue 270 deg at 380 nm to 0 deg at 700 nm in HSL.
+        Hsl = "hsl",
+        /// Report 003's custom map for its eagle: red (700 nm) through white
+        /// (540 nm) to blue (380 nm).
+        RedWhiteBlue = "red-white-blue",
+    }
 }
 
 impl ColorMap {
     pub const ALL: [ColorMap; 6] = [ColorMap::Cie, ColorMap::Buckets81, ColorMap::IfBuckets, ColorMap::Gradient, ColorMap::Hsl, ColorMap::RedWhiteBlue];
-
-    pub fn name(self) -> &'static str {
-        match self {
-            ColorMap::Cie => "cie",
-            ColorMap::Buckets81 => "buckets81",
-            ColorMap::IfBuckets => "if-buckets",
-            ColorMap::Gradient => "gradient",
-            ColorMap::Hsl => "hsl",
-            ColorMap::RedWhiteBlue => "red-white-blue",
-        }
-    }
 
     /// Colour-matching weights of one watt at `nm` as this map colours light
     /// (what a photon of that wavelength adds to the image): the CIE

@@ -26,6 +26,20 @@ pub enum Spectrum {
     Sum(Vec<Spectrum>),
 }
 
+/// A light's spectrum with the name it was chosen by (for records).
+#[derive(Clone, Debug)]
+pub struct NamedSpectrum {
+    pub name: String,
+    pub spectrum: Spectrum,
+}
+
+impl NamedSpectrum {
+    /// Parses a light's name once (see `Spectrum::light`).
+    pub fn parse(name: &str) -> Result<NamedSpectrum, UnknownSpectrum> {
+        Ok(NamedSpectrum { name: name.trim().to_string(), spectrum: Spectrum::light(name)? })
+    }
+}
+
 /// Planck's law: spectral radiance of a black body, W / (m^2 sr m), at
 /// wavelength `nm` and temperature `kelvin`.
 pub fn planck(nm: f64, kelvin: f64) -> f64 {

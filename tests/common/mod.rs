@@ -21,13 +21,20 @@ pub fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
 }
 
-/// Asserts a failed run: non-zero exit, one line naming `needle`, no panic.
+/// Asserts a failed run, no panic, `needle` in the first line of stderr. A
+/// domain error (exit 1) is that one line; a bad command line (exit 2) is
+/// clap's message, which ends with the `--help` hint.
 pub fn assert_clean_failure(o: &Output, needle: &str) {
     let err = stderr(o);
     assert!(!o.status.success(), "expected failure, got success; stderr: {err}");
     assert!(!err.contains("panicked"), "panic: {err}");
-    assert!(err.contains(needle), "expected `{needle}` in: {err}");
-    assert_eq!(err.trim_end().lines().count(), 1, "error should be one line: {err}");
+    let first = err.lines().next().unwrap_or("");
+    assert!(first.contains(needle), "expected `{needle}` in the first line of: {err}");
+    match o.status.code() {
+        Some(1) => assert_eq!(err.trim_end().lines().count(), 1, "error should be one line: {err}"),
+        Some(2) => assert!(err.trim_end().ends_with("For more information, try '--help'."), "clap's hint is kept: {err}"),
+        c => panic!("exit code {c:?}: {err}"),
+    }
 }
 
 /// A P6 image read back: (width, height, bytes).

@@ -1,8 +1,13 @@
 //! Report 004's input format: thirteen answers on standard input, asked in
 //! the report's order. A bad answer is asked again with a one-line reason;
-//! input that ends early is an error naming the unanswered prompt.
+//! input that ends early is an error naming the unanswered prompt. Each
+//! answer is checked by its parameter's row in `interior::PARAMS`, so a
+//! prompt accepts exactly what the flag and the scene files accept.
 
-use super::config::{self, InteriorConfig};
+use super::interior::PARAMS;
+use super::{channel, find, parse_real, Param};
+use crate::interior::config::InteriorConfig;
+use crate::mesh::source::MeshSource;
 use std::io::{BufRead, Write};
 
 #[derive(Debug, thiserror::Error)]
@@ -30,36 +35,56 @@ fn ask<T>(input: &mut dyn BufRead, out: &mut dyn Write, prompt: &str, parse: imp
     }
 }
 
+fn row(key: &str) -> &'static Param<InteriorConfig> {
+    find(PARAMS, key).unwrap_or(&PARAMS[0])
+}
+
+/// Asks for the value of parameter `key` and sets it on `c`.
+fn ask_param(input: &mut dyn BufRead, out: &mut dyn Write, prompt: &str, key: &str, c: &mut InteriorConfig) -> Result<(), PromptError> {
+    let p = row(key);
+    let v = ask(input, out, prompt, |s| p.kind.parse_text(s))?;
+    (p.set)(c, &v);
+    Ok(())
+}
+
+/// The report's "0 = No, 1 = Yes".
+fn yes_no(s: &str) -> Result<bool, String> {
+    match s.trim() {
+        "0" => Ok(false),
+        "1" => Ok(true),
+        o => Err(format!("`{o}` is not 0 (no) or 1 (yes)")),
+    }
+}
+
 /// Fills the report's thirteen fields of `base` from the answers; the other
 /// settings (shininess, size, ...) stay as `base` has them.
 pub fn ask_all(input: &mut dyn BufRead, out: &mut dyn Write, base: InteriorConfig) -> Result<InteriorConfig, PromptError> {
     let mut c = base;
-    c.max_trace = ask(input, out, "Maximum ray trace count", config::trace_count)?;
-    c.opacity = ask(input, out, "Opacity of object (0-100)", config::opacity)?;
+    ask_param(input, out, "Maximum ray trace count", "trace", &mut c)?;
+    ask_param(input, out, "Opacity of object (0-100)", "opacity", &mut c)?;
     writeln!(out, "RGB color of object, int in [0,255]")?;
-    let r = ask(input, out, "R", config::channel)?;
-    let g = ask(input, out, "G", config::channel)?;
-    let b = ask(input, out, "B", config::channel)?;
+    let r = ask(input, out, "R", channel)?;
+    let g = ask(input, out, "G", channel)?;
+    let b = ask(input, out, "B", channel)?;
     c.color = [r, g, b];
-    c.out = ask(input, out, "File name of output file", config::out_path)?;
-    c.off = ask(input, out, "File name of .off file", config::in_path)?;
-    c.coff = ask(input, out, "Is entered .off file in color off format? (0 = No, 1 = Yes)", config::yes_no)?;
-    c.scale = ask(input, out, "Scale Factor", config::scale)?;
-    let x = ask(input, out, "X rotation (degrees)", config::finite)?;
-    let y = ask(input, out, "Y rotation (degrees)", config::finite)?;
-    let z = ask(input, out, "Z rotation (degrees)", config::finite)?;
-    c.rot = glam::Vec3::new(x, y, z);
-    c.ior = ask(input, out, "Refractive Index", config::ior)?;
+    c.out = ask(input, out, "File name of output file", super::out_path)?;
+    c.off = ask(input, out, "File name of .off file", |s| super::in_path(s).map(MeshSource::File))?;
+    c.coff = ask(input, out, "Is entered .off file in color off format? (0 = No, 1 = Yes)", yes_no)?;
+    ask_param(input, out, "Scale Factor", "scale", &mut c)?;
+    let x = ask(input, out, "X rotation (degrees)", parse_real)?;
+    let y = ask(input, out, "Y rotation (degrees)", parse_real)?;
+    let z = ask(input, out, "Z rotation (degrees)", parse_real)?;
+    c.rot = glam::DVec3::new(x, y, z).as_vec3();
+    ask_param(input, out, "Refractive Index", "ior", &mut c)?;
     Ok(c)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use std::path::PathBuf;
 
     fn base() -> InteriorConfig {
-        InteriorConfig::with_defaults(PathBuf::new(), PathBuf::new())
+        crate::params::interior::defaults()
     }
 
     #[test]
@@ -73,11 +98,11 @@ mod tests {
         let shown = String::from_utf8(out).unwrap();
         for reason in [
             "`x` is not a whole number",
-            "opacity 150 is outside 0-100",
+            "150 is not between 0 and 100",
             "999 is outside 0-255",
             "no such file",
             "`2` is not 0 (no) or 1 (yes)",
-            "scale 0 must be > 0",
+            "0 is not greater than 0",
             "`zero` is not a number",
         ] {
             assert!(shown.contains(reason), "missing `{reason}` in:\n{shown}");

@@ -1,24 +1,24 @@
 //! The command line: clap derive structs whose doc comments are the help
 //! text, turned into validated configurations and handed to the library.
 
-use crate::geometry::AccelKind;
-use crate::interior::config::{self as icfg, InteriorConfig, SceneKind, SpecularOpacity};
-use crate::interior::{self, prompts};
+pub mod param_args;
+
 use crate::optics::glass;
 use crate::optics::ior::{IorKind, IorModel};
-use crate::photon::gather::Filter;
-use crate::photon::map::MapKind;
-use crate::scenes::{SceneKind as WorldKind, SceneOptions};
-use crate::spectral::eye::EyeMode;
-use crate::spectrum::cie::GamutMap;
 use crate::spectrum::cie::{cmf, srgb_encode_odd, Xyz};
 use crate::spectrum::Spectrum;
 use anyhow::{bail, Context, Result};
 use clap::{Args, Parser, Subcommand};
+use param_args::Given;
 use std::path::PathBuf;
 
 #[derive(Parser, Debug)]
-#[command(name = "refract", version, about = "Rendering light through transparent objects: four student reports reproduced as an experiment harness.")]
+#[command(
+    name = "refract",
+    version,
+    about = "Rendering light through transparent objects: four student reports reproduced as an experiment harness.",
+    arg_required_else_help = true
+)]
 pub struct Cli {
     #[command(subcommand)]
     pub command: Command,
@@ -112,9 +112,13 @@ pub struct PrismArgs {
     #[command(subcommand)]
     pub probe: Option<PrismCommand>,
     #[command(flatten)]
-    pub scene: WorldArgs,
-    #[command(flatten)]
-    pub render: SpectralRenderArgs,
+    pub params: Given<param_args::Prism>,
+    /// Output image: .png, .ppm (display) or .pfm (linear sRGB)
+    #[arg(long, default_value = "results/prism.png", help_heading = "Output")]
+    pub out: PathBuf,
+    /// Append one timing row to this CSV
+    #[arg(long, value_name = "FILE", help_heading = "Output")]
+    pub timing_csv: Option<PathBuf>,
 }
 
 #[derive(Subcommand, Debug)]
@@ -124,101 +128,11 @@ pub enum PrismCommand {
     /// (counter-clockwise positive, toward the crown apices), transmittance.
     Trace {
         #[command(flatten)]
-        scene: WorldArgs,
+        scene: Given<param_args::PrismScene>,
         /// Wavelengths in nm, comma-separated
         #[arg(long, value_delimiter = ',', value_parser = parse_visible_nm, default_value = "486.1327,587.5618,656.2725")]
         wavelengths: Vec<f64>,
     },
-}
-
-/// What shapes the prism scene (shared by rendering and the probe).
-#[derive(Args, Debug, Clone)]
-pub struct WorldArgs {
-    /// Scene: amici-screen (rainbow strip), amici-lamp (a CFL seen through the prism), single-prism (60 degrees)
-    #[arg(long, value_enum, default_value_t = WorldKind::AmiciScreen)]
-    pub scene: WorldKind,
-    /// Crown glass (the single prism's glass); see `refract glass --list`
-    #[arg(long, default_value = "N-BK7")]
-    pub glass: String,
-    /// Flint glass of the Amici prism
-    #[arg(long, default_value = "N-SF11")]
-    pub flint: String,
-    /// Flint apex angle in degrees (the crown apex is then solved for no deviation at the d line)
-    #[arg(long, default_value_t = 90.0, allow_negative_numbers = true)]
-    pub flint_apex: f64,
-    /// Index-of-refraction model of the glasses
-    #[arg(long, value_enum, default_value_t = IorKind::Sellmeier)]
-    pub ior_model: IorKind,
-    /// Angle of incidence on the first face, degrees [default: the design: along the Amici's axis; minimum deviation at d for the single prism]
-    #[arg(long, allow_negative_numbers = true)]
-    pub incidence: Option<f64>,
-    /// Leave the prism out (report 000's "image before dispersion")
-    #[arg(long)]
-    pub no_prism: bool,
-    /// Hold the index at n_d for every wavelength ("image with no dispersion effect")
-    #[arg(long)]
-    pub no_dispersion: bool,
-    /// A Wavefront OBJ mesh (in metres) of --glass that replaces the prism; its winding is made consistent and outward
-    #[arg(long, value_name = "FILE")]
-    pub obj: Option<PathBuf>,
-}
-
-#[derive(Args, Debug)]
-pub struct SpectralRenderArgs {
-    /// Light spectrum: d65, e, fl1..fl12, fl3.1..fl3.15, cfl-lines, blackbody:K, laser:NM [default: d65 beams, cfl-lines lamp]
-    #[arg(long)]
-    pub light: Option<String>,
-    /// Photons traced in the light pass
-    #[arg(long, default_value_t = 1_000_000, allow_negative_numbers = true)]
-    pub photons: u64,
-    /// Photon map: the report's per-object buffer or a kd-tree
-    #[arg(long, value_enum, default_value_t = MapKind::Kdtree)]
-    pub map: MapKind,
-    /// Density-estimation filter
-    #[arg(long, value_enum, default_value_t = Filter::Cone)]
-    pub filter: Filter,
-    /// Gather radius in metres [default: two pixels' footprint on the screen]
-    #[arg(long, allow_negative_numbers = true)]
-    pub radius: Option<f64>,
-    /// Gather the k nearest photons instead of a fixed radius (kd-tree only)
-    #[arg(long, allow_negative_numbers = true)]
-    pub k: Option<usize>,
-    /// Image size W,H in pixels
-    #[arg(long, value_name = "W,H", default_value = "640,240", value_parser = parse_size)]
-    pub size: [usize; 2],
-    /// Samples per pixel of the eye pass
-    #[arg(long, default_value_t = 4, allow_negative_numbers = true)]
-    pub spp: u32,
-    /// Seed of every random choice (same seed, same image, any thread count)
-    #[arg(long, default_value_t = 0)]
-    pub seed: u64,
-    /// Worker threads; 0 = all cores
-    #[arg(long, default_value_t = 0)]
-    pub threads: usize,
-    /// Eye rays at a dispersive face: one hero wavelength goes on, or split into --split rays (report 001)
-    #[arg(long, value_enum, default_value_t = EyeMode::Hero)]
-    pub eye: EyeMode,
-    /// Monochromatic rays per split with --eye split
-    #[arg(long, default_value_t = 8, allow_negative_numbers = true)]
-    pub split: u32,
-    /// Exposure multiplier [default: automatic, the 99.5th percentile at full scale]
-    #[arg(long, allow_negative_numbers = true)]
-    pub exposure: Option<f64>,
-    /// Multiplies the automatic exposure (over-expose like a photograph: dim lines show, bright ones saturate)
-    #[arg(long, default_value_t = 1.0, allow_negative_numbers = true)]
-    pub exposure_gain: f64,
-    /// Out-of-gamut colours: desaturate at equal luminance, or clip each channel
-    #[arg(long, value_enum, default_value_t = GamutMap::Desaturate)]
-    pub gamut: GamutMap,
-    /// Wavelength to colour: CIE (physical) or one of reports 001/003's maps
-    #[arg(long, value_enum, default_value_t = crate::spectrum::colormap::ColorMap::Cie)]
-    pub colours: crate::spectrum::colormap::ColorMap,
-    /// Output image: .png, .ppm (display) or .pfm (linear sRGB)
-    #[arg(long, default_value = "results/prism.png")]
-    pub out: PathBuf,
-    /// Append one timing row to this CSV
-    #[arg(long, value_name = "FILE")]
-    pub timing_csv: Option<PathBuf>,
 }
 
 fn parse_visible_nm(s: &str) -> Result<f64, String> {
@@ -227,25 +141,6 @@ fn parse_visible_nm(s: &str) -> Result<f64, String> {
         return Err(format!("{v} nm is outside 360-830 nm"));
     }
     Ok(v)
-}
-
-impl WorldArgs {
-    fn options(&self, size: [usize; 2], light: Option<String>) -> SceneOptions {
-        SceneOptions {
-            kind: self.scene,
-            crown: self.glass.clone(),
-            flint: self.flint.clone(),
-            flint_apex_deg: self.flint_apex,
-            ior: self.ior_model,
-            light,
-            incidence_deg: self.incidence,
-            no_prism: self.no_prism,
-            no_dispersion: self.no_dispersion,
-            obj: self.obj.clone(),
-            width: size[0],
-            height: size[1],
-        }
-    }
 }
 
 #[derive(Args, Debug)]
@@ -331,7 +226,7 @@ pub struct GlassArgs {
     #[arg(required_unless_present = "list")]
     pub name: Option<String>,
     /// IOR model
-    #[arg(long, value_enum, default_value_t = IorKind::Sellmeier)]
+    #[arg(long, value_parser = param_args::named::<IorKind>(), default_value = "sellmeier", ignore_case = true)]
     pub model: IorKind,
     /// Wavelengths in nm, comma-separated [default: the C, d and F lines]
     #[arg(long, value_delimiter = ',', value_parser = parse_wavelength, default_value = "656.2725,587.5618,486.1327")]
@@ -349,173 +244,38 @@ fn parse_wavelength(s: &str) -> Result<f64, String> {
     Ok(v)
 }
 
-/// Flags of `refract interior`. The first group mirrors the report's
-/// prompts; giving any of them selects flag mode, where --off is required
-/// and the rest take the report's defaults.
+/// Flags of `refract interior`. Giving any of the report's prompt flags
+/// (--trace ... --ior, or --out) selects flag mode, where --off is required
+/// and the rest take the report's defaults; otherwise the 13 questions are
+/// asked on standard input.
 #[derive(Args, Debug)]
 pub struct InteriorArgs {
-    /// Maximum ray trace count: refracted/reflected rays followed after the first hit [default: 0]
-    #[arg(long, value_parser = icfg::trace_count, allow_negative_numbers = true)]
-    pub trace: Option<u32>,
-    /// Opacity of the object, 0-100 [default: 25]
-    #[arg(long, value_parser = icfg::opacity, allow_negative_numbers = true)]
-    pub opacity: Option<f32>,
-    /// Object colour R,G,B, integers 0-255 [default: 255,255,255]
-    #[arg(long, value_name = "R,G,B", value_parser = parse_rgb, allow_hyphen_values = true)]
-    pub color: Option<[u8; 3]>,
+    #[command(flatten)]
+    pub params: Given<param_args::Interior>,
     /// Output image: .png, anything else is written as binary PPM (P6) [default: results/interior.png]
-    #[arg(long)]
+    #[arg(long, help_heading = crate::params::interior::PROMPTS)]
     pub out: Option<PathBuf>,
-    /// The OFF or COFF mesh to render (required in flag mode)
-    #[arg(long)]
-    pub off: Option<PathBuf>,
-    /// Use the colours stored in the OFF file (the report's "colour OFF" answer 1)
-    #[arg(long)]
-    pub coff: bool,
-    /// Scale factor: the mesh is normalised to radius 1, then scaled [default: 1]
-    #[arg(long, value_parser = icfg::scale, allow_negative_numbers = true)]
-    pub scale: Option<f32>,
-    /// Rotations X,Y,Z in degrees, applied X then Y then Z [default: 0,0,0]
-    #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true)]
-    pub rot: Option<[f32; 3]>,
-    /// Refractive index of the object (> 0; below 1 acts like a mirror) [default: 1.4]
-    #[arg(long, value_parser = icfg::ior, allow_negative_numbers = true)]
-    pub ior: Option<f32>,
-
-    /// Shininess n in cos^n(alpha)
-    #[arg(long, default_value_t = 16.0, allow_negative_numbers = true)]
-    pub shininess: f32,
-    /// Distance attenuation constant c in 1/(1 + c d^2); 0 = none (the mesh has radius 1)
-    #[arg(long, default_value_t = 1.0, allow_negative_numbers = true)]
-    pub atten: f32,
-    /// Light position X,Y,Z in scene units [default: the mesh's centre, (0,0,-2)]
-    #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true)]
-    pub light: Option<[f32; 3]>,
-    /// Ambient coefficient Ka
-    #[arg(long, default_value_t = 0.1, allow_negative_numbers = true)]
-    pub ka: f32,
-    /// Diffuse coefficient Kd
-    #[arg(long, default_value_t = 0.5, allow_negative_numbers = true)]
-    pub kd: f32,
-    /// Specular coefficient Ks
-    #[arg(long, default_value_t = 0.8, allow_negative_numbers = true)]
-    pub ks: f32,
-    /// Image size W,H in pixels
-    #[arg(long, value_name = "W,H", default_value = "401,401", value_parser = parse_size)]
-    pub size: [usize; 2],
-    /// Background colour R,G,B (0-255), seen where rays leave the scene
-    #[arg(long, value_name = "R,G,B", default_value = "0,0,0", value_parser = parse_rgb)]
-    pub background: [u8; 3],
-    /// How specular light is composited when the trace count is above 0: `report` (scaled by opacity) or `fixed` (the report's fix)
-    #[arg(long, value_enum, default_value_t = SpecularOpacity::Report)]
-    pub specular_opacity: SpecularOpacity,
-    /// Scene around the mesh
-    #[arg(long, value_enum, default_value_t = SceneKind::Mesh)]
-    pub scene: SceneKind,
-    /// Intersection back-end: `bvh` or the report's `linear` scan (identical images)
-    #[arg(long, value_enum, default_value_t = AccelKind::Bvh)]
-    pub accel: AccelKind,
-    /// Worker threads; 0 = all cores (the image is the same for any count)
-    #[arg(long, default_value_t = 0)]
-    pub threads: usize,
-    /// Samples per pixel: 1 = the pixel centre, as the report; more are jittered using --seed
-    #[arg(long, default_value_t = 1)]
-    pub spp: u32,
-    /// Seed of the sub-pixel jitter (used when --spp > 1)
-    #[arg(long, default_value_t = 0)]
-    pub seed: u64,
-    /// Distance a followed ray starts off its surface, in scene units
-    #[arg(long, default_value_t = 1e-4, allow_negative_numbers = true)]
-    pub offset: f32,
     /// Append one timing row (mode, mesh, triangles, ..., rays_per_s) to this CSV
-    #[arg(long, value_name = "FILE")]
+    #[arg(long, value_name = "FILE", help_heading = "Output")]
     pub timing_csv: Option<PathBuf>,
-}
-
-fn parse_rgb(s: &str) -> Result<[u8; 3], String> {
-    icfg::triple(s, icfg::channel)
-}
-
-fn parse_vec3(s: &str) -> Result<[f32; 3], String> {
-    icfg::triple(s, icfg::finite)
-}
-
-fn parse_size(s: &str) -> Result<[usize; 2], String> {
-    let parts: Vec<&str> = s.split(',').collect();
-    let dim = |t: &str| t.trim().parse::<usize>().ok().filter(|v| (1..=16384).contains(v));
-    match parts.as_slice() {
-        [w, h] => match (dim(w), dim(h)) {
-            (Some(w), Some(h)) => Ok([w, h]),
-            _ => Err(format!("`{s}`: width and height must be whole numbers from 1 to 16384")),
-        },
-        _ => Err(format!("`{s}` is not W,H")),
-    }
 }
 
 impl InteriorArgs {
     /// True when any of the report's prompt flags was given.
     fn flag_mode(&self) -> bool {
-        self.trace.is_some()
-            || self.opacity.is_some()
-            || self.color.is_some()
-            || self.out.is_some()
-            || self.off.is_some()
-            || self.coff
-            || self.scale.is_some()
-            || self.rot.is_some()
-            || self.ior.is_some()
-    }
-
-    /// The configuration with the non-prompt settings from the flags.
-    fn base(&self) -> InteriorConfig {
-        let mut c = InteriorConfig::with_defaults(PathBuf::new(), PathBuf::from("results/interior.png"));
-        c.shininess = self.shininess;
-        c.atten = self.atten;
-        c.light = self.light.map(glam::Vec3::from);
-        c.ka = self.ka;
-        c.kd = self.kd;
-        c.ks = self.ks;
-        [c.width, c.height] = self.size;
-        c.background = self.background;
-        c.specular_opacity = self.specular_opacity;
-        c.scene = self.scene;
-        c.accel = self.accel;
-        c.threads = self.threads;
-        c.spp = self.spp;
-        c.seed = self.seed;
-        c.offset = self.offset;
-        c
+        let prompt = |k: &str| crate::params::find(crate::params::interior::PARAMS, k).is_some_and(|p| p.section == crate::params::interior::PROMPTS);
+        self.out.is_some() || self.params.values.iter().any(|(k, _)| prompt(k))
     }
 
     /// Flag mode: the report's fields from flags or their defaults.
-    fn flag_config(&self) -> Result<InteriorConfig> {
-        let mut c = self.base();
-        let Some(off) = &self.off else {
+    fn flag_config(&self) -> Result<crate::interior::InteriorConfig> {
+        if !self.params.has("off") {
             bail!("--off FILE is required when any of the report's flags (--trace, --opacity, --color, --out, --coff, --scale, --rot, --ior) is given");
-        };
-        c.off = off.clone();
-        if let Some(v) = self.trace {
-            c.max_trace = v;
         }
-        if let Some(v) = self.opacity {
-            c.opacity = v;
-        }
-        if let Some(v) = self.color {
-            c.color = v;
-        }
+        let mut c = self.params.config();
         match &self.out {
-            Some(o) => c.out = icfg::out_path(&o.to_string_lossy()).map_err(|e| anyhow::anyhow!("--out: {e}"))?,
+            Some(o) => c.out = crate::params::out_path(&o.to_string_lossy()).map_err(|e| anyhow::anyhow!("--out: {e}"))?,
             None => std::fs::create_dir_all("results").context("cannot create results/")?,
-        }
-        c.coff = self.coff;
-        if let Some(v) = self.scale {
-            c.scale = v;
-        }
-        if let Some(v) = self.rot {
-            c.rot = v.into();
-        }
-        if let Some(v) = self.ior {
-            c.ior = v;
         }
         Ok(c)
     }
@@ -545,7 +305,7 @@ pub fn run(cli: Cli) -> Result<()> {
                     PathBuf::from("results").join(format!("{}.png", scene.id))
                 }
             };
-            let secs = scene.render(&out)?;
+            let secs = scene.render(&out, &crate::terminal::Bars::new())?;
             eprintln!("wrote {} ({secs:.2} s)", out.display());
             Ok(())
         }
@@ -564,18 +324,17 @@ fn run_interior(args: InteriorArgs) -> Result<()> {
         let stdin = std::io::stdin();
         let mut input = stdin.lock();
         let mut out = std::io::stdout();
-        prompts::ask_all(&mut input, &mut out, args.base())?
+        crate::params::prompts::ask_all(&mut input, &mut out, args.params.config())?
     };
-    cfg.validate().map_err(anyhow::Error::msg)?;
     if let Some(path) = &args.timing_csv {
-        crate::timing::check_header(path, &interior::TIMING_HEADER)?;
+        crate::timing::check_header(path, &crate::interior::TIMING_HEADER)?;
     }
-    let report = interior::run(&cfg)?;
+    let report = crate::interior::run(&cfg)?;
     for n in &report.notes {
         eprintln!("note: {n}");
     }
     if let Some(path) = &args.timing_csv {
-        interior::append_timing(path, &cfg, &report)?;
+        crate::interior::append_timing(path, &cfg, &report)?;
     }
     eprintln!(
         "wrote {} ({}x{}, {} triangles, {:.3} s render, {:.2} M rays/s on {} threads)",
@@ -681,7 +440,7 @@ fn run_glass(args: GlassArgs) -> Result<()> {
 
 fn run_prism(args: PrismArgs) -> Result<()> {
     if let Some(PrismCommand::Trace { scene, wavelengths }) = args.probe {
-        let built = crate::scenes::build(&scene.options([64, 64], None))?;
+        let built = crate::scenes::build(&scene.config().scene)?;
         let mut o = String::new();
         outln!(o, "wavelength_nm,exit_x,exit_y,exit_z,deviation_deg,transmittance");
         for nm in wavelengths {
@@ -694,22 +453,9 @@ fn run_prism(args: PrismArgs) -> Result<()> {
         }
         return write_stdout(&o);
     }
-    let r = args.render;
-    let mut cfg = crate::spectral::SpectralConfig::new(args.scene.options(r.size, r.light.clone()), r.out.clone());
-    cfg.photons = r.photons;
-    cfg.map = r.map;
-    cfg.filter = r.filter;
-    cfg.radius = r.radius;
-    cfg.k = r.k;
-    cfg.spp = r.spp;
-    cfg.seed = r.seed;
-    cfg.threads = r.threads;
-    cfg.eye = r.eye;
-    cfg.split = r.split;
-    cfg.exposure = r.exposure;
-    cfg.exposure_gain = r.exposure_gain;
-    cfg.gamut = r.gamut;
-    cfg.colours = r.colours;
+    let mut cfg = args.params.config();
+    cfg.out = args.out.clone();
+    cfg.validate()?;
     if let Some(parent) = cfg.out.parent() {
         if cfg.out.starts_with("results") && !parent.as_os_str().is_empty() {
             std::fs::create_dir_all(parent).with_context(|| format!("cannot create {}", parent.display()))?;
@@ -717,11 +463,11 @@ fn run_prism(args: PrismArgs) -> Result<()> {
             bail!("--out: folder {} does not exist", parent.display());
         }
     }
-    if let Some(path) = &r.timing_csv {
+    if let Some(path) = &args.timing_csv {
         crate::timing::check_header(path, &crate::spectral::TIMING_HEADER)?;
     }
     let report = crate::spectral::run(&cfg, &crate::terminal::Bars::new())?;
-    if let Some(path) = &r.timing_csv {
+    if let Some(path) = &args.timing_csv {
         crate::spectral::append_timing(path, &cfg, &report)?;
     }
     let s = &report.render.stats;

@@ -1,0 +1,161 @@
+//! The modes' flags, made from the parameter tables (`crate::params`): each
+//! row becomes one clap argument with its help, unit, range, default and
+//! (for choices) every possible value with its description. What the user
+//! typed comes back as checked values, applied to the mode's defaults by
+//! the same row that scene files use.
+
+use crate::params::{self, Kind, Param, Value};
+use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
+use clap::parser::ValueSource;
+use clap::{Arg, ArgAction, ArgMatches, Command};
+use std::marker::PhantomData;
+
+/// A set of rows offered as flags.
+pub trait ParamSet: 'static {
+    type Config: 'static;
+    fn params() -> Vec<&'static Param<Self::Config>>;
+    fn defaults() -> Self::Config;
+}
+
+/// Every parameter of a spectral run.
+#[derive(Clone, Debug)]
+pub struct Prism;
+/// The parameters that shape a prism scene (for `prism trace`).
+#[derive(Clone, Debug)]
+pub struct PrismScene;
+/// Every parameter of an interior run.
+#[derive(Clone, Debug)]
+pub struct Interior;
+
+impl ParamSet for Prism {
+    type Config = crate::spectral::SpectralConfig;
+    fn params() -> Vec<&'static Param<Self::Config>> {
+        params::prism::PARAMS.iter().collect()
+    }
+    fn defaults() -> Self::Config {
+        params::prism::defaults()
+    }
+}
+
+impl ParamSet for PrismScene {
+    type Config = crate::spectral::SpectralConfig;
+    fn params() -> Vec<&'static Param<Self::Config>> {
+        params::prism::PARAMS.iter().filter(|p| params::prism::is_scene(p)).collect()
+    }
+    fn defaults() -> Self::Config {
+        params::prism::defaults()
+    }
+}
+
+impl ParamSet for Interior {
+    type Config = crate::interior::InteriorConfig;
+    fn params() -> Vec<&'static Param<Self::Config>> {
+        params::interior::PARAMS.iter().collect()
+    }
+    fn defaults() -> Self::Config {
+        params::interior::defaults()
+    }
+}
+
+/// The parameters given on the command line (defaults are not listed:
+/// the configuration already has them).
+#[derive(Clone, Debug)]
+pub struct Given<S> {
+    pub values: Vec<(&'static str, Value)>,
+    set: PhantomData<S>,
+}
+
+impl<S: ParamSet> Given<S> {
+    /// Sets every given value on `c`.
+    pub fn apply(&self, c: &mut S::Config) {
+        for (key, v) in &self.values {
+            if let Some(p) = S::params().into_iter().find(|p| p.key == *key) {
+                (p.set)(c, v);
+            }
+        }
+    }
+
+    /// The defaults with the given values set.
+    pub fn config(&self) -> S::Config {
+        let mut c = S::defaults();
+        self.apply(&mut c);
+        c
+    }
+
+    pub fn has(&self, key: &str) -> bool {
+        self.values.iter().any(|(k, _)| *k == key)
+    }
+}
+
+/// One row as a clap argument.
+fn arg<C>(p: &'static Param<C>, defaults: &C) -> Arg {
+    let mut help = p.help.to_string();
+    if !p.unit.is_empty() {
+        help.push_str(&format!(" [unit: {}]", p.unit));
+    }
+    let range = p.kind.range();
+    if !range.is_empty() {
+        help.push_str(&format!(" [range: {range}]"));
+    }
+    let mut a = Arg::new(p.key).long(p.flag()).help_heading(p.section);
+    for alias in p.aliases {
+        a = a.alias(alias.replace('_', "-"));
+    }
+    let kind = p.kind;
+    a = match kind {
+        Kind::Flag => a.action(ArgAction::SetTrue),
+        Kind::Choice(list) => {
+            let values = list().into_iter().map(|(name, about)| PossibleValue::new(name).help(about));
+            a.value_parser(PossibleValuesParser::new(values).try_map(move |s: String| kind.parse_text(&s))).ignore_case(true).value_name("NAME")
+        }
+        _ => a.value_parser(move |s: &str| kind.parse_text(s)).value_name(kind.value_name()).allow_hyphen_values(true),
+    };
+    match ((p.get)(defaults), p.default_text(defaults)) {
+        (Some(Value::Flag(_)), _) | (_, None) => {}
+        (Some(_), Some(d)) => a = a.default_value(d),
+        (None, Some(auto)) => help.push_str(&format!(" [default: {auto}]")),
+    }
+    a.help(help)
+}
+
+impl<S: ParamSet> clap::FromArgMatches for Given<S> {
+    fn from_arg_matches(m: &ArgMatches) -> Result<Self, clap::Error> {
+        let mut values = Vec::new();
+        for p in S::params() {
+            if m.value_source(p.key) != Some(ValueSource::CommandLine) {
+                continue;
+            }
+            let v = match p.kind {
+                Kind::Flag => Some(Value::Flag(m.get_flag(p.key))),
+                _ => m.get_one::<Value>(p.key).cloned(),
+            };
+            if let Some(v) = v {
+                values.push((p.key, v));
+            }
+        }
+        Ok(Given { values, set: PhantomData })
+    }
+
+    fn update_from_arg_matches(&mut self, m: &ArgMatches) -> Result<(), clap::Error> {
+        *self = Self::from_arg_matches(m)?;
+        Ok(())
+    }
+}
+
+impl<S: ParamSet> clap::Args for Given<S> {
+    fn augment_args(cmd: Command) -> Command {
+        let defaults = S::defaults();
+        S::params().into_iter().fold(cmd, |cmd, p| cmd.arg(arg(p, &defaults)))
+    }
+
+    fn augment_args_for_update(cmd: Command) -> Command {
+        Self::augment_args(cmd)
+    }
+}
+
+/// A clap value parser for a `Named` enum: its names as possible values,
+/// each with its description.
+pub fn named<T: crate::names::Named + Send + Sync>() -> impl TypedValueParser<Value = T> {
+    let values = T::choices().into_iter().map(|(name, about)| PossibleValue::new(name).help(about));
+    PossibleValuesParser::new(values).try_map(|s: String| T::from_name(&s).ok_or_else(|| format!("`{s}` is not a valid name")))
+}

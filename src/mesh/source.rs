@@ -1,0 +1,68 @@
+//! Where a mesh comes from: an OFF file, or a shape generated in code for
+//! sweeps over mesh size (`icosphere:S`, `torus:N`). Parsed once, where
+//! the user names it.
+
+use super::{generate, off::read_off, Mesh};
+use std::fmt;
+use std::path::PathBuf;
+
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+pub enum MeshSource {
+    /// An OFF or COFF file.
+    File(PathBuf),
+    /// A unit icosphere of S subdivisions (20 * 4^S triangles), 0-8.
+    Icosphere(u32),
+    /// A torus of N x N/2 quads, N from 3 to 4096.
+    Torus(u32),
+}
+
+impl MeshSource {
+    /// `icosphere:S`, `torus:N`, or a file name.
+    pub fn parse(s: &str) -> Result<MeshSource, String> {
+        let s = s.trim();
+        if s.is_empty() {
+            return Err("the file name is empty".into());
+        }
+        if let Some(n) = s.strip_prefix("icosphere:") {
+            return n.parse().ok().filter(|n| *n <= 8).map(MeshSource::Icosphere).ok_or_else(|| format!("`{s}`: icosphere subdivisions must be 0-8"));
+        }
+        if let Some(n) = s.strip_prefix("torus:") {
+            return n.parse().ok().filter(|n| (3..=4096).contains(n)).map(MeshSource::Torus).ok_or_else(|| format!("`{s}`: torus segments must be 3-4096"));
+        }
+        Ok(MeshSource::File(PathBuf::from(s)))
+    }
+
+    pub fn load(&self) -> anyhow::Result<Mesh> {
+        Ok(match self {
+            MeshSource::File(p) => read_off(p)?,
+            MeshSource::Icosphere(n) => generate::icosphere(*n),
+            MeshSource::Torus(n) => generate::torus(*n, n / 2).to_mesh(),
+        })
+    }
+}
+
+impl fmt::Display for MeshSource {
+    fn fmt(&self, f: &mut fmt::Formatter) -> fmt::Result {
+        match self {
+            MeshSource::File(p) => write!(f, "{}", p.display()),
+            MeshSource::Icosphere(n) => write!(f, "icosphere:{n}"),
+            MeshSource::Torus(n) => write!(f, "torus:{n}"),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn parses_files_and_generated_shapes() {
+        assert_eq!(MeshSource::parse("icosphere:3"), Ok(MeshSource::Icosphere(3)));
+        assert_eq!(MeshSource::parse("torus:48"), Ok(MeshSource::Torus(48)));
+        assert_eq!(MeshSource::parse("off/cube.off"), Ok(MeshSource::File("off/cube.off".into())));
+        assert!(MeshSource::parse("icosphere:9").unwrap_err().contains("0-8"));
+        assert!(MeshSource::parse("torus:2").is_err() && MeshSource::parse(" ").is_err());
+        assert_eq!(MeshSource::Icosphere(2).load().unwrap().triangles.len(), 320);
+        assert_eq!(MeshSource::parse("icosphere:4").unwrap().to_string(), "icosphere:4");
+    }
+}

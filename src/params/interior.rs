@@ -1,0 +1,300 @@
+//! The parameters of an interior run (report 004: `refract interior`, its
+//! prompts, interior scene files and experiments): one row each. Defaults
+//! come from `InteriorConfig::with_defaults`.
+
+use super::{choices, Kind, Param, Value};
+use crate::geometry::AccelKind;
+use crate::interior::config::{InteriorConfig, SceneKind, SpecularOpacity};
+use crate::mesh::source::MeshSource;
+use crate::names::Named;
+use std::path::PathBuf;
+
+fn mesh(s: &str) -> Result<(), String> {
+    MeshSource::parse(s).map(|_| ())
+}
+
+fn pick<T: Named>(t: T) -> Value {
+    let i = T::VALUES.iter().position(|v| v.0 == t).unwrap_or(0);
+    Value::Choice(i, T::VALUES[i].1)
+}
+
+fn f32s(v: &Value) -> glam::Vec3 {
+    glam::DVec3::from(v.triple()).as_vec3()
+}
+
+fn f64s(v: glam::Vec3) -> Value {
+    Value::Triple(v.as_dvec3().to_array())
+}
+
+/// The report's prompts (asked in this order, after the trace count).
+pub const PROMPTS: &str = "The report's prompts";
+const PHONG: &str = "Extended Phong model";
+const SCENE: &str = "Scene and image";
+const RUN: &str = "Run";
+
+/// Every parameter of an interior run.
+pub static PARAMS: &[Param<InteriorConfig>] = &[
+    Param {
+        key: "trace",
+        aliases: &[],
+        section: PROMPTS,
+        help: "Maximum ray trace count: refracted and reflected rays followed after the first hit",
+        unit: "rays",
+        kind: Kind::Count { min: 0, max: 1000 },
+        auto: "",
+        get: |c| Some(Value::Count(c.max_trace as u64)),
+        set: |c, v| c.max_trace = v.count() as u32,
+    },
+    Param {
+        key: "opacity",
+        aliases: &[],
+        section: PROMPTS,
+        help: "Opacity of the object",
+        unit: "percent",
+        kind: Kind::closed(0.0, 100.0),
+        auto: "",
+        get: |c| Some(Value::Real(c.opacity as f64)),
+        set: |c, v| c.opacity = v.real() as f32,
+    },
+    Param {
+        key: "color",
+        aliases: &[],
+        section: PROMPTS,
+        help: "Object colour",
+        unit: "0-255",
+        kind: Kind::Rgb,
+        auto: "",
+        get: |c| Some(Value::Rgb(c.color)),
+        set: |c, v| c.color = v.rgb(),
+    },
+    Param {
+        key: "off",
+        aliases: &[],
+        section: PROMPTS,
+        help: "The OFF or COFF mesh to render, or a generated icosphere:S (S = 0-8 subdivisions) or torus:N",
+        unit: "",
+        kind: Kind::Text(mesh),
+        auto: "",
+        get: |c| Some(Value::Text(c.off.to_string())),
+        set: |c, v| {
+            if let Ok(m) = MeshSource::parse(v.text()) {
+                c.off = m;
+            }
+        },
+    },
+    Param {
+        key: "coff",
+        aliases: &[],
+        section: PROMPTS,
+        help: "Use the colours stored in the OFF file (the report's \"colour OFF\" answer 1)",
+        unit: "",
+        kind: Kind::Flag,
+        auto: "",
+        get: |c| Some(Value::Flag(c.coff)),
+        set: |c, v| c.coff = v.flag(),
+    },
+    Param {
+        key: "scale",
+        aliases: &[],
+        section: PROMPTS,
+        help: "Scale factor: the mesh is normalised to radius 1, then scaled",
+        unit: "times",
+        kind: Kind::above(0.0, 1e6),
+        auto: "",
+        get: |c| Some(Value::Real(c.scale as f64)),
+        set: |c, v| c.scale = v.real() as f32,
+    },
+    Param {
+        key: "rot",
+        aliases: &[],
+        section: PROMPTS,
+        help: "Rotations about X, then Y, then Z",
+        unit: "degrees",
+        kind: Kind::Triple,
+        auto: "",
+        get: |c| Some(f64s(c.rot)),
+        set: |c, v| c.rot = f32s(v),
+    },
+    Param {
+        key: "ior",
+        aliases: &[],
+        section: PROMPTS,
+        help: "Refractive index of the object (below 1 acts like a mirror)",
+        unit: "",
+        kind: Kind::above(0.0, 100.0),
+        auto: "",
+        get: |c| Some(Value::Real(c.ior as f64)),
+        set: |c, v| c.ior = v.real() as f32,
+    },
+    Param {
+        key: "shininess",
+        aliases: &[],
+        section: PHONG,
+        help: "Shininess n in cos^n(alpha)",
+        unit: "",
+        kind: Kind::closed(0.0, 1e4),
+        auto: "",
+        get: |c| Some(Value::Real(c.shininess as f64)),
+        set: |c, v| c.shininess = v.real() as f32,
+    },
+    Param {
+        key: "atten",
+        aliases: &[],
+        section: PHONG,
+        help: "Distance attenuation constant c in 1/(1 + c d^2); 0 = none (the mesh has radius 1)",
+        unit: "per unit^2",
+        kind: Kind::NON_NEGATIVE,
+        auto: "",
+        get: |c| Some(Value::Real(c.atten as f64)),
+        set: |c, v| c.atten = v.real() as f32,
+    },
+    Param {
+        key: "light",
+        aliases: &[],
+        section: PHONG,
+        help: "Light position",
+        unit: "scene units",
+        kind: Kind::Triple,
+        auto: "the mesh's centre; (0,0,-2) in the Cornell box",
+        get: |c| c.light.map(f64s),
+        set: |c, v| c.light = Some(f32s(v)),
+    },
+    Param {
+        key: "ka",
+        aliases: &[],
+        section: PHONG,
+        help: "Ambient coefficient Ka",
+        unit: "",
+        kind: Kind::NON_NEGATIVE,
+        auto: "",
+        get: |c| Some(Value::Real(c.ka as f64)),
+        set: |c, v| c.ka = v.real() as f32,
+    },
+    Param {
+        key: "kd",
+        aliases: &[],
+        section: PHONG,
+        help: "Diffuse coefficient Kd",
+        unit: "",
+        kind: Kind::NON_NEGATIVE,
+        auto: "",
+        get: |c| Some(Value::Real(c.kd as f64)),
+        set: |c, v| c.kd = v.real() as f32,
+    },
+    Param {
+        key: "ks",
+        aliases: &[],
+        section: PHONG,
+        help: "Specular coefficient Ks",
+        unit: "",
+        kind: Kind::NON_NEGATIVE,
+        auto: "",
+        get: |c| Some(Value::Real(c.ks as f64)),
+        set: |c, v| c.ks = v.real() as f32,
+    },
+    Param {
+        key: "specular_opacity",
+        aliases: &[],
+        section: PHONG,
+        help: "How specular light is composited when the trace count is above 0",
+        unit: "",
+        kind: Kind::Choice(choices::<SpecularOpacity>),
+        auto: "",
+        get: |c| Some(pick(c.specular_opacity)),
+        set: |c, v| c.specular_opacity = v.choice(),
+    },
+    Param {
+        key: "size",
+        aliases: &[],
+        section: SCENE,
+        help: "Image size",
+        unit: "pixels",
+        kind: Kind::Size { max: 16384 },
+        auto: "",
+        get: |c| Some(Value::Size([c.width, c.height])),
+        set: |c, v| [c.width, c.height] = v.size(),
+    },
+    Param {
+        key: "background",
+        aliases: &[],
+        section: SCENE,
+        help: "Background colour, seen where rays leave the scene",
+        unit: "0-255",
+        kind: Kind::Rgb,
+        auto: "",
+        get: |c| Some(Value::Rgb(c.background)),
+        set: |c, v| c.background = v.rgb(),
+    },
+    Param {
+        key: "scene",
+        aliases: &[],
+        section: SCENE,
+        help: "Scene around the mesh",
+        unit: "",
+        kind: Kind::Choice(choices::<SceneKind>),
+        auto: "",
+        get: |c| Some(pick(c.scene)),
+        set: |c, v| c.scene = v.choice(),
+    },
+    Param {
+        key: "spp",
+        aliases: &[],
+        section: SCENE,
+        help: "Samples per pixel: 1 = the pixel centre, as the report; more are jittered using --seed",
+        unit: "samples",
+        kind: Kind::Count { min: 1, max: 4096 },
+        auto: "",
+        get: |c| Some(Value::Count(c.spp as u64)),
+        set: |c, v| c.spp = v.count() as u32,
+    },
+    Param {
+        key: "offset",
+        aliases: &[],
+        section: SCENE,
+        help: "Distance a followed ray starts off its surface",
+        unit: "scene units",
+        kind: Kind::closed(0.0, 1.0),
+        auto: "",
+        get: |c| Some(Value::Real(c.offset as f64)),
+        set: |c, v| c.offset = v.real() as f32,
+    },
+    Param {
+        key: "accel",
+        aliases: &[],
+        section: RUN,
+        help: "Intersection back-end (identical images)",
+        unit: "",
+        kind: Kind::Choice(choices::<AccelKind>),
+        auto: "",
+        get: |c| Some(pick(c.accel)),
+        set: |c, v| c.accel = v.choice(),
+    },
+    Param {
+        key: "seed",
+        aliases: &[],
+        section: RUN,
+        help: "Seed of the sub-pixel jitter (used when --spp > 1)",
+        unit: "",
+        kind: Kind::Count { min: 0, max: i64::MAX as u64 },
+        auto: "",
+        get: |c| Some(Value::Count(c.seed)),
+        set: |c, v| c.seed = v.count(),
+    },
+    Param {
+        key: "threads",
+        aliases: &[],
+        section: RUN,
+        help: "Worker threads; 0 = all cores (the image is the same for any count)",
+        unit: "threads",
+        kind: Kind::Count { min: 0, max: 1024 },
+        auto: "",
+        get: |c| Some(Value::Count(c.threads as u64)),
+        set: |c, v| c.threads = v.count() as usize,
+    },
+];
+
+/// The defaults every interior run starts from (the command line, the
+/// prompts, scene files and sweeps alike); the mesh is the shipped cube.
+pub fn defaults() -> InteriorConfig {
+    InteriorConfig::with_defaults(MeshSource::File(PathBuf::from("off/cube.off")), PathBuf::from("results/interior.png"))
+}

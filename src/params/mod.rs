@@ -1,0 +1,496 @@
+//! One home per parameter. Each run parameter of the two modes is written
+//! once, as a row of a table (`prism::PARAMS`, `interior::PARAMS`): its
+//! name, unit, valid range and help text, and how to read and set it on the
+//! mode's configuration. Defaults are the configuration's own
+//! (`SpectralConfig::new`, `InteriorConfig::with_defaults`), read through
+//! the row. The command line builds its flags from these rows, scene and
+//! experiment files are checked and applied through them, and sweeps start
+//! from the same defaults, so a parameter means the same everywhere.
+
+pub mod interior;
+pub mod prism;
+pub mod prompts;
+
+use crate::names::Named;
+use std::fmt;
+use std::path::PathBuf;
+
+/// One end of a real range.
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub enum End {
+    /// The value itself is allowed.
+    Closed(f64),
+    /// Only values beyond it are.
+    Open(f64),
+    /// No limit but finiteness.
+    None,
+}
+
+/// What values a parameter takes.
+#[derive(Copy, Clone)]
+pub enum Kind {
+    /// A whole number in `min..=max`.
+    Count { min: u64, max: u64 },
+    /// A finite real number within the two ends.
+    Real { lo: End, hi: End },
+    /// On or off (a flag without a value on the command line).
+    Flag,
+    /// A path to a file.
+    Path,
+    /// One of a list of names (with descriptions).
+    Choice(fn() -> Vec<(&'static str, &'static str)>),
+    /// Free text checked by a function (e.g. a light spectrum's name).
+    Text(fn(&str) -> Result<(), String>),
+    /// Width and height in pixels, each 1 to `max`.
+    Size { max: usize },
+    /// Three finite reals, `X,Y,Z`.
+    Triple,
+    /// Three whole numbers 0-255, `R,G,B`.
+    Rgb,
+}
+
+/// A parameter's value, checked against its kind.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Value {
+    Count(u64),
+    Real(f64),
+    Flag(bool),
+    Path(PathBuf),
+    /// The index into the kind's choices, and the name.
+    Choice(usize, &'static str),
+    Text(String),
+    Size([usize; 2]),
+    Triple([f64; 3]),
+    Rgb([u8; 3]),
+}
+
+impl fmt::Display for Value {
+    /// As a user would type it on the command line.
+    fn fmt(&self, f: &mut fmt::Formatter) -> fmt::Result {
+        match self {
+            Value::Count(n) => write!(f, "{n}"),
+            Value::Real(x) => write!(f, "{x}"),
+            Value::Flag(b) => write!(f, "{b}"),
+            Value::Path(p) => write!(f, "{}", p.display()),
+            Value::Choice(_, name) => f.write_str(name),
+            Value::Text(t) => f.write_str(t),
+            Value::Size([w, h]) => write!(f, "{w},{h}"),
+            Value::Triple([a, b, c]) => write!(f, "{a},{b},{c}"),
+            Value::Rgb([r, g, b]) => write!(f, "{r},{g},{b}"),
+        }
+    }
+}
+
+impl Value {
+    pub fn count(&self) -> u64 {
+        match self {
+            Value::Count(n) => *n,
+            _ => 0,
+        }
+    }
+    pub fn real(&self) -> f64 {
+        match self {
+            Value::Real(x) => *x,
+            Value::Count(n) => *n as f64,
+            _ => f64::NAN,
+        }
+    }
+    pub fn flag(&self) -> bool {
+        matches!(self, Value::Flag(true))
+    }
+    pub fn text(&self) -> &str {
+        match self {
+            Value::Text(t) => t,
+            Value::Choice(_, name) => name,
+            _ => "",
+        }
+    }
+    pub fn path(&self) -> PathBuf {
+        match self {
+            Value::Path(p) => p.clone(),
+            Value::Text(t) => PathBuf::from(t),
+            _ => PathBuf::new(),
+        }
+    }
+    /// The chosen value of a `Named` enum (its first value if this is not
+    /// a choice, which the kind check rules out).
+    pub fn choice<T: Named>(&self) -> T {
+        match self {
+            Value::Choice(i, _) => T::VALUES.get(*i).unwrap_or(&T::VALUES[0]).0,
+            _ => T::VALUES[0].0,
+        }
+    }
+    pub fn size(&self) -> [usize; 2] {
+        match self {
+            Value::Size(s) => *s,
+            _ => [0, 0],
+        }
+    }
+    pub fn triple(&self) -> [f64; 3] {
+        match self {
+            Value::Triple(t) => *t,
+            _ => [f64::NAN; 3],
+        }
+    }
+    pub fn rgb(&self) -> [u8; 3] {
+        match self {
+            Value::Rgb(c) => *c,
+            _ => [0; 3],
+        }
+    }
+}
+
+/// A parameter of configuration type `C`.
+pub struct Param<C: 'static> {
+    /// Its name in scene and experiment files; the flag is `--` and the
+    /// name with `-` for `_`.
+    pub key: &'static str,
+    /// Older names still accepted (hidden from help).
+    pub aliases: &'static [&'static str],
+    /// Help heading it is listed under.
+    pub section: &'static str,
+    pub help: &'static str,
+    /// Unit of the value ("" for none).
+    pub unit: &'static str,
+    pub kind: Kind,
+    /// The default where the configuration has none (computed at run time).
+    pub auto: &'static str,
+    /// The configuration's value (`None` = `auto`).
+    pub get: fn(&C) -> Option<Value>,
+    /// Sets a value that passed the kind's checks.
+    pub set: fn(&mut C, &Value),
+}
+
+impl<C> Param<C> {
+    pub fn flag(&self) -> String {
+        self.key.replace('_', "-")
+    }
+
+    /// Whether `name` (a file key or a flag without dashes) names this parameter.
+    pub fn is(&self, name: &str) -> bool {
+        let n = name.replace('-', "_");
+        self.key == n || self.aliases.contains(&n.as_str())
+    }
+
+    /// The default shown in help: the configuration's value, or `auto`.
+    pub fn default_text(&self, defaults: &C) -> Option<String> {
+        match (self.get)(defaults) {
+            Some(Value::Flag(false)) => None,
+            Some(v) => Some(v.to_string()),
+            None if self.auto.is_empty() => None,
+            None => Some(self.auto.to_string()),
+        }
+    }
+
+    /// Checks and sets a value given as text (command line, prompts).
+    pub fn apply_text(&self, c: &mut C, s: &str) -> Result<(), String> {
+        let v = self.kind.parse_text(s)?;
+        (self.set)(c, &v);
+        Ok(())
+    }
+
+    /// Checks and sets a value from a TOML file.
+    pub fn apply_toml(&self, c: &mut C, v: &toml::Value) -> Result<(), String> {
+        let v = self.kind.parse_toml(v)?;
+        (self.set)(c, &v);
+        Ok(())
+    }
+}
+
+fn range_text(lo: End, hi: End) -> String {
+    match (lo, hi) {
+        (End::Closed(a), End::Closed(b)) => format!("between {a} and {b}"),
+        (End::Open(a), End::Open(b)) => format!("strictly between {a} and {b}"),
+        (End::Open(a), End::Closed(b)) => format!("greater than {a} and at most {b}"),
+        (End::Closed(a), End::Open(b)) => format!("at least {a} and less than {b}"),
+        (End::Closed(a), End::None) => format!("at least {a}"),
+        (End::Open(a), End::None) => format!("greater than {a}"),
+        (End::None, End::Closed(b)) => format!("at most {b}"),
+        (End::None, End::Open(b)) => format!("less than {b}"),
+        (End::None, End::None) => "finite".into(),
+    }
+}
+
+pub(crate) fn parse_real(s: &str) -> Result<f64, String> {
+    let t = s.trim();
+    let v: f64 = t.parse().map_err(|_| format!("`{t}` is not a number"))?;
+    if !v.is_finite() {
+        return Err(format!("`{t}` is not a finite number"));
+    }
+    Ok(v)
+}
+
+/// An output file name whose folder exists.
+pub fn out_path(s: &str) -> Result<PathBuf, String> {
+    let s = s.trim();
+    if s.is_empty() {
+        return Err("the file name is empty".into());
+    }
+    let p = PathBuf::from(s);
+    match p.parent() {
+        Some(dir) if !dir.as_os_str().is_empty() && !dir.is_dir() => Err(format!("folder {} does not exist", dir.display())),
+        _ if p.is_dir() => Err(format!("{s} is a folder")),
+        _ => Ok(p),
+    }
+}
+
+/// An existing file.
+pub fn in_path(s: &str) -> Result<PathBuf, String> {
+    let s = s.trim();
+    let p = PathBuf::from(s);
+    if s.is_empty() {
+        Err("the file name is empty".into())
+    } else if !p.is_file() {
+        Err(format!("{s}: no such file"))
+    } else {
+        Ok(p)
+    }
+}
+
+/// Three comma-separated parts.
+fn three<T>(s: &str, one: impl Fn(&str) -> Result<T, String>) -> Result<[T; 3], String> {
+    let parts: Vec<&str> = s.split(',').collect();
+    let [a, b, c] = parts.as_slice() else { return Err(format!("`{s}` is not three comma-separated values")) };
+    Ok([one(a)?, one(b)?, one(c)?])
+}
+
+/// A colour channel as typed: a whole number 0-255.
+pub fn channel(s: &str) -> Result<u8, String> {
+    let t = s.trim();
+    let v: i64 = t.parse().map_err(|_| format!("`{t}` is not a whole number 0-255"))?;
+    u8::try_from(v).map_err(|_| format!("{v} is outside 0-255"))
+}
+
+impl Kind {
+    /// A real in [a, b].
+    pub const fn closed(a: f64, b: f64) -> Kind {
+        Kind::Real { lo: End::Closed(a), hi: End::Closed(b) }
+    }
+    /// A real greater than `a` and at most `b`.
+    pub const fn above(a: f64, b: f64) -> Kind {
+        Kind::Real { lo: End::Open(a), hi: End::Closed(b) }
+    }
+    /// A finite real at least 0.
+    pub const NON_NEGATIVE: Kind = Kind::Real { lo: End::Closed(0.0), hi: End::None };
+
+    /// The value name shown in help (`<N>`, `<W,H>` ...).
+    pub fn value_name(&self) -> &'static str {
+        match self {
+            Kind::Count { .. } => "N",
+            Kind::Real { .. } => "X",
+            Kind::Flag => "",
+            Kind::Path => "FILE",
+            Kind::Choice(_) => "NAME",
+            Kind::Text(_) => "NAME",
+            Kind::Size { .. } => "W,H",
+            Kind::Triple => "X,Y,Z",
+            Kind::Rgb => "R,G,B",
+        }
+    }
+
+    /// The range as words, for help and errors ("" where there is none).
+    pub fn range(&self) -> String {
+        match *self {
+            Kind::Count { min, max } => format!("{min} to {max}"),
+            Kind::Real { lo, hi } => range_text(lo, hi),
+            Kind::Size { max } => format!("1 to {max} each"),
+            Kind::Rgb => "0-255 each".into(),
+            _ => String::new(),
+        }
+    }
+
+    fn check_real(&self, v: f64) -> Result<f64, String> {
+        let Kind::Real { lo, hi } = *self else { return Ok(v) };
+        let ok_lo = match lo {
+            End::Closed(a) => v >= a,
+            End::Open(a) => v > a,
+            End::None => true,
+        };
+        let ok_hi = match hi {
+            End::Closed(b) => v <= b,
+            End::Open(b) => v < b,
+            End::None => true,
+        };
+        if v.is_finite() && ok_lo && ok_hi {
+            Ok(v)
+        } else {
+            Err(format!("{v} is not {}", range_text(lo, hi)))
+        }
+    }
+
+    fn check_count(&self, n: u64) -> Result<u64, String> {
+        match *self {
+            Kind::Count { min, max } if !(min..=max).contains(&n) => Err(format!("{n} is not between {min} and {max}")),
+            _ => Ok(n),
+        }
+    }
+
+    fn check_size(&self, w: f64, h: f64, shown: &str) -> Result<[usize; 2], String> {
+        let max = match *self {
+            Kind::Size { max } => max as f64,
+            _ => f64::MAX,
+        };
+        let dim = |x: f64| x.fract() == 0.0 && (1.0..=max).contains(&x);
+        if dim(w) && dim(h) {
+            Ok([w as usize, h as usize])
+        } else {
+            Err(format!("`{shown}`: width and height must be whole numbers from 1 to {max}"))
+        }
+    }
+
+    fn choose(&self, name: &str) -> Result<Value, String> {
+        let Kind::Choice(list) = *self else { return Err("not a choice".into()) };
+        let key = |s: &str| s.chars().filter(|c| c.is_ascii_alphanumeric()).collect::<String>().to_ascii_lowercase();
+        let names = list();
+        match names.iter().position(|(n, _)| key(n) == key(name)) {
+            Some(i) => Ok(Value::Choice(i, names[i].0)),
+            None => Err(format!("`{}` is not one of {}", name.trim(), names.iter().map(|n| n.0).collect::<Vec<_>>().join(", "))),
+        }
+    }
+
+    /// A value as typed on the command line or at a prompt.
+    pub fn parse_text(&self, s: &str) -> Result<Value, String> {
+        let t = s.trim();
+        match *self {
+            Kind::Count { .. } => {
+                let n = match t.parse::<u64>() {
+                    Ok(n) => n,
+                    // 2e6 is a whole number too.
+                    Err(_) => match t.parse::<f64>() {
+                        Ok(x) if x.is_finite() && x >= 0.0 && x.fract() == 0.0 && x <= u64::MAX as f64 => x as u64,
+                        _ => return Err(format!("`{t}` is not a whole number >= 0")),
+                    },
+                };
+                Ok(Value::Count(self.check_count(n)?))
+            }
+            Kind::Real { .. } => Ok(Value::Real(self.check_real(parse_real(t)?)?)),
+            Kind::Flag => match t {
+                "1" | "true" | "yes" => Ok(Value::Flag(true)),
+                "0" | "false" | "no" => Ok(Value::Flag(false)),
+                _ => Err(format!("`{t}` is not true or false")),
+            },
+            Kind::Path if t.is_empty() => Err("the file name is empty".into()),
+            Kind::Path => Ok(Value::Path(PathBuf::from(t))),
+            Kind::Choice(_) => self.choose(t),
+            Kind::Text(check) => check(t).map(|_| Value::Text(t.to_string())),
+            Kind::Size { .. } => {
+                let parts: Vec<&str> = t.split(',').collect();
+                let [w, h] = parts.as_slice() else { return Err(format!("`{t}` is not W,H")) };
+                let num = |x: &str| x.trim().parse::<f64>().unwrap_or(f64::NAN);
+                self.check_size(num(w), num(h), t).map(Value::Size)
+            }
+            Kind::Triple => three(t, parse_real).map(Value::Triple),
+            Kind::Rgb => three(t, channel).map(Value::Rgb),
+        }
+    }
+
+    /// A value from a TOML file: numbers must be TOML numbers, lists lists.
+    pub fn parse_toml(&self, v: &toml::Value) -> Result<Value, String> {
+        use toml::Value as T;
+        let num = |x: &T| -> Result<f64, String> {
+            match x {
+                T::Integer(i) => Ok(*i as f64),
+                T::Float(f) if f.is_finite() => Ok(*f),
+                _ => Err(format!("`{x}` is not a number")),
+            }
+        };
+        let list = |n: usize| -> Result<&Vec<T>, String> { v.as_array().filter(|a| a.len() == n).ok_or_else(|| format!("`{v}` is not a list of {n} numbers")) };
+        match *self {
+            Kind::Count { .. } => match v {
+                T::Integer(i) if *i >= 0 => Ok(Value::Count(self.check_count(*i as u64)?)),
+                T::Float(f) if f.is_finite() && *f >= 0.0 && f.fract() == 0.0 => Ok(Value::Count(self.check_count(*f as u64)?)),
+                _ => Err(format!("`{v}` is not a whole number >= 0")),
+            },
+            Kind::Real { .. } => Ok(Value::Real(self.check_real(num(v)?)?)),
+            Kind::Flag => v.as_bool().map(Value::Flag).ok_or_else(|| format!("`{v}` is not true or false")),
+            Kind::Path | Kind::Choice(_) | Kind::Text(_) => match v.as_str() {
+                Some(s) => self.parse_text(s),
+                None => Err(format!("`{v}` is not a string")),
+            },
+            Kind::Size { .. } => {
+                let a = list(2)?;
+                self.check_size(num(&a[0])?, num(&a[1])?, &v.to_string()).map(Value::Size)
+            }
+            Kind::Triple => {
+                let a = list(3)?;
+                Ok(Value::Triple([num(&a[0])?, num(&a[1])?, num(&a[2])?]))
+            }
+            Kind::Rgb => {
+                let a = list(3)?;
+                let c = |x: &T| match x {
+                    T::Integer(i) => u8::try_from(*i).map_err(|_| format!("{i} is outside 0-255")),
+                    _ => Err(format!("`{x}` is not a whole number 0-255")),
+                };
+                Ok(Value::Rgb([c(&a[0])?, c(&a[1])?, c(&a[2])?]))
+            }
+        }
+    }
+}
+
+/// The choices of a `Named` enum, for `Kind::Choice`.
+pub fn choices<T: Named>() -> Vec<(&'static str, &'static str)> {
+    T::choices()
+}
+
+/// The row named `name` (by key or alias).
+pub fn find<C>(params: &'static [Param<C>], name: &str) -> Option<&'static Param<C>> {
+    params.iter().find(|p| p.is(name))
+}
+
+/// Applies `key = value` from a file to a configuration: the message names
+/// the key's problem (the caller adds the file and line).
+pub fn apply_toml<C>(params: &'static [Param<C>], c: &mut C, key: &str, v: &toml::Value) -> Result<(), String> {
+    match find(params, key) {
+        Some(p) => p.apply_toml(c, v),
+        None => Err(format!("unknown parameter; expected one of {}", params.iter().map(|p| p.key).collect::<Vec<_>>().join(", "))),
+    }
+}
+
+/// Checks every parameter's current value against its kind (for
+/// configurations built in code, which skipped the parsing), naming the flag.
+pub fn check_all<C>(params: &'static [Param<C>], c: &C) -> Result<(), String> {
+    for p in params {
+        let Some(v) = (p.get)(c) else { continue };
+        let ok = match (&p.kind, &v) {
+            (k @ Kind::Count { .. }, Value::Count(n)) => k.check_count(*n).map(|_| ()),
+            (k @ Kind::Real { .. }, Value::Real(x)) => k.check_real(*x).map(|_| ()),
+            (k @ Kind::Size { .. }, Value::Size([w, h])) => k.check_size(*w as f64, *h as f64, &v.to_string()).map(|_| ()),
+            (Kind::Triple, Value::Triple(t)) if t.iter().any(|x| !x.is_finite()) => Err(format!("`{v}` has a value that is not a finite number")),
+            _ => Ok(()),
+        };
+        ok.map_err(|e| format!("--{}: {e}", p.flag()))?;
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn kinds_parse_text_and_toml_alike() {
+        let k = Kind::Count { min: 1, max: 100 };
+        assert_eq!(k.parse_text("7"), Ok(Value::Count(7)));
+        assert_eq!(k.parse_text("1e2"), Ok(Value::Count(100)));
+        assert_eq!(k.parse_toml(&toml::Value::Integer(7)), Ok(Value::Count(7)));
+        assert!(k.parse_text("0").unwrap_err().contains("not between 1 and 100"));
+        assert!(k.parse_text("1.5").is_err() && k.parse_text("-3").is_err());
+        assert!(k.parse_toml(&toml::Value::String("7".into())).is_err(), "numbers are numbers in files");
+        let r = Kind::above(0.0, 100.0);
+        assert_eq!(r.parse_text(" 1.4 "), Ok(Value::Real(1.4)));
+        assert_eq!(r.parse_text("0").unwrap_err(), "0 is not greater than 0 and at most 100");
+        assert_eq!(r.parse_text("nan").unwrap_err(), "`nan` is not a finite number");
+        assert_eq!(r.parse_text("zero").unwrap_err(), "`zero` is not a number");
+        assert_eq!(r.parse_toml(&toml::Value::Integer(3)), Ok(Value::Real(3.0)));
+        let s = Kind::Size { max: 64 };
+        assert_eq!(s.parse_text("8,4"), Ok(Value::Size([8, 4])));
+        assert!(s.parse_text("0,4").is_err() && s.parse_text("65,4").is_err() && s.parse_text("8").is_err());
+        assert_eq!(s.parse_toml(&toml::Value::try_from([8, 4]).unwrap()), Ok(Value::Size([8, 4])));
+        assert_eq!(Kind::Rgb.parse_text("1,2,255"), Ok(Value::Rgb([1, 2, 255])));
+        assert!(Kind::Rgb.parse_text("1,2,256").unwrap_err().contains("256 is outside 0-255"));
+        assert!(Kind::Triple.parse_text("1,2").unwrap_err().contains("three comma-separated"));
+        let c = Kind::Choice(choices::<crate::photon::map::MapKind>);
+        assert_eq!(c.parse_text("KD-tree"), Ok(Value::Choice(1, "kdtree")));
+        assert!(c.parse_text("octree").unwrap_err().contains("is not one of buffer, kdtree"));
+    }
+}

@@ -1,0 +1,341 @@
+//! The parameters of a spectral run (`refract prism`, prism scene files and
+//! experiments): one row each. Defaults come from `SpectralConfig::new`.
+
+use super::{choices, End, Kind, Param, Value};
+use crate::names::Named;
+use crate::optics::glass;
+use crate::optics::ior::IorKind;
+use crate::photon::gather::Filter;
+use crate::photon::map::MapKind;
+use crate::scenes::{SceneKind, SceneOptions};
+use crate::spectral::eye::EyeMode;
+use crate::spectral::SpectralConfig;
+use crate::spectrum::cie::GamutMap;
+use crate::spectrum::colormap::ColorMap;
+use crate::spectrum::spectra::NamedSpectrum;
+use std::path::PathBuf;
+
+fn glasses() -> Vec<(&'static str, &'static str)> {
+    static ABOUT: std::sync::OnceLock<Vec<String>> = std::sync::OnceLock::new();
+    let about =
+        ABOUT.get_or_init(|| glass::catalogue().iter().map(|g| format!("n_d {:.5}, Abbe number {:.2}", g.sellmeier(glass::lines::LD), g.abbe())).collect());
+    glass::catalogue().iter().zip(about).map(|(g, a)| (g.name.as_str(), a.as_str())).collect()
+}
+
+fn glass_of(v: &Value) -> &'static glass::Glass {
+    let all = glass::catalogue();
+    match v {
+        Value::Choice(i, _) => all.get(*i).unwrap_or(&all[0]),
+        _ => &all[0],
+    }
+}
+
+fn light_name(s: &str) -> Result<(), String> {
+    NamedSpectrum::parse(s).map(|_| ()).map_err(|e| e.to_string())
+}
+
+fn glass_value(g: &glass::Glass) -> Value {
+    let i = glass::catalogue().iter().position(|c| c.name == g.name).unwrap_or(0);
+    Value::Choice(i, glass::catalogue()[i].name.as_str())
+}
+
+fn pick<T: Named>(t: T) -> Value {
+    let i = T::VALUES.iter().position(|v| v.0 == t).unwrap_or(0);
+    Value::Choice(i, T::VALUES[i].1)
+}
+
+const SCENE: &str = "Scene";
+const LIGHT: &str = "Light pass (photon map)";
+const EYE: &str = "Eye pass";
+const DISPLAY: &str = "Display";
+const RUN: &str = "Run";
+
+/// Every parameter of a spectral run.
+pub static PARAMS: &[Param<SpectralConfig>] = &[
+    Param {
+        key: "scene",
+        aliases: &[],
+        section: SCENE,
+        help: "Scene to build (reports 000, 001 and 003, and the single-prism anchor)",
+        unit: "",
+        kind: Kind::Choice(choices::<SceneKind>),
+        auto: "",
+        get: |c| Some(pick(c.scene.kind)),
+        set: |c, v| c.scene.kind = v.choice(),
+    },
+    Param {
+        key: "glass",
+        aliases: &[],
+        section: SCENE,
+        help: "Crown glass: the Amici prism's crowns, the single prism, the spheres, the Cornell prism (`refract glass --list`)",
+        unit: "",
+        kind: Kind::Choice(glasses),
+        auto: "",
+        get: |c| Some(glass_value(c.scene.crown)),
+        set: |c, v| c.scene.crown = glass_of(v),
+    },
+    Param {
+        key: "flint",
+        aliases: &[],
+        section: SCENE,
+        help: "Flint glass of the Amici prism",
+        unit: "",
+        kind: Kind::Choice(glasses),
+        auto: "",
+        get: |c| Some(glass_value(c.scene.flint)),
+        set: |c, v| c.scene.flint = glass_of(v),
+    },
+    Param {
+        key: "flint_apex",
+        aliases: &[],
+        section: SCENE,
+        help: "Flint apex angle of the Amici prism (the crown apex is then solved for no deviation at the d line)",
+        unit: "degrees",
+        kind: Kind::Real { lo: End::Open(0.0), hi: End::Open(180.0) },
+        auto: "",
+        get: |c| Some(Value::Real(c.scene.flint_apex_deg)),
+        set: |c, v| c.scene.flint_apex_deg = v.real(),
+    },
+    Param {
+        key: "ior_model",
+        aliases: &[],
+        section: SCENE,
+        help: "Index-of-refraction model of the glasses",
+        unit: "",
+        kind: Kind::Choice(choices::<IorKind>),
+        auto: "",
+        get: |c| Some(pick(c.scene.ior)),
+        set: |c, v| c.scene.ior = v.choice(),
+    },
+    Param {
+        key: "light",
+        aliases: &[],
+        section: SCENE,
+        help: "Light spectrum: d65, e, fl1..fl12, fl3.1..fl3.15, cfl-lines, blackbody:K, laser:NM",
+        unit: "",
+        kind: Kind::Text(light_name),
+        auto: "the scene's own (d65 beams, cfl-lines lamp, black bodies for report 001)",
+        get: |c| c.scene.light.as_ref().map(|l| Value::Text(l.name.clone())),
+        set: |c, v| c.scene.light = NamedSpectrum::parse(v.text()).ok(),
+    },
+    Param {
+        key: "incidence",
+        aliases: &[],
+        section: SCENE,
+        help: "Angle of incidence on the first face",
+        unit: "degrees",
+        kind: Kind::Real { lo: End::Open(-90.0), hi: End::Open(90.0) },
+        auto: "the design: along the Amici's axis; minimum deviation at d for the other prisms",
+        get: |c| c.scene.incidence_deg.map(Value::Real),
+        set: |c, v| c.scene.incidence_deg = Some(v.real()),
+    },
+    Param {
+        key: "no_prism",
+        aliases: &[],
+        section: SCENE,
+        help: "Leave the prism out (report 000's \"image before dispersion\")",
+        unit: "",
+        kind: Kind::Flag,
+        auto: "",
+        get: |c| Some(Value::Flag(c.scene.no_prism)),
+        set: |c, v| c.scene.no_prism = v.flag(),
+    },
+    Param {
+        key: "no_dispersion",
+        aliases: &[],
+        section: SCENE,
+        help: "Hold the index at n_d for every wavelength (\"image with no dispersion effect\")",
+        unit: "",
+        kind: Kind::Flag,
+        auto: "",
+        get: |c| Some(Value::Flag(c.scene.no_dispersion)),
+        set: |c, v| c.scene.no_dispersion = v.flag(),
+    },
+    Param {
+        key: "obj",
+        aliases: &[],
+        section: SCENE,
+        help: "A Wavefront OBJ mesh (in metres) of --glass that replaces the prism; its winding is made consistent and outward",
+        unit: "",
+        kind: Kind::Path,
+        auto: "",
+        get: |c| c.scene.obj.clone().map(Value::Path),
+        set: |c, v| c.scene.obj = Some(v.path()),
+    },
+    Param {
+        key: "size",
+        aliases: &[],
+        section: SCENE,
+        help: "Image size",
+        unit: "pixels",
+        kind: Kind::Size { max: 16384 },
+        auto: "",
+        get: |c| Some(Value::Size([c.scene.width, c.scene.height])),
+        set: |c, v| [c.scene.width, c.scene.height] = v.size(),
+    },
+    Param {
+        key: "photons",
+        aliases: &[],
+        section: LIGHT,
+        help: "Photons traced in the light pass",
+        unit: "photons",
+        kind: Kind::Count { min: 1, max: 2_000_000_000 },
+        auto: "",
+        get: |c| Some(Value::Count(c.photons)),
+        set: |c, v| c.photons = v.count(),
+    },
+    Param {
+        key: "map",
+        aliases: &[],
+        section: LIGHT,
+        help: "Photon map",
+        unit: "",
+        kind: Kind::Choice(choices::<MapKind>),
+        auto: "",
+        get: |c| Some(pick(c.map)),
+        set: |c, v| c.map = v.choice(),
+    },
+    Param {
+        key: "filter",
+        aliases: &[],
+        section: LIGHT,
+        help: "Density-estimation filter",
+        unit: "",
+        kind: Kind::Choice(choices::<Filter>),
+        auto: "",
+        get: |c| Some(pick(c.filter)),
+        set: |c, v| c.filter = v.choice(),
+    },
+    Param {
+        key: "radius",
+        aliases: &[],
+        section: LIGHT,
+        help: "Gather radius",
+        unit: "metres",
+        kind: Kind::above(0.0, 1e3),
+        auto: "two pixels' footprint on the screen",
+        get: |c| c.radius.map(Value::Real),
+        set: |c, v| c.radius = Some(v.real()),
+    },
+    Param {
+        key: "k",
+        aliases: &[],
+        section: LIGHT,
+        help: "Gather the k nearest photons instead of a fixed radius (kd-tree only)",
+        unit: "photons",
+        kind: Kind::Count { min: 1, max: 1_000_000 },
+        auto: "",
+        get: |c| c.k.map(|k| Value::Count(k as u64)),
+        set: |c, v| c.k = Some(v.count() as usize),
+    },
+    Param {
+        key: "spp",
+        aliases: &[],
+        section: EYE,
+        help: "Samples per pixel of the eye pass",
+        unit: "samples",
+        kind: Kind::Count { min: 1, max: 65536 },
+        auto: "",
+        get: |c| Some(Value::Count(c.spp as u64)),
+        set: |c, v| c.spp = v.count() as u32,
+    },
+    Param {
+        key: "eye",
+        aliases: &[],
+        section: EYE,
+        help: "Eye rays at a dispersive face",
+        unit: "",
+        kind: Kind::Choice(choices::<EyeMode>),
+        auto: "",
+        get: |c| Some(pick(c.eye)),
+        set: |c, v| c.eye = v.choice(),
+    },
+    Param {
+        key: "split",
+        aliases: &[],
+        section: EYE,
+        help: "Monochromatic rays per split with --eye split",
+        unit: "rays",
+        kind: Kind::Count { min: 1, max: 1024 },
+        auto: "",
+        get: |c| Some(Value::Count(c.split as u64)),
+        set: |c, v| c.split = v.count() as u32,
+    },
+    Param {
+        key: "exposure",
+        aliases: &[],
+        section: DISPLAY,
+        help: "Exposure: multiplies linear sRGB before display",
+        unit: "per W/m^2",
+        kind: Kind::above(0.0, 1e20),
+        auto: "automatic, the 99.5th percentile at full scale",
+        get: |c| c.exposure.map(Value::Real),
+        set: |c, v| c.exposure = Some(v.real()),
+    },
+    Param {
+        key: "exposure_gain",
+        aliases: &[],
+        section: DISPLAY,
+        help: "Multiplies the automatic exposure (over-expose like a photograph: dim lines show, bright ones saturate)",
+        unit: "times",
+        kind: Kind::above(0.0, 1e6),
+        auto: "",
+        get: |c| Some(Value::Real(c.exposure_gain)),
+        set: |c, v| c.exposure_gain = v.real(),
+    },
+    Param {
+        key: "gamut",
+        aliases: &[],
+        section: DISPLAY,
+        help: "Colours outside the sRGB gamut",
+        unit: "",
+        kind: Kind::Choice(choices::<GamutMap>),
+        auto: "",
+        get: |c| Some(pick(c.gamut)),
+        set: |c, v| c.gamut = v.choice(),
+    },
+    Param {
+        key: "colours",
+        aliases: &[],
+        section: DISPLAY,
+        help: "Wavelength to colour: CIE (physical) or one of reports 001/003's maps",
+        unit: "",
+        kind: Kind::Choice(choices::<ColorMap>),
+        auto: "",
+        get: |c| Some(pick(c.colours)),
+        set: |c, v| c.colours = v.choice(),
+    },
+    Param {
+        key: "seed",
+        aliases: &[],
+        section: RUN,
+        help: "Seed of every random choice (same seed, same image, any thread count)",
+        unit: "",
+        kind: Kind::Count { min: 0, max: i64::MAX as u64 },
+        auto: "",
+        get: |c| Some(Value::Count(c.seed)),
+        set: |c, v| c.seed = v.count(),
+    },
+    Param {
+        key: "threads",
+        aliases: &[],
+        section: RUN,
+        help: "Worker threads; 0 = all cores",
+        unit: "threads",
+        kind: Kind::Count { min: 0, max: 1024 },
+        auto: "",
+        get: |c| Some(Value::Count(c.threads as u64)),
+        set: |c, v| c.threads = v.count() as usize,
+    },
+];
+
+/// The defaults every spectral run starts from (the command line, scene
+/// files and sweeps alike).
+pub fn defaults() -> SpectralConfig {
+    SpectralConfig::new(SceneOptions::new(SceneKind::AmiciScreen), PathBuf::new())
+}
+
+/// The keys that shape the scene (all `refract prism trace` takes).
+pub fn is_scene(p: &Param<SpectralConfig>) -> bool {
+    p.section == SCENE && p.key != "size" && p.key != "light"
+}
