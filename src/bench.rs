@@ -5,6 +5,13 @@ use crate::geometry::{Accel, AccelKind, Ray};
 use crate::interior::scene::InteriorScene;
 use crate::interior::trace::Tracer;
 use crate::mesh::generate::icosphere;
+use crate::photon::gather::{Filter, Lookup};
+use crate::photon::map::MapKind;
+use crate::scenes::{build, SceneKind, SceneOptions};
+use crate::spectral::eye::EyeMode;
+use crate::spectral::render::{render, RenderOptions};
+use crate::spectrum::cie::GamutMap;
+use crate::spectrum::colormap::ColorMap;
 use anyhow::{ensure, Result};
 use std::fmt::Write;
 use std::time::Instant;
@@ -154,49 +161,56 @@ pub fn time_to_error(runs: &[(f64, f64)], target: f64) -> Option<f64> {
 /// kd-tree with 100x the photons of the middle run and half the radius,
 /// so the error includes each filter's blur as well as its noise.
 pub fn prism(quick: bool, out_dir: &std::path::Path) -> Result<String> {
-    use crate::photon::gather::{Filter, Lookup};
-    use crate::photon::map::MapKind;
-    use crate::scenes::{build, SceneKind, SceneOptions};
-    use crate::spectral::eye::EyeMode;
-    use crate::spectral::render::{render, RenderOptions};
     let mut so = SceneOptions::new(SceneKind::SinglePrism);
     (so.width, so.height, so.incidence_deg) = (320, 240, Some(49.4));
     let scene = build(&so)?;
     let radius = crate::spectral::default_radius(&scene);
-    let opts = |photons: u64, map: MapKind, filter: Filter, r: f64| RenderOptions {
-        photons,
-        map,
-        filter,
-        lookup: Lookup::Radius(r),
-        spp: 1,
-        seed: 1,
-        eye: EyeMode::Hero,
-        split: 8,
-        colours: crate::spectrum::colormap::ColorMap::Cie,
-    };
     let mut out = String::new();
+    writeln!(out, "prism bench: single-prism, 320x240, 49.4 deg, D65 beam; radius {:.2} mm", radius * 1e3)?;
+    prism_throughput(&scene, quick, &mut out)?;
+    let (csv, series) = prism_error_vs_time(&scene, radius, quick, &mut out)?;
+    prism_strip_hue(quick, &mut out)?;
+    std::fs::create_dir_all(out_dir)?;
+    crate::image_io::write_text(&out_dir.join("prism_error_vs_time.csv"), &csv)?;
+    crate::experiment::plot::render(&out_dir.join("prism_error_vs_time.png"), &error_chart(&series))?;
+    writeln!(out, "wrote {}/prism_error_vs_time.{{csv,png}}", out_dir.display())?;
+    Ok(out)
+}
 
-    // Throughput on one thread.
+/// The bench's render settings: one eye sample, a fixed seed.
+fn prism_opts(photons: u64, map: MapKind, filter: Filter, r: f64) -> RenderOptions {
+    RenderOptions { photons, map, filter, lookup: Lookup::Radius(r), spp: 1, seed: 1, eye: EyeMode::Hero, split: 8, colours: ColorMap::Cie }
+}
+
+/// The light pass alone on one thread: photons traced and stored per second.
+fn prism_throughput(scene: &crate::world::World, quick: bool, out: &mut String) -> Result<()> {
     let one = rayon::ThreadPoolBuilder::new().num_threads(1).build()?;
     let n = if quick { 200_000 } else { 2_000_000 };
-    let pass = one.install(|| {
+    let (stats, secs) = one.install(|| {
         let t = Instant::now();
-        let p = crate::photon::emit::light_pass(&scene, n, 1, crate::spectrum::colormap::ColorMap::Cie, &crate::progress::Silent);
+        let p = crate::photon::emit::light_pass(scene, n, 1, ColorMap::Cie, &crate::progress::Silent);
         (p.stats, t.elapsed().as_secs_f64())
     });
-    writeln!(out, "prism bench: single-prism, 320x240, 49.4 deg, D65 beam; radius {:.2} mm", radius * 1e3)?;
     writeln!(
         out,
         "light pass, 1 thread: {:.2} M photons traced/s, {:.2} M stored/s; kd-tree {} bytes per stored photon, buffer 0",
-        pass.0.emitted as f64 / pass.1 / 1e6,
-        pass.0.stored as f64 / pass.1 / 1e6,
+        stats.emitted as f64 / secs / 1e6,
+        stats.stored as f64 / secs / 1e6,
         std::mem::size_of::<crate::photon::map::Photon>()
     )?;
+    Ok(())
+}
 
+/// (time, relative error) of one method at several photon counts.
+type Runs = Vec<(f64, f64)>;
+
+/// Every map and filter at increasing photon counts against the
+/// reference: the CSV rows and each method's runs.
+fn prism_error_vs_time(scene: &crate::world::World, radius: f64, quick: bool, out: &mut String) -> Result<(String, Vec<(String, Runs)>)> {
     let counts: Vec<u64> = if quick { vec![20_000, 80_000] } else { vec![25_000, 50_000, 100_000, 200_000, 400_000, 800_000, 1_600_000] };
     let mid = counts[counts.len() / 2];
     let t = Instant::now();
-    let reference = render(&scene, &opts(mid * 100, MapKind::Kdtree, Filter::Box, radius / 2.0), &crate::progress::Silent);
+    let reference = render(scene, &prism_opts(mid * 100, MapKind::Kdtree, Filter::Box, radius / 2.0), &crate::progress::Silent);
     writeln!(out, "reference: {} photons, kd-tree, box, radius {:.2} mm ({:.1} s)", mid * 100, radius * 0.5e3, t.elapsed().as_secs_f64())?;
     let mut csv = String::from("map,filter,photons,time_s,rel_rmse\n");
     let mut series = Vec::new();
@@ -205,7 +219,7 @@ pub fn prism(quick: bool, out_dir: &std::path::Path) -> Result<String> {
         for filter in [Filter::Box, Filter::Cone, Filter::Gaussian] {
             let mut runs = Vec::new();
             for &c in &counts {
-                let r = render(&scene, &opts(c, map, filter, radius), &crate::progress::Silent);
+                let r = render(scene, &prism_opts(c, map, filter, radius), &crate::progress::Silent);
                 let time = r.trace_s + r.build_s + r.render_s;
                 let err = relative_rmse(&r.image, &reference.image);
                 writeln!(csv, "{},{},{c},{},{}", map.name(), filter.name(), crate::timing::cell(time), crate::timing::cell(err))?;
@@ -219,8 +233,12 @@ pub fn prism(quick: bool, out_dir: &std::path::Path) -> Result<String> {
         }
     }
     writeln!(out, "Mitsuba 3 particle tracer (anchor): 0.039 in 1.3 s, 0.022 in 4.4 s; LuxCore light tracer: 0.057 in 4.2 s, 0.026 in 15 s")?;
-    // Hue along the strip against the CIE locus, for both gamut maps and
-    // for the Amici prism's narrow slit (where wavelengths hardly overlap).
+    Ok((csv, series))
+}
+
+/// Hue along the strip against the CIE locus, for both gamut maps and for
+/// the Amici prism's narrow slit (where wavelengths hardly overlap).
+fn prism_strip_hue(quick: bool, out: &mut String) -> Result<()> {
     for kind in [SceneKind::SinglePrism, SceneKind::AmiciScreen] {
         let mut so = SceneOptions::new(kind);
         (so.width, so.height) = (640, 240);
@@ -228,52 +246,43 @@ pub fn prism(quick: bool, out_dir: &std::path::Path) -> Result<String> {
             so.incidence_deg = Some(49.4);
         }
         let s = build(&so)?;
-        let r = render(
-            &s,
-            &opts(if quick { 200_000 } else { 2_000_000 }, MapKind::Kdtree, Filter::Cone, crate::spectral::default_radius(&s)),
-            &crate::progress::Silent,
-        );
+        let opts = prism_opts(if quick { 200_000 } else { 2_000_000 }, MapKind::Kdtree, Filter::Cone, crate::spectral::default_radius(&s));
+        let r = render(&s, &opts, &crate::progress::Silent);
         let exposure = r.image.auto_exposure();
-        for gamut in [crate::spectrum::cie::GamutMap::Desaturate, crate::spectrum::cie::GamutMap::Clip] {
+        for gamut in [GamutMap::Desaturate, GamutMap::Clip] {
             let h = crate::spectral::strip::strip_hue_error(&s, &r.image, exposure, gamut);
             writeln!(
                 out,
-                "hue error along the strip, {} ({:?} gamut map): mean {:.1} deg, max {:.1} deg over {} columns",
+                "hue error along the strip, {} ({} gamut map): mean {:.1} deg, max {:.1} deg over {} columns",
                 kind.name(),
-                gamut,
+                gamut.name(),
                 h.mean_deg,
                 h.max_deg,
                 h.columns
             )?;
         }
     }
-    std::fs::create_dir_all(out_dir)?;
-    crate::image_io::write_text(&out_dir.join("prism_error_vs_time.csv"), &csv)?;
-    let chart = crate::experiment::plot::LineChart {
+    Ok(())
+}
+
+/// Error against time, every method beside the anchors' points.
+fn error_chart(series: &[(String, Runs)]) -> crate::experiment::plot::LineChart {
+    use crate::experiment::plot::{LineChart, Series, PALETTE};
+    let anchors = [("Mitsuba 3 (anchor)", [(1.3f64, 0.039f64), (4.4, 0.022)]), ("LuxCore (anchor)", [(4.2, 0.057), (15.0, 0.026)])];
+    let anchor_colours = [plotters::style::RGBColor(0, 0, 0), plotters::style::RGBColor(160, 160, 160)];
+    LineChart {
         title: "single-prism strip: error against time (log10 axes)".into(),
         x_label: "log10 time (s)".into(),
         y_label: "log10 relative RMSE".into(),
         series: series
             .iter()
-            .zip(crate::experiment::plot::PALETTE)
-            .map(|((name, runs), color)| crate::experiment::plot::Series {
-                name: name.clone(),
-                points: runs.iter().map(|(t, e)| (t.log10(), e.log10())).collect(),
+            .zip(PALETTE)
+            .map(|((name, runs), color)| Series { name: name.clone(), points: runs.iter().map(|(t, e)| (t.log10(), e.log10())).collect(), color })
+            .chain(anchors.into_iter().zip(anchor_colours).map(|((name, pts), color)| Series {
+                name: name.into(),
+                points: pts.iter().map(|(t, e)| (t.log10(), e.log10())).collect(),
                 color,
-            })
-            .chain(
-                [("Mitsuba 3 (anchor)", [(1.3f64, 0.039f64), (4.4, 0.022)]), ("LuxCore (anchor)", [(4.2, 0.057), (15.0, 0.026)])]
-                    .into_iter()
-                    .zip([plotters::style::RGBColor(0, 0, 0), plotters::style::RGBColor(160, 160, 160)])
-                    .map(|((name, pts), color)| crate::experiment::plot::Series {
-                        name: name.into(),
-                        points: pts.iter().map(|(t, e)| (t.log10(), e.log10())).collect(),
-                        color,
-                    }),
-            )
+            }))
             .collect(),
-    };
-    crate::experiment::plot::render(&out_dir.join("prism_error_vs_time.png"), &chart)?;
-    writeln!(out, "wrote {}/prism_error_vs_time.{{csv,png}}", out_dir.display())?;
-    Ok(out)
+    }
 }

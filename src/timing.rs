@@ -1,9 +1,30 @@
-//! Appending timing rows to a CSV file: header written once, every row
-//! flushed, so the rows of an interrupted sweep survive.
+//! Appending timing rows to a CSV file: each mode's row is a serde record
+//! (its field names are the columns), the header is written once, every
+//! row flushed, so the rows of an interrupted run survive.
 
 use anyhow::{bail, Context, Result};
+use serde::Serialize;
 use std::io::{Read, Seek, Write};
 use std::path::Path;
+
+/// A measured number in a CSV cell: six decimals, and 0 for a NaN or an
+/// infinity, which never reach a CSV.
+#[derive(Copy, Clone, Debug, Default, PartialEq)]
+pub struct Real(pub f64);
+
+impl Serialize for Real {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_str(&cell(self.0))
+    }
+}
+
+/// The columns of a record type, as its header line.
+pub fn header_of<T: Serialize + Default>() -> Result<String> {
+    let mut w = csv::Writer::from_writer(Vec::new());
+    w.serialize(T::default())?;
+    let bytes = w.into_inner().map_err(|e| anyhow::anyhow!("{e}"))?;
+    Ok(String::from_utf8_lossy(&bytes).lines().next().unwrap_or_default().to_string())
+}
 
 /// Formats a float for a CSV cell; a NaN or infinity never reaches a CSV.
 pub fn cell(v: f64) -> String {
@@ -15,13 +36,17 @@ pub fn cell(v: f64) -> String {
 }
 
 /// Checks, before any work is done, that `path` is absent, empty or has
-/// exactly these columns.
-pub fn check_header(path: &Path, header: &[&str]) -> Result<()> {
+/// exactly the columns of record type `T`.
+pub fn check_header<T: Serialize + Default>(path: &Path) -> Result<()> {
+    check_line(path, &header_of::<T>()?)
+}
+
+fn check_line(path: &Path, header: &str) -> Result<()> {
     match std::fs::read_to_string(path) {
         Ok(text) => {
             let first = text.lines().next().unwrap_or("");
-            if !text.trim().is_empty() && first != header.join(",") {
-                bail!("{}: its columns `{first}` are not this mode's `{}`; use another file", path.display(), header.join(","));
+            if !text.trim().is_empty() && first != header {
+                bail!("{}: its columns `{first}` are not this mode's `{header}`; use another file", path.display());
             }
             Ok(())
         }
@@ -30,19 +55,17 @@ pub fn check_header(path: &Path, header: &[&str]) -> Result<()> {
     }
 }
 
-/// Appends `row` under `header`; refuses a file whose header differs.
-pub fn append_row(path: &Path, header: &[&str], row: &[String]) -> Result<()> {
-    assert_eq!(header.len(), row.len(), "timing row and header differ in length");
+/// Appends `record` (with the header line first if the file is new or
+/// empty); refuses a file whose header differs.
+pub fn append<T: Serialize + Default>(path: &Path, record: &T) -> Result<()> {
+    let header = header_of::<T>()?;
     let mut file =
         std::fs::OpenOptions::new().create(true).read(true).append(true).open(path).with_context(|| format!("cannot open timing file {}", path.display()))?;
     let mut existing = String::new();
     file.read_to_string(&mut existing).with_context(|| format!("cannot read timing file {}", path.display()))?;
-    check_header(path, header)?;
-    let mut w = csv::WriterBuilder::new().has_headers(false).from_writer(Vec::new());
-    if existing.trim().is_empty() {
-        w.write_record(header)?;
-    }
-    w.write_record(row)?;
+    check_line(path, &header)?;
+    let mut w = csv::WriterBuilder::new().has_headers(existing.trim().is_empty()).from_writer(Vec::new());
+    w.serialize(record)?;
     let mut bytes = w.into_inner().map_err(|e| anyhow::anyhow!("{e}"))?;
     if !existing.is_empty() && !existing.ends_with('\n') {
         bytes.insert(0, b'\n');

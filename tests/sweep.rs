@@ -151,3 +151,35 @@ fn shipped_experiments_parse_and_stability_records_failures_as_rows() {
     assert!(r.iter().all(|x| x[col("nan_count")] == "0" || x[col("status")] == "error"), "no NaN may reach an image");
     assert!(dir.path().join("stability.png").exists());
 }
+
+/// A scene file rendered by `refract render` and the same parameters run by
+/// `refract sweep` give the same image, byte for byte, for both modes: the
+/// two start from the same defaults (the parameter tables) and only the
+/// given parameters are set. The parameters leave size and photons at their
+/// defaults on purpose, which the two once disagreed on.
+#[test]
+fn render_and_sweep_make_the_same_image() {
+    let dir = tempfile::tempdir().unwrap();
+    let cube = repo("off/cube.off").display().to_string();
+    let cases = [
+        ("interior", format!("off = \"{cube}\"\nrot = [20, 30, 0]\ntrace = 2\nior = 1.8\n")),
+        ("prism", "scene = \"single-prism\"\nphotons = 20000\nspp = 1\n".to_string()),
+    ];
+    for (mode, params) in cases {
+        let scene = dir.path().join(format!("{mode}.toml"));
+        std::fs::write(&scene, format!("id = \"same-{mode}\"\nmode = \"{mode}\"\n[params]\n{params}")).unwrap();
+        let rendered = dir.path().join(format!("{mode}.png"));
+        let o = run(&["render", scene.to_str().unwrap(), "--out", rendered.to_str().unwrap()], "", dir.path());
+        assert!(o.status.success(), "{}", stderr(&o));
+        let experiment = dir.path().join(format!("{mode}-sweep.toml"));
+        std::fs::write(&experiment, format!("name = \"same-{mode}\"\nmode = \"{mode}\"\n[fixed]\n{params}[outputs]\nimages = true\n")).unwrap();
+        let out = dir.path().join(format!("{mode}-out"));
+        let o = sweep(&[experiment.to_str().unwrap(), "--out", out.to_str().unwrap()], dir.path());
+        assert!(o.status.success(), "{}", stderr(&o));
+        let swept = std::fs::read(out.join("images/0.png")).unwrap();
+        let alone = std::fs::read(&rendered).unwrap();
+        assert!(swept == alone, "{mode}: the sweep's image differs from the render's");
+        let size = image::open(&rendered).unwrap().to_rgb8().dimensions();
+        assert_eq!(size, if mode == "interior" { (401, 401) } else { (640, 240) }, "{mode}: the defaults' size");
+    }
+}

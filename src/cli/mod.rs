@@ -289,10 +289,10 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Prism(args) => run_prism(args),
         Command::Figures { quick, only, out, scenes } => {
             let out = out.unwrap_or_else(|| PathBuf::from(if quick { "results/quick" } else { "results" }));
-            let msg = crate::experiment::figures::run(&crate::experiment::figures::FigureOptions { quick, only, out, scenes })?;
-            eprintln!("{msg}");
-            if msg.contains("figures failed") {
-                bail!("some figures failed (see above)");
+            let outcome = crate::experiment::figures::run(&crate::experiment::figures::FigureOptions { quick, only, out, scenes })?;
+            eprintln!("{outcome}");
+            if !outcome.failed.is_empty() {
+                bail!("{} of the figures failed (see above)", outcome.failed.len());
             }
             Ok(())
         }
@@ -327,14 +327,14 @@ fn run_interior(args: InteriorArgs) -> Result<()> {
         crate::params::prompts::ask_all(&mut input, &mut out, args.params.config())?
     };
     if let Some(path) = &args.timing_csv {
-        crate::timing::check_header(path, &crate::interior::TIMING_HEADER)?;
+        crate::timing::check_header::<crate::interior::TimingRow>(path)?;
     }
     let report = crate::interior::run(&cfg)?;
     for n in &report.notes {
         eprintln!("note: {n}");
     }
     if let Some(path) = &args.timing_csv {
-        crate::interior::append_timing(path, &cfg, &report)?;
+        crate::timing::append(path, &crate::interior::TimingRow::new(&cfg, &report))?;
     }
     eprintln!(
         "wrote {} ({}x{}, {} triangles, {:.3} s render, {:.2} M rays/s on {} threads)",
@@ -464,11 +464,11 @@ fn run_prism(args: PrismArgs) -> Result<()> {
         }
     }
     if let Some(path) = &args.timing_csv {
-        crate::timing::check_header(path, &crate::spectral::TIMING_HEADER)?;
+        crate::timing::check_header::<crate::spectral::TimingRow>(path)?;
     }
     let report = crate::spectral::run(&cfg, &crate::terminal::Bars::new())?;
     if let Some(path) = &args.timing_csv {
-        crate::spectral::append_timing(path, &cfg, &report)?;
+        crate::timing::append(path, &crate::spectral::TimingRow::new(&cfg, &report))?;
     }
     let s = &report.render.stats;
     eprintln!(

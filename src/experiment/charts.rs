@@ -3,6 +3,7 @@
 //! slopes where asked, and a pass/fail table for stability experiments.
 
 use super::plot::{render, LineChart, Series, PALETTE};
+use super::spec::PlotKind;
 use super::spec::{Experiment, PlotSpec};
 use crate::image_io::write_rgb8;
 use anyhow::{anyhow, Result};
@@ -11,9 +12,9 @@ use std::path::Path;
 
 pub fn draw_all(e: &Experiment, dir: &Path, header: &[String], rows: &[Vec<String>]) -> Result<()> {
     for p in &e.plots {
-        match p.kind.as_str() {
-            "table" => status_table(p, dir, header, rows)?,
-            _ => {
+        match p.kind {
+            PlotKind::Table => status_table(p, dir, header, rows)?,
+            PlotKind::Line => {
                 let chart = line_chart(p, header, rows)?;
                 render(&dir.join(format!("{}.png", p.file)), &chart)?;
                 render(&dir.join(format!("{}.svg", p.file)), &chart)?;

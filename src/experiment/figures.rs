@@ -109,8 +109,31 @@ fn write_records(out: &Path, records: &BTreeMap<String, Record>) -> Result<()> {
     })
 }
 
+/// What `figures` did.
+#[derive(Debug)]
+pub struct Outcome {
+    /// The figures folder and the gallery page.
+    pub dir: PathBuf,
+    pub index: PathBuf,
+    /// Figures that failed, with their errors (the rest were written).
+    pub failed: Vec<(String, String)>,
+}
+
+impl std::fmt::Display for Outcome {
+    fn fmt(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+        write!(f, "wrote {} and {}", self.dir.display(), self.index.display())?;
+        if !self.failed.is_empty() {
+            write!(f, "; {} figures failed:", self.failed.len())?;
+            for (id, e) in &self.failed {
+                write!(f, "\n  {id}: {e}")?;
+            }
+        }
+        Ok(())
+    }
+}
+
 /// Renders the figures, runs the sweeps, writes the gallery.
-pub fn run(o: &FigureOptions) -> Result<String> {
+pub fn run(o: &FigureOptions) -> Result<Outcome> {
     let md_path = o.scenes.join("FIGURES.md");
     let md = std::fs::read_to_string(&md_path).with_context(|| format!("cannot read {}", md_path.display()))?;
     let ids = figure_ids(&md);
@@ -145,7 +168,7 @@ pub fn run(o: &FigureOptions) -> Result<String> {
             }),
         };
         let rec = result.unwrap_or_else(|e| {
-            failed.push(format!("{id}: {e:#}"));
+            failed.push((id.clone(), format!("{e:#}")));
             Record { status: format!("error: {e:#}"), ..Default::default() }
         });
         records.insert(id.clone(), rec);
@@ -162,11 +185,7 @@ pub fn run(o: &FigureOptions) -> Result<String> {
         super::spectral::write_report(&o.out.join("spectral"), crate::optics::glass::by_name("N-BK7")?)?;
     }
     write_index(&o.out, &ids, &records)?;
-    let mut msg = format!("wrote {} and {}", dir.display(), o.out.join("index.html").display());
-    if !failed.is_empty() {
-        write!(msg, "; {} figures failed:\n  {}", failed.len(), failed.join("\n  "))?;
-    }
-    Ok(msg)
+    Ok(Outcome { dir, index: o.out.join("index.html"), failed })
 }
 
 fn esc(s: &str) -> String {

@@ -28,6 +28,7 @@
 //! the key and its line.
 
 use super::params::{self, Mode};
+use crate::names::Named;
 use anyhow::{anyhow, Result};
 use std::path::Path;
 use toml::{Table, Value};
@@ -52,8 +53,17 @@ pub struct PlotSpec {
     pub fit: bool,
     pub title: String,
     pub file: String,
-    /// `line` (default) or `table` (a pass/fail grid of the cases).
-    pub kind: String,
+    pub kind: PlotKind,
+}
+
+crate::named_enum! {
+    /// What a plot draws.
+    pub enum PlotKind {
+        /// y against x, a line per series (the default).
+        Line = "line",
+        /// A pass/fail grid of the cases (stability experiments).
+        Table = "table",
+    }
 }
 
 #[derive(Clone, Debug)]
@@ -115,191 +125,217 @@ impl Experiment {
     }
 
     pub fn parse(text: &str, file: &str, quick: bool) -> Result<Experiment> {
-        let root = parse_toml(text, file)?;
-        let err = |section: &str, nth: usize, key: &str, msg: String| anyhow!("{file}:{}: `{key}`: {msg}", line_of(text, section, nth, key));
-        for k in root.keys() {
-            if !["name", "mode", "description", "figures", "repeats", "fixed", "sweep", "case", "reference", "quick", "outputs"].contains(&k.as_str()) {
-                return Err(err(
-                    "",
-                    0,
-                    k,
-                    "unknown key; expected name, mode, description, figures, repeats, fixed, sweep, case, reference, quick or outputs".into(),
-                ));
-            }
-        }
-        let string = |key: &str| -> Result<String> {
-            match root.get(key) {
-                Some(Value::String(s)) => Ok(s.clone()),
-                Some(_) => Err(err("", 0, key, "must be a string".into())),
-                None => Err(anyhow!("{file}: missing `{key}`")),
-            }
-        };
-        let name = string("name")?;
-        if name.is_empty() || !name.chars().all(|c| c.is_ascii_alphanumeric() || c == '-' || c == '_') {
-            return Err(err("", 0, "name", "use letters, digits, - and _ only (it names a folder)".into()));
-        }
-        let mode = match string("mode")?.as_str() {
-            "interior" => Mode::Interior,
-            "prism" => Mode::Prism,
-            m => return Err(err("", 0, "mode", format!("`{m}` is not interior or prism"))),
-        };
-        let description = root.get("description").and_then(Value::as_str).unwrap_or_default().to_string();
-        let figures = match root.get("figures") {
-            None => Vec::new(),
-            Some(Value::Array(a)) => a
-                .iter()
-                .map(|v| v.as_str().map(str::to_string).ok_or_else(|| err("", 0, "figures", "must be a list of strings".into())))
-                .collect::<Result<_>>()?,
-            Some(_) => return Err(err("", 0, "figures", "must be a list of strings".into())),
-        };
-        let empty = Table::new();
-        // [quick] is checked whether or not --quick is given.
-        let quick_all = match root.get("quick") {
-            Some(Value::Table(t)) => t.clone(),
-            Some(_) => return Err(err("", 0, "quick", "must be a table".into())),
-            None => empty.clone(),
-        };
-        for k in quick_all.keys() {
-            if !["fixed", "sweep", "repeats", "reference"].contains(&k.as_str()) {
-                return Err(err("quick", 0, k, "unknown key in [quick]; expected fixed, sweep, repeats or reference".into()));
-            }
-        }
-        let quick_t = if quick { quick_all } else { empty.clone() };
-        let table = |key: &str| -> Result<Table> {
-            match root.get(key) {
-                None => Ok(Table::new()),
-                Some(Value::Table(t)) => Ok(t.clone()),
-                Some(_) => Err(err("", 0, key, "must be a table".into())),
-            }
-        };
-        let merged = |key: &str| -> Result<Table> {
-            let mut t = table(key)?;
-            if let Some(q) = quick_t.get(key) {
-                let Value::Table(q) = q else { return Err(err("quick", 0, key, "must be a table".into())) };
-                for (k, v) in q {
-                    t.insert(k.clone(), v.clone());
-                }
-            }
-            Ok(t)
-        };
-        let repeats = match quick_t.get("repeats").or(root.get("repeats")) {
-            None => 1,
-            Some(Value::Integer(n)) if (1..=1000).contains(n) => *n as u32,
-            Some(_) => return Err(err("", 0, "repeats", "must be a whole number from 1 to 1000".into())),
-        };
-        let check = |section: &str, nth: usize, k: &str, v: &Value| -> Result<()> { params::check(mode, k, v).map_err(|m| err(section, nth, k, m)) };
-        let mut fixed = Vec::new();
-        for (k, v) in merged("fixed")? {
-            check("fixed", 0, &k, &v)?;
-            fixed.push((k, v));
-        }
-        let mut sweep = Vec::new();
-        // Keep the file's order of axes (toml::Table is sorted by key).
-        let mut sweep_t: Vec<(String, Value)> = merged("sweep")?.into_iter().collect();
-        sweep_t.sort_by_key(|(k, _)| text.find(&format!("\n{k}")).or_else(|| text.find(k.as_str())).unwrap_or(usize::MAX));
-        for (k, v) in sweep_t {
-            let values = match &v {
-                Value::Array(a) if !a.is_empty() => a.clone(),
-                Value::Table(t) => range(t).map_err(|m| err("sweep", 0, &k, m))?,
-                _ => return Err(err("sweep", 0, &k, "must be a non-empty list or { from, to, step }".into())),
-            };
-            for x in &values {
-                check("sweep", 0, &k, x)?;
-            }
-            sweep.push((k, values));
-        }
-        let mut cases = Vec::new();
-        if let Some(c) = root.get("case") {
-            let Value::Array(list) = c else { return Err(err("", 0, "case", "write cases as [[case]] tables".into())) };
-            for (i, item) in list.iter().enumerate() {
-                let Value::Table(t) = item else { return Err(err("", 0, "case", "write cases as [[case]] tables".into())) };
-                let name = t.get("name").and_then(Value::as_str).ok_or_else(|| err("case", i, "name", format!("case {} needs a name", i + 1)))?.to_string();
-                let case_mode = match t.get("mode").map(|m| m.as_str()) {
-                    None => mode,
-                    Some(Some("interior")) => Mode::Interior,
-                    Some(Some("prism")) => Mode::Prism,
-                    Some(_) => return Err(err("case", i, "mode", "must be interior or prism".into())),
-                };
-                let mut set = Vec::new();
-                for (k, v) in t.iter().filter(|(k, _)| k.as_str() != "name" && k.as_str() != "mode") {
-                    let narrows = sweep.iter().any(|(a, _)| a == k);
-                    match v {
-                        Value::Array(list) if narrows => {
-                            for x in list {
-                                params::check(case_mode, k, x).map_err(|m| err("case", i, k, m))?;
-                            }
-                        }
-                        _ => params::check(case_mode, k, v).map_err(|m| err("case", i, k, m))?,
-                    }
-                    set.push((k.clone(), v.clone()));
-                }
-                cases.push(Case { name, mode: case_mode, params: set });
-            }
-        }
-        let reference = match root.get("reference") {
-            None => None,
-            Some(Value::Table(_)) => {
-                let mut set = Vec::new();
-                for (k, v) in merged("reference")? {
-                    check("reference", 0, &k, &v)?;
-                    set.push((k, v));
-                }
-                Some(set)
-            }
-            Some(_) => return Err(err("", 0, "reference", "must be a table".into())),
-        };
-        let outputs = table("outputs")?;
+        let p = FileParser::new(text, file, quick)?;
+        let (name, mode) = p.name_and_mode()?;
+        let sweep = p.sweep(mode)?;
+        let cases = p.cases(mode, &sweep)?;
+        let outputs = p.table("outputs")?;
         let images = match outputs.get("images") {
             None => false,
             Some(Value::Boolean(b)) => *b,
-            Some(_) => return Err(err("outputs", 0, "images", "must be true or false".into())),
+            Some(_) => return Err(p.err("outputs", 0, "images", "must be true or false".into())),
         };
-        let mut plots = Vec::new();
-        if let Some(p) = outputs.get("plot") {
-            let Value::Array(list) = p else { return Err(err("outputs", 0, "plot", "write plots as [[outputs.plot]] tables".into())) };
-            for (i, item) in list.iter().enumerate() {
-                let Value::Table(t) = item else { return Err(err("outputs", 0, "plot", "write plots as [[outputs.plot]] tables".into())) };
-                let perr = |key: &str, m: &str| err("outputs.plot", i, key, m.to_string());
-                for k in t.keys() {
-                    if !["x", "y", "series", "log_x", "log_y", "fit", "title", "file", "kind"].contains(&k.as_str()) {
-                        return Err(perr(k, "unknown plot key; expected x, y, series, log_x, log_y, fit, title, file or kind"));
-                    }
-                }
-                let s = |key: &str| t.get(key).and_then(Value::as_str).map(str::to_string);
-                let b = |key: &str| t.get(key).and_then(Value::as_bool).unwrap_or(false);
-                let kind = s("kind").unwrap_or_else(|| "line".into());
-                if kind != "line" && kind != "table" {
-                    return Err(perr("kind", "must be line or table"));
-                }
-                let series = match t.get("series") {
-                    None => Vec::new(),
-                    Some(Value::String(x)) => vec![x.clone()],
-                    Some(Value::Array(a)) => a.iter().filter_map(Value::as_str).map(str::to_string).collect(),
-                    Some(_) => return Err(perr("series", "must be a column name or a list of them")),
-                };
-                let file = s("file").ok_or_else(|| perr("file", "each plot needs a file name"))?;
-                if !file.chars().all(|c| c.is_ascii_alphanumeric() || c == '-' || c == '_') {
-                    return Err(perr("file", "use letters, digits, - and _ only"));
-                }
-                let (x, y) = if kind == "table" {
-                    (s("x").unwrap_or_default(), s("y").unwrap_or_default())
-                } else {
-                    (s("x").ok_or_else(|| perr("x", "a line plot needs x"))?, s("y").ok_or_else(|| perr("y", "a line plot needs y"))?)
-                };
-                plots.push(PlotSpec {
-                    x,
-                    y,
-                    series,
-                    log_x: b("log_x"),
-                    log_y: b("log_y"),
-                    fit: b("fit"),
-                    title: s("title").unwrap_or_else(|| file.clone()),
-                    file,
-                    kind,
-                });
+        Ok(Experiment {
+            name,
+            mode,
+            description: p.root.get("description").and_then(Value::as_str).unwrap_or_default().to_string(),
+            figures: p.figures()?,
+            repeats: p.repeats()?,
+            fixed: p.checked(mode, "fixed")?,
+            sweep,
+            cases,
+            reference: match p.root.get("reference") {
+                None => None,
+                Some(Value::Table(_)) => Some(p.checked(mode, "reference")?),
+                Some(_) => return Err(p.err("", 0, "reference", "must be a table".into())),
+            },
+            images,
+            plots: p.plots(&outputs)?,
+        })
+    }
+}
+
+const TOP_KEYS: [&str; 11] = ["name", "mode", "description", "figures", "repeats", "fixed", "sweep", "case", "reference", "quick", "outputs"];
+const PLOT_KEYS: [&str; 9] = ["x", "y", "series", "log_x", "log_y", "fit", "title", "file", "kind"];
+
+/// An experiment file being read: its text (for line numbers), its table,
+/// and the [quick] overrides in force.
+struct FileParser<'a> {
+    text: &'a str,
+    file: &'a str,
+    root: Table,
+    quick: Table,
+}
+
+impl<'a> FileParser<'a> {
+    fn new(text: &'a str, file: &'a str, quick: bool) -> Result<FileParser<'a>> {
+        let root = parse_toml(text, file)?;
+        let mut p = FileParser { text, file, root, quick: Table::new() };
+        for k in p.root.keys() {
+            if !TOP_KEYS.contains(&k.as_str()) {
+                return Err(p.err("", 0, k, format!("unknown key; expected {}", TOP_KEYS.join(", "))));
             }
         }
-        Ok(Experiment { name, mode, description, figures, repeats, fixed, sweep, cases, reference, images, plots })
+        // [quick] is checked whether or not --quick is given.
+        let quick_all = p.table("quick")?;
+        for k in quick_all.keys() {
+            if !["fixed", "sweep", "repeats", "reference"].contains(&k.as_str()) {
+                return Err(p.err("quick", 0, k, "unknown key in [quick]; expected fixed, sweep, repeats or reference".into()));
+            }
+        }
+        if quick {
+            p.quick = quick_all;
+        }
+        Ok(p)
+    }
+
+    /// An error at `key` of the `nth` `[section]`, with its line.
+    fn err(&self, section: &str, nth: usize, key: &str, msg: String) -> anyhow::Error {
+        anyhow!("{}:{}: `{key}`: {msg}", self.file, line_of(self.text, section, nth, key))
+    }
+
+    fn table(&self, key: &str) -> Result<Table> {
+        match self.root.get(key) {
+            None => Ok(Table::new()),
+            Some(Value::Table(t)) => Ok(t.clone()),
+            Some(_) => Err(self.err("", 0, key, "must be a table".into())),
+        }
+    }
+
+    /// A section with its [quick] overrides applied.
+    fn merged(&self, key: &str) -> Result<Table> {
+        let mut t = self.table(key)?;
+        if let Some(q) = self.quick.get(key) {
+            let Value::Table(q) = q else { return Err(self.err("quick", 0, key, "must be a table".into())) };
+            t.extend(q.iter().map(|(k, v)| (k.clone(), v.clone())));
+        }
+        Ok(t)
+    }
+
+    /// A section's parameters, each checked against the mode's table.
+    fn checked(&self, mode: Mode, section: &str) -> Result<Vec<(String, Value)>> {
+        self.merged(section)?.into_iter().map(|(k, v)| params::check(mode, &k, &v).map(|_| (k.clone(), v)).map_err(|m| self.err(section, 0, &k, m))).collect()
+    }
+
+    fn string(&self, key: &str) -> Result<String> {
+        match self.root.get(key) {
+            Some(Value::String(s)) => Ok(s.clone()),
+            Some(_) => Err(self.err("", 0, key, "must be a string".into())),
+            None => Err(anyhow!("{}: missing `{key}`", self.file)),
+        }
+    }
+
+    fn name_and_mode(&self) -> Result<(String, Mode)> {
+        let name = self.string("name")?;
+        if name.is_empty() || !name.chars().all(|c| c.is_ascii_alphanumeric() || c == '-' || c == '_') {
+            return Err(self.err("", 0, "name", "use letters, digits, - and _ only (it names a folder)".into()));
+        }
+        let m = self.string("mode")?;
+        let mode = Mode::from_name(&m).ok_or_else(|| self.err("", 0, "mode", format!("`{m}` is not interior or prism")))?;
+        Ok((name, mode))
+    }
+
+    fn figures(&self) -> Result<Vec<String>> {
+        let bad = || self.err("", 0, "figures", "must be a list of strings".into());
+        match self.root.get("figures") {
+            None => Ok(Vec::new()),
+            Some(Value::Array(a)) => a.iter().map(|v| v.as_str().map(str::to_string).ok_or_else(bad)).collect(),
+            Some(_) => Err(bad()),
+        }
+    }
+
+    fn repeats(&self) -> Result<u32> {
+        match self.quick.get("repeats").or(self.root.get("repeats")) {
+            None => Ok(1),
+            Some(Value::Integer(n)) if (1..=1000).contains(n) => Ok(*n as u32),
+            Some(_) => Err(self.err("", 0, "repeats", "must be a whole number from 1 to 1000".into())),
+        }
+    }
+
+    /// The sweep axes, in the file's order (toml::Table sorts by key).
+    fn sweep(&self, mode: Mode) -> Result<Vec<(String, Vec<Value>)>> {
+        let mut axes: Vec<(String, Value)> = self.merged("sweep")?.into_iter().collect();
+        axes.sort_by_key(|(k, _)| self.text.find(&format!("\n{k}")).or_else(|| self.text.find(k.as_str())).unwrap_or(usize::MAX));
+        let mut sweep = Vec::new();
+        for (k, v) in axes {
+            let values = match &v {
+                Value::Array(a) if !a.is_empty() => a.clone(),
+                Value::Table(t) => range(t).map_err(|m| self.err("sweep", 0, &k, m))?,
+                _ => return Err(self.err("sweep", 0, &k, "must be a non-empty list or { from, to, step }".into())),
+            };
+            for x in &values {
+                params::check(mode, &k, x).map_err(|m| self.err("sweep", 0, &k, m))?;
+            }
+            sweep.push((k, values));
+        }
+        Ok(sweep)
+    }
+
+    /// The [[case]] tables: each a name, a mode and its overrides (a list
+    /// under a sweep axis's name narrows that axis).
+    fn cases(&self, mode: Mode, sweep: &[(String, Vec<Value>)]) -> Result<Vec<Case>> {
+        let Some(c) = self.root.get("case") else { return Ok(Vec::new()) };
+        let bad = || self.err("", 0, "case", "write cases as [[case]] tables".into());
+        let Value::Array(list) = c else { return Err(bad()) };
+        let mut cases = Vec::new();
+        for (i, item) in list.iter().enumerate() {
+            let Value::Table(t) = item else { return Err(bad()) };
+            let name = t.get("name").and_then(Value::as_str).ok_or_else(|| self.err("case", i, "name", format!("case {} needs a name", i + 1)))?.to_string();
+            let case_mode = match t.get("mode") {
+                None => mode,
+                Some(m) => m.as_str().and_then(Mode::from_name).ok_or_else(|| self.err("case", i, "mode", "must be interior or prism".into()))?,
+            };
+            let mut set = Vec::new();
+            for (k, v) in t.iter().filter(|(k, _)| k.as_str() != "name" && k.as_str() != "mode") {
+                let values = match v {
+                    Value::Array(list) if sweep.iter().any(|(a, _)| a == k) => list.clone(),
+                    _ => vec![v.clone()],
+                };
+                for x in &values {
+                    params::check(case_mode, k, x).map_err(|m| self.err("case", i, k, m))?;
+                }
+                set.push((k.clone(), v.clone()));
+            }
+            cases.push(Case { name, mode: case_mode, params: set });
+        }
+        Ok(cases)
+    }
+
+    fn plots(&self, outputs: &Table) -> Result<Vec<PlotSpec>> {
+        let Some(p) = outputs.get("plot") else { return Ok(Vec::new()) };
+        let bad = || self.err("outputs", 0, "plot", "write plots as [[outputs.plot]] tables".into());
+        let Value::Array(list) = p else { return Err(bad()) };
+        list.iter().enumerate().map(|(i, item)| if let Value::Table(t) = item { self.plot(i, t) } else { Err(bad()) }).collect()
+    }
+
+    fn plot(&self, i: usize, t: &Table) -> Result<PlotSpec> {
+        let perr = |key: &str, m: &str| self.err("outputs.plot", i, key, m.to_string());
+        for k in t.keys() {
+            if !PLOT_KEYS.contains(&k.as_str()) {
+                return Err(perr(k, &format!("unknown plot key; expected {}", PLOT_KEYS.join(", "))));
+            }
+        }
+        let s = |key: &str| t.get(key).and_then(Value::as_str).map(str::to_string);
+        let b = |key: &str| t.get(key).and_then(Value::as_bool).unwrap_or(false);
+        let kind = match s("kind") {
+            None => PlotKind::Line,
+            Some(k) => PlotKind::from_name(&k).ok_or_else(|| perr("kind", "must be line or table"))?,
+        };
+        let series = match t.get("series") {
+            None => Vec::new(),
+            Some(Value::String(x)) => vec![x.clone()],
+            Some(Value::Array(a)) => a.iter().filter_map(Value::as_str).map(str::to_string).collect(),
+            Some(_) => return Err(perr("series", "must be a column name or a list of them")),
+        };
+        let file = s("file").ok_or_else(|| perr("file", "each plot needs a file name"))?;
+        if !file.chars().all(|c| c.is_ascii_alphanumeric() || c == '-' || c == '_') {
+            return Err(perr("file", "use letters, digits, - and _ only"));
+        }
+        let (x, y) = match kind {
+            PlotKind::Table => (s("x").unwrap_or_default(), s("y").unwrap_or_default()),
+            PlotKind::Line => (s("x").ok_or_else(|| perr("x", "a line plot needs x"))?, s("y").ok_or_else(|| perr("y", "a line plot needs y"))?),
+        };
+        Ok(PlotSpec { x, y, series, log_x: b("log_x"), log_y: b("log_y"), fit: b("fit"), title: s("title").unwrap_or_else(|| file.clone()), file, kind })
     }
 }
 

@@ -250,149 +250,198 @@ fn write_rows(path: &Path, header: &[String], rows: &[Vec<String>]) -> Result<()
     })
 }
 
+/// A sweep under way: what every run shares.
+struct Sweep<'a> {
+    e: &'a Experiment,
+    dir: PathBuf,
+    header: Vec<String>,
+    names: Vec<String>,
+    all: Vec<RunSpec>,
+    meshes: MeshCache,
+    reference: Option<Frame>,
+    /// Frames of finished runs, for the next run's `changed_px`.
+    frames: Mutex<HashMap<usize, Frame>>,
+    /// runs.csv, open for appending one row per run.
+    file: Mutex<std::fs::File>,
+    errors: Mutex<Vec<anyhow::Error>>,
+}
+
 /// Runs the experiment; returns the output folder and a summary line.
 pub fn run(e: &Experiment, opts: &SweepOptions) -> Result<(PathBuf, String)> {
     let dir = opts.out.clone().unwrap_or_else(|| PathBuf::from("results").join(&e.name));
     std::fs::create_dir_all(&dir).with_context(|| format!("cannot create {}", dir.display()))?;
     let header = header(e);
-    let names = param_names(e);
     let csv_path = dir.join("runs.csv");
     let existing = if opts.resume { read_rows(&csv_path, &header)? } else { Vec::new() };
     // Start the file afresh with the complete rows only.
     write_rows(&csv_path, &header, &existing)?;
     let done: HashSet<usize> = existing.iter().filter_map(|r| r[0].parse().ok()).collect();
-    let all = expand(e);
-    let mine: Vec<&RunSpec> = all
+    let meshes = MeshCache::default();
+    let reference = reference_frame(e, &dir, &meshes)?;
+    if e.images {
+        std::fs::create_dir_all(dir.join("images"))?;
+    }
+    let sweep = Sweep {
+        e,
+        names: param_names(e),
+        all: expand(e),
+        meshes,
+        reference,
+        frames: Mutex::new(HashMap::new()),
+        file: Mutex::new(std::fs::OpenOptions::new().append(true).open(&csv_path)?),
+        errors: Mutex::new(Vec::new()),
+        header,
+        dir,
+    };
+    let mine: Vec<&RunSpec> = sweep
+        .all
         .iter()
         .filter(|r| opts.shard.is_none_or(|(i, n)| r.id % n == i))
         .filter(|r| !done.contains(&r.id))
         .take(opts.max_runs.unwrap_or(usize::MAX))
         .collect();
+    sweep.run_all(&mine, opts.jobs)?;
+    sweep.finish(&csv_path, opts.shard.is_some())
+}
 
-    let meshes = MeshCache::default();
-    let reference = match &e.reference {
-        Some(over) => {
-            let mut p = e.fixed.clone();
-            for (k, v) in over {
-                p.retain(|(q, _)| q != k);
-                p.push((k.clone(), v.clone()));
-            }
-            let o = run_one(e.mode, &p, &meshes);
-            if let Some(f) = &o.frame {
-                write_rgb8(&dir.join("reference.png"), f.width, f.height, &f.display)?;
-            }
-            o.frame
-        }
-        None => None,
-    };
-    if e.images {
-        std::fs::create_dir_all(dir.join("images"))?;
+/// The reference run's frame (the fixed parameters with the reference's
+/// overrides), written as reference.png.
+fn reference_frame(e: &Experiment, dir: &Path, meshes: &MeshCache) -> Result<Option<Frame>> {
+    let Some(over) = &e.reference else { return Ok(None) };
+    let mut p = e.fixed.clone();
+    for (k, v) in over {
+        p.retain(|(q, _)| q != k);
+        p.push((k.clone(), v.clone()));
     }
-    let frames: Mutex<HashMap<usize, Frame>> = Mutex::new(HashMap::new());
-    let file = Mutex::new(std::fs::OpenOptions::new().append(true).open(&csv_path)?);
-    let bar = indicatif::ProgressBar::new(mine.len() as u64)
-        .with_style(
-            indicatif::ProgressStyle::with_template("{prefix} [{bar:40}] {pos}/{len} eta {eta}").unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
-        )
-        .with_prefix(e.name.clone());
-    let pool = rayon::ThreadPoolBuilder::new().num_threads(opts.jobs.max(1)).build()?;
-    // The run one step earlier along the first sweep axis, for changed_px.
-    let predecessor = |r: &RunSpec| -> Option<usize> {
+    let o = run_one(e.mode, &p, meshes);
+    if let Some(f) = &o.frame {
+        write_rgb8(&dir.join("reference.png"), f.width, f.height, &f.display)?;
+    }
+    Ok(o.frame)
+}
+
+impl Sweep<'_> {
+    /// The runs, in waves along the first sweep axis, so each run's
+    /// predecessor (for changed_px) is done before it; runs within a wave
+    /// go in parallel with `jobs` above 1.
+    fn run_all(&self, mine: &[&RunSpec], jobs: usize) -> Result<()> {
+        let bar = indicatif::ProgressBar::new(mine.len() as u64)
+            .with_style(
+                indicatif::ProgressStyle::with_template("{prefix} [{bar:40}] {pos}/{len} runs, eta {eta}")
+                    .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+            )
+            .with_prefix(self.e.name.clone());
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(jobs.max(1)).build()?;
+        let mut waves: std::collections::BTreeMap<usize, Vec<&RunSpec>> = std::collections::BTreeMap::new();
+        for r in mine {
+            waves.entry(r.at.first().copied().unwrap_or(0)).or_default().push(r);
+        }
+        let one = |r: &&RunSpec| {
+            self.run_row(r);
+            bar.inc(1);
+        };
+        for wave in waves.values() {
+            use rayon::prelude::*;
+            if jobs <= 1 {
+                // One at a time, in order. (Not through a 1-thread pool: a
+                // worker waiting on a render's own pool steals the next run,
+                // so runs would overlap and their timings would be wrong.)
+                wave.iter().for_each(one);
+            } else {
+                pool.install(|| wave.par_iter().with_max_len(1).for_each(one));
+            }
+        }
+        bar.finish_and_clear();
+        match self.errors.lock().unwrap().drain(..).next() {
+            Some(err) => Err(err.context(format!("writing {}", self.dir.display()))),
+            None => Ok(()),
+        }
+    }
+
+    /// The run one step earlier along the first sweep axis, for changed_px.
+    fn predecessor(&self, r: &RunSpec) -> Option<usize> {
         if r.at.first().copied().unwrap_or(0) == 0 {
             return None;
         }
         let mut at = r.at.clone();
         at[0] -= 1;
-        all.iter().find(|q| q.case == r.case && q.repeat == r.repeat && q.at == at).map(|q| q.id)
-    };
-    let errors: Mutex<Vec<anyhow::Error>> = Mutex::new(Vec::new());
-    let do_run = |r: &&RunSpec| {
-        let o = run_one(r.mode, &r.params, &meshes);
+        self.all.iter().find(|q| q.case == r.case && q.repeat == r.repeat && q.at == at).map(|q| q.id)
+    }
+
+    /// The image metrics of a run's frame (against the reference and its
+    /// predecessor), and its image if the experiment keeps them.
+    fn measure(&self, r: &RunSpec, f: &Frame, cells: &mut HashMap<&str, String>) {
+        cells.insert("nan_count", metrics::non_finite(f).to_string());
+        cells.insert("fireflies", metrics::fireflies(f).to_string());
+        cells.insert("highlight_px", metrics::highlight_pixels(f).to_string());
+        if let Some(rf) = &self.reference {
+            if let Some((rmse, psnr)) = metrics::rmse_psnr(f, rf) {
+                cells.insert("rmse", crate::timing::cell(rmse));
+                cells.insert("psnr", crate::timing::cell(psnr));
+            }
+            if let Some(rel) = metrics::relative_rmse(f, rf) {
+                cells.insert("rel_rmse", crate::timing::cell(rel));
+            }
+        }
+        let prev = self
+            .predecessor(r)
+            .and_then(|p| self.frames.lock().unwrap().get(&p).cloned().or_else(|| load_frame(&self.dir.join("images").join(format!("{p}.png")))));
+        if let Some(c) = prev.and_then(|p| metrics::changed_pixels(f, &p)) {
+            cells.insert("changed_px", c.to_string());
+        }
+        if self.e.images {
+            if let Err(err) = write_rgb8(&self.dir.join("images").join(format!("{}.png", r.id)), f.width, f.height, &f.display) {
+                self.errors.lock().unwrap().push(err);
+            }
+        }
+        self.frames.lock().unwrap().insert(r.id, f.clone());
+    }
+
+    /// Runs one run and appends its row to runs.csv.
+    fn run_row(&self, r: &RunSpec) {
+        let o = run_one(r.mode, &r.params, &self.meshes);
         let mut cells: HashMap<&str, String> = o.cells.into_iter().collect();
         cells.entry("status").or_insert_with(|| "ok".into());
         cells.entry("failed").or_insert_with(|| "0".into());
         if let Some(f) = &o.frame {
-            cells.insert("nan_count", metrics::non_finite(f).to_string());
-            cells.insert("fireflies", metrics::fireflies(f).to_string());
-            cells.insert("highlight_px", metrics::highlight_pixels(f).to_string());
-            if let Some(rf) = &reference {
-                if let Some((rmse, psnr)) = metrics::rmse_psnr(f, rf) {
-                    cells.insert("rmse", crate::timing::cell(rmse));
-                    cells.insert("psnr", crate::timing::cell(psnr));
-                }
-                if let Some(rel) = metrics::relative_rmse(f, rf) {
-                    cells.insert("rel_rmse", crate::timing::cell(rel));
-                }
-            }
-            let prev =
-                predecessor(r).and_then(|p| frames.lock().unwrap().get(&p).cloned().or_else(|| load_frame(&dir.join("images").join(format!("{p}.png")))));
-            if let Some(c) = prev.and_then(|p| metrics::changed_pixels(f, &p)) {
-                cells.insert("changed_px", c.to_string());
-            }
-            if e.images {
-                if let Err(err) = write_rgb8(&dir.join("images").join(format!("{}.png", r.id)), f.width, f.height, &f.display) {
-                    errors.lock().unwrap().push(err);
-                }
-            }
-            frames.lock().unwrap().insert(r.id, f.clone());
+            self.measure(r, f, &mut cells);
         }
         let mut row = vec![r.id.to_string(), r.mode.name().to_string(), r.case.clone(), r.repeat.to_string()];
-        row.extend(names.iter().map(|n| r.params.iter().find(|(k, _)| k == n).map_or(String::new(), |(_, v)| cell(v))));
+        row.extend(self.names.iter().map(|n| r.params.iter().find(|(k, _)| k == n).map_or(String::new(), |(_, v)| cell(v))));
         row.extend(METRICS.iter().map(|m| cells.get(m).cloned().unwrap_or_default()));
         let mut w = csv::WriterBuilder::new().has_headers(false).from_writer(Vec::new());
         let line = w.write_record(&row).map_err(anyhow::Error::from).and_then(|_| w.into_inner().map_err(|e| anyhow::anyhow!("{e}")));
-        match line {
-            Ok(bytes) => {
-                let mut f = file.lock().unwrap();
-                if let Err(err) = f.write_all(&bytes).and_then(|_| f.flush()) {
-                    errors.lock().unwrap().push(err.into());
-                }
-            }
-            Err(err) => errors.lock().unwrap().push(err),
-        }
-        bar.inc(1);
-    };
-    // In waves along the first sweep axis, so each run's predecessor (for
-    // changed_px) is done before it; runs within a wave go in parallel.
-    let mut waves: std::collections::BTreeMap<usize, Vec<&RunSpec>> = std::collections::BTreeMap::new();
-    for r in &mine {
-        waves.entry(r.at.first().copied().unwrap_or(0)).or_default().push(r);
-    }
-    for wave in waves.values() {
-        use rayon::prelude::*;
-        if opts.jobs <= 1 {
-            // One at a time, in order. (Not through a 1-thread pool: a
-            // worker waiting on a render's own pool steals the next run,
-            // so runs would overlap and their timings would be wrong.)
-            wave.iter().for_each(do_run);
-        } else {
-            pool.install(|| wave.par_iter().with_max_len(1).for_each(do_run));
+        let written = line.and_then(|bytes| {
+            let mut f = self.file.lock().unwrap();
+            f.write_all(&bytes).and_then(|_| f.flush()).map_err(anyhow::Error::from)
+        });
+        if let Err(err) = written {
+            self.errors.lock().unwrap().push(err);
         }
     }
-    bar.finish_and_clear();
-    if let Some(err) = errors.into_inner().unwrap().into_iter().next() {
-        return Err(err.context(format!("writing {}", dir.display())));
+
+    /// Sorts the rows by run id, draws the plots, and sums up.
+    fn finish(&self, csv_path: &Path, sharded: bool) -> Result<(PathBuf, String)> {
+        let mut rows = read_rows(csv_path, &self.header)?;
+        rows.sort_by_key(|r| r[0].parse::<usize>().unwrap_or(usize::MAX));
+        rows.dedup_by(|a, b| a[0] == b[0]);
+        write_rows(csv_path, &self.header, &rows)?;
+        let complete = rows.len() == self.all.len();
+        if complete || sharded {
+            super::charts::draw_all(self.e, &self.dir, &self.header, &rows)?;
+        }
+        let failed = rows.iter().filter(|r| r[self.header.iter().position(|h| h == "failed").unwrap_or(0)] == "1").count();
+        let summary = format!(
+            "{}: {} of {} runs in {} ({} failed){}",
+            self.e.name,
+            rows.len(),
+            self.all.len(),
+            csv_path.display(),
+            failed,
+            if complete { "" } else { "; run again with --resume to finish" }
+        );
+        Ok((self.dir.clone(), summary))
     }
-    // Final order by run id, whatever order the runs finished in.
-    let mut rows = read_rows(&csv_path, &header)?;
-    rows.sort_by_key(|r| r[0].parse::<usize>().unwrap_or(usize::MAX));
-    rows.dedup_by(|a, b| a[0] == b[0]);
-    write_rows(&csv_path, &header, &rows)?;
-    let complete = rows.len() == all.len();
-    if complete || opts.shard.is_some() {
-        super::charts::draw_all(e, &dir, &header, &rows)?;
-    }
-    let failed = rows.iter().filter(|r| r[header.iter().position(|h| h == "failed").unwrap_or(0)] == "1").count();
-    let summary = format!(
-        "{}: {} of {} runs in {} ({} failed){}",
-        e.name,
-        rows.len(),
-        all.len(),
-        csv_path.display(),
-        failed,
-        if complete { "" } else { "; run again with --resume to finish" }
-    );
-    Ok((dir, summary))
 }
 
 fn load_frame(path: &Path) -> Option<Frame> {

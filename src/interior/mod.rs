@@ -14,10 +14,10 @@ pub mod trace;
 
 use crate::image_io::{self, Image};
 use crate::mesh::{Mesh, MeshColors};
+use crate::timing::Real;
 use anyhow::Result;
 pub use config::InteriorConfig;
 use scene::InteriorScene;
-use std::path::Path;
 use std::time::Instant;
 use trace::Tracer;
 
@@ -75,32 +75,44 @@ pub fn render_mesh(mesh: Mesh, cfg: &InteriorConfig) -> Result<RunReport> {
     Ok(RunReport { image: render.image, triangles, threads, load_s: 0.0, build_s, render_s, rays: render.rays, tir: render.tir, notes })
 }
 
-/// Columns of the interior mode's timing CSV.
-pub const TIMING_HEADER: [&str; 15] =
-    ["mode", "mesh", "triangles", "width", "height", "trace", "ior", "shininess", "accel", "threads", "load_s", "build_s", "render_s", "rays", "rays_per_s"];
-
-pub fn timing_row(cfg: &InteriorConfig, r: &RunReport) -> Vec<String> {
-    use crate::timing::cell;
-    let rays_per_s = if r.render_s > 0.0 { r.rays as f64 / r.render_s } else { 0.0 };
-    vec![
-        "interior".into(),
-        cfg.off.to_string(),
-        r.triangles.to_string(),
-        cfg.width.to_string(),
-        cfg.height.to_string(),
-        cfg.max_trace.to_string(),
-        cell(cfg.ior as f64),
-        cell(cfg.shininess as f64),
-        cfg.accel.name().into(),
-        r.threads.to_string(),
-        cell(r.load_s),
-        cell(r.build_s),
-        cell(r.render_s),
-        r.rays.to_string(),
-        cell(rays_per_s),
-    ]
+/// One row of the interior mode's timing CSV (`--timing-csv`).
+#[derive(serde::Serialize, Default)]
+pub struct TimingRow {
+    pub mode: &'static str,
+    pub mesh: String,
+    pub triangles: usize,
+    pub width: usize,
+    pub height: usize,
+    pub trace: u32,
+    pub ior: Real,
+    pub shininess: Real,
+    pub accel: &'static str,
+    pub threads: usize,
+    pub load_s: Real,
+    pub build_s: Real,
+    pub render_s: Real,
+    pub rays: u64,
+    pub rays_per_s: Real,
 }
 
-pub fn append_timing(path: &Path, cfg: &InteriorConfig, r: &RunReport) -> Result<()> {
-    crate::timing::append_row(path, &TIMING_HEADER, &timing_row(cfg, r))
+impl TimingRow {
+    pub fn new(cfg: &InteriorConfig, r: &RunReport) -> TimingRow {
+        TimingRow {
+            mode: "interior",
+            mesh: cfg.off.to_string(),
+            triangles: r.triangles,
+            width: cfg.width,
+            height: cfg.height,
+            trace: cfg.max_trace,
+            ior: Real(cfg.ior as f64),
+            shininess: Real(cfg.shininess as f64),
+            accel: cfg.accel.name(),
+            threads: r.threads,
+            load_s: Real(r.load_s),
+            build_s: Real(r.build_s),
+            render_s: Real(r.render_s),
+            rays: r.rays,
+            rays_per_s: Real(if r.render_s > 0.0 { r.rays as f64 / r.render_s } else { 0.0 }),
+        }
+    }
 }

@@ -493,4 +493,44 @@ mod tests {
         assert_eq!(c.parse_text("KD-tree"), Ok(Value::Choice(1, "kdtree")));
         assert!(c.parse_text("octree").unwrap_err().contains("is not one of buffer, kdtree"));
     }
+
+    /// Every row of both tables: unique keys, a default that passes its own
+    /// kind's checks, and `set` then `get` giving back what was set.
+    fn rows_are_consistent<C>(params: &'static [Param<C>], defaults: impl Fn() -> C) {
+        let mut keys: Vec<&str> = params.iter().flat_map(|p| std::iter::once(p.key).chain(p.aliases.iter().copied())).collect();
+        let n = keys.len();
+        keys.sort();
+        keys.dedup();
+        assert_eq!(keys.len(), n, "duplicate keys");
+        let d = defaults();
+        check_all(params, &d).unwrap();
+        for p in params {
+            assert!(!p.help.is_empty(), "{} has no help", p.key);
+            match (p.get)(&d) {
+                Some(v) => {
+                    assert_eq!(p.kind.parse_text(&v.to_string()).as_ref(), Ok(&v), "{}: the default reads back", p.key);
+                    let mut c = defaults();
+                    (p.set)(&mut c, &v);
+                    assert_eq!((p.get)(&c), Some(v), "{}: set then get", p.key);
+                }
+                None => assert!(!p.auto.is_empty(), "{}: a default computed at run time says how", p.key),
+            }
+        }
+    }
+
+    #[test]
+    fn both_tables_are_consistent() {
+        rows_are_consistent(prism::PARAMS, prism::defaults);
+        rows_are_consistent(interior::PARAMS, interior::defaults);
+    }
+
+    #[test]
+    fn check_all_names_the_flag_of_a_bad_value() {
+        let mut c = prism::defaults();
+        c.photons = 0;
+        assert_eq!(check_all(prism::PARAMS, &c).unwrap_err(), "--photons: 0 is not between 1 and 2000000000");
+        let mut c = interior::defaults();
+        c.opacity = 120.0;
+        assert_eq!(check_all(interior::PARAMS, &c).unwrap_err(), "--opacity: 120 is not between 0 and 100");
+    }
 }

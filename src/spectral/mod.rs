@@ -16,10 +16,11 @@ use crate::photon::map::MapKind;
 use crate::progress::Progress;
 use crate::scenes::SceneOptions;
 use crate::spectrum::cie::GamutMap;
+use crate::timing::Real;
 use anyhow::{bail, Result};
 use eye::EyeMode;
 use render::{RenderOptions, SpectralRender};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 /// A whole run (`refract prism`, a scene file, a sweep row): the scene,
 /// both passes and the output.
@@ -146,60 +147,59 @@ pub fn peak_memory_mb() -> f64 {
         .map_or(0.0, |kb| kb / 1024.0)
 }
 
-/// Columns of the prism mode's timing CSV.
-pub const TIMING_HEADER: [&str; 20] = [
-    "mode",
-    "scene",
-    "light",
-    "photons",
-    "stored",
-    "width",
-    "height",
-    "spp",
-    "map",
-    "filter",
-    "radius_m",
-    "k",
-    "eye",
-    "threads",
-    "trace_s",
-    "build_s",
-    "render_s",
-    "photons_per_s",
-    "bytes_per_photon",
-    "peak_mem_mb",
-];
-
-pub fn timing_row(cfg: &SpectralConfig, r: &SpectralReport) -> Vec<String> {
-    use crate::timing::cell;
-    let s = &r.render.stats;
-    vec![
-        "prism".into(),
-        cfg.scene.kind.name().into(),
-        cfg.scene.light.as_ref().map_or_else(|| "default".into(), |l| l.name.clone()),
-        s.emitted.to_string(),
-        s.stored.to_string(),
-        cfg.scene.width.to_string(),
-        cfg.scene.height.to_string(),
-        cfg.spp.to_string(),
-        cfg.map.name().into(),
-        cfg.filter.name().into(),
-        cell(r.radius),
-        cfg.k.map_or(String::new(), |k| k.to_string()),
-        match cfg.eye {
-            EyeMode::Hero => "hero".into(),
-            EyeMode::Split => format!("split{}", cfg.split),
-        },
-        r.threads.to_string(),
-        cell(r.render.trace_s),
-        cell(r.render.build_s),
-        cell(r.render.render_s),
-        cell(if r.render.trace_s > 0.0 { s.emitted as f64 / r.render.trace_s } else { 0.0 }),
-        cell(if s.stored > 0 { r.render.map_bytes as f64 / s.stored as f64 } else { 0.0 }),
-        cell(r.peak_mem_mb),
-    ]
+/// One row of the prism mode's timing CSV (`--timing-csv`).
+#[derive(serde::Serialize, Default)]
+pub struct TimingRow {
+    pub mode: &'static str,
+    pub scene: &'static str,
+    pub light: String,
+    pub photons: u64,
+    pub stored: u64,
+    pub width: usize,
+    pub height: usize,
+    pub spp: u32,
+    pub map: &'static str,
+    pub filter: &'static str,
+    pub radius_m: Real,
+    pub k: Option<usize>,
+    /// `hero`, or `splitN`.
+    pub eye: String,
+    pub threads: usize,
+    pub trace_s: Real,
+    pub build_s: Real,
+    pub render_s: Real,
+    pub photons_per_s: Real,
+    pub bytes_per_photon: Real,
+    pub peak_mem_mb: Real,
 }
 
-pub fn append_timing(path: &Path, cfg: &SpectralConfig, r: &SpectralReport) -> Result<()> {
-    crate::timing::append_row(path, &TIMING_HEADER, &timing_row(cfg, r))
+impl TimingRow {
+    pub fn new(cfg: &SpectralConfig, r: &SpectralReport) -> TimingRow {
+        let s = &r.render.stats;
+        TimingRow {
+            mode: "prism",
+            scene: cfg.scene.kind.name(),
+            light: cfg.scene.light.as_ref().map_or_else(|| "default".into(), |l| l.name.clone()),
+            photons: s.emitted,
+            stored: s.stored,
+            width: cfg.scene.width,
+            height: cfg.scene.height,
+            spp: cfg.spp,
+            map: cfg.map.name(),
+            filter: cfg.filter.name(),
+            radius_m: Real(r.radius),
+            k: cfg.k,
+            eye: match cfg.eye {
+                EyeMode::Hero => "hero".into(),
+                EyeMode::Split => format!("split{}", cfg.split),
+            },
+            threads: r.threads,
+            trace_s: Real(r.render.trace_s),
+            build_s: Real(r.render.build_s),
+            render_s: Real(r.render.render_s),
+            photons_per_s: Real(if r.render.trace_s > 0.0 { s.emitted as f64 / r.render.trace_s } else { 0.0 }),
+            bytes_per_photon: Real(if s.stored > 0 { r.render.map_bytes as f64 / s.stored as f64 } else { 0.0 }),
+            peak_mem_mb: Real(r.peak_mem_mb),
+        }
+    }
 }
