@@ -7,6 +7,8 @@ pub const FL: &str = include_str!("../data/cie_fl.csv");
 pub const FL3: &str = include_str!("../data/cie_fl3.csv");
 pub const GLASSES: &str = include_str!("../data/glasses.csv");
 pub const CFL_LINES: &str = include_str!("../data/cfl_lines.csv");
+/// The line designations behind `optics::glass::lines` (checked by a test).
+#[cfg(test)]
 pub const FRAUNHOFER: &str = include_str!("../data/fraunhofer_lines.csv");
 
 /// A CSV table with `#` comment lines: its header and rows of fields.

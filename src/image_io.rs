@@ -24,11 +24,6 @@ impl Image {
         self.pixels[y * self.width + x]
     }
 
-    /// Pixels that are NaN or infinite (they are written as black).
-    pub fn non_finite_count(&self) -> usize {
-        self.pixels.iter().filter(|p| !p.is_finite()).count()
-    }
-
     /// 8-bit RGB bytes; values are clamped (report 004 clamps colours to
     /// [0, 1] before scaling to 0-255) and NaN is written as 0.
     pub fn to_rgb8(&self) -> Vec<u8> {

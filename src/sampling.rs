@@ -36,12 +36,6 @@ impl Rng {
     }
 }
 
-/// Radical inverse in base 2 (van der Corput), with a scramble: stratified
-/// points for photon i of n along one dimension.
-pub fn van_der_corput(i: u64, scramble: u64) -> f64 {
-    ((i.reverse_bits() ^ scramble) >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
-}
-
 /// Radical inverse of `i` in a prime `base` (a Halton dimension).
 pub fn radical_inverse(mut i: u64, base: u64) -> f64 {
     let inv = 1.0 / base as f64;
@@ -76,10 +70,10 @@ mod tests {
         let mean: f64 = (0..n).map(|_| r.f64()).sum::<f64>() / n as f64;
         assert!((mean - 0.5).abs() < 0.005);
         assert_ne!(Rng::new(1, 2, 3).next_u64(), Rng::new(1, 2, 4).next_u64());
-        // Van der Corput fills strata: the first 8 points land in 8 bins.
+        // The radical inverse fills strata: the first 8 points in base 2 land in 8 bins.
         let mut bins = [0; 8];
         for i in 0..8 {
-            bins[(van_der_corput(i, 0) * 8.0) as usize] += 1;
+            bins[(radical_inverse(i, 2) * 8.0) as usize] += 1;
         }
         assert_eq!(bins, [1; 8]);
         assert!((radical_inverse(1, 3) - 1.0 / 3.0).abs() < 1e-15 && (radical_inverse(4, 3) - 4.0 / 9.0).abs() < 1e-15);

@@ -26,3 +26,5 @@ mod prism_render;
 mod sweep;
 // The figures of the four reports and their gallery; scene files.
 mod figures;
+// The modules import only downward (docs/architecture.md).
+mod layers;

@@ -416,7 +416,7 @@ fn colour_compare(png: &Path, quick: bool) -> Result<String> {
         cfg.colours = *map;
         let scene = build(&cfg.scene)?;
         let r = crate::spectral::default_radius(&scene);
-        let opts = crate::spectral::render::RenderOptions {
+        let opts = crate::spectral::options::RenderOptions {
             photons,
             map: cfg.map,
             filter: cfg.filter,

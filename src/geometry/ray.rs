@@ -17,11 +17,6 @@ impl Ray {
         Ray { origin, dir, t_min: 0.0, t_max: f32::INFINITY }
     }
 
-    pub fn with_t_min(mut self, t_min: f32) -> Self {
-        self.t_min = t_min;
-        self
-    }
-
     pub fn at(&self, t: f32) -> Vec3 {
         self.origin + t * self.dir
     }

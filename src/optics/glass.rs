@@ -5,14 +5,14 @@
 use crate::data::{Table, GLASSES};
 use std::sync::OnceLock;
 
-/// Glass-industry line wavelengths, nm (SCHOTT TIE-29).
+/// Line wavelengths in air, nm, as `data/fraunhofer_lines.csv` lists them:
+/// the glass industry's (SCHOTT TIE-29) and two solar Fraunhofer lines.
 pub mod lines {
     pub const C: f64 = 656.2725;
     pub const D: f64 = 589.294;
     pub const LD: f64 = 587.5618;
     pub const E: f64 = 546.074;
     pub const F: f64 = 486.1327;
-    pub const G_HG: f64 = 435.8343;
     /// Fraunhofer B and G (solar), used by report 001's model.
     pub const B_SOLAR: f64 = 686.719;
     pub const G_SOLAR: f64 = 430.79;
@@ -103,5 +103,24 @@ mod tests {
         assert!(by_name("fused silica").is_ok());
         let e = by_name("BK8").unwrap_err().to_string();
         assert!(e.contains("N-BK7") && e.contains("N-SF11"), "{e}");
+    }
+
+    #[test]
+    fn line_constants_are_the_tables() {
+        let t = crate::data::Table::parse(crate::data::FRAUNHOFER);
+        let (name, nm, conv) = (t.column("line").unwrap(), t.column("wavelength_nm").unwrap(), t.column("convention").unwrap());
+        let find =
+            |line: &str, convention: &str| -> f64 { t.rows.iter().find(|r| r[name] == line && r[conv] == convention).map(|r| r[nm].parse().unwrap()).unwrap() };
+        for (value, line, convention) in [
+            (lines::C, "C", "glass"),
+            (lines::D, "D", "glass"),
+            (lines::LD, "d", "glass"),
+            (lines::E, "e", "glass"),
+            (lines::F, "F", "glass"),
+            (lines::B_SOLAR, "B", "solar"),
+            (lines::G_SOLAR, "G", "solar"),
+        ] {
+            assert!((value - find(line, convention)).abs() < 1e-3, "{line} ({convention}): {value}");
+        }
     }
 }

@@ -182,13 +182,6 @@ impl<C> Param<C> {
         }
     }
 
-    /// Checks and sets a value given as text (command line, prompts).
-    pub fn apply_text(&self, c: &mut C, s: &str) -> Result<(), String> {
-        let v = self.kind.parse_text(s)?;
-        (self.set)(c, &v);
-        Ok(())
-    }
-
     /// Checks and sets a value from a TOML file.
     pub fn apply_toml(&self, c: &mut C, v: &toml::Value) -> Result<(), String> {
         let v = self.kind.parse_toml(v)?;
@@ -446,26 +439,25 @@ pub fn apply_toml<C>(params: &'static [Param<C>], c: &mut C, key: &str, v: &toml
     }
 }
 
-/// Checks every parameter's current value against its kind (for
-/// configurations built in code, which skipped the parsing), naming the flag.
-pub fn check_all<C>(params: &'static [Param<C>], c: &C) -> Result<(), String> {
-    for p in params {
-        let Some(v) = (p.get)(c) else { continue };
-        let ok = match (&p.kind, &v) {
-            (k @ Kind::Count { .. }, Value::Count(n)) => k.check_count(*n).map(|_| ()),
-            (k @ Kind::Real { .. }, Value::Real(x)) => k.check_real(*x).map(|_| ()),
-            (k @ Kind::Size { .. }, Value::Size([w, h])) => k.check_size(*w as f64, *h as f64, &v.to_string()).map(|_| ()),
-            (Kind::Triple, Value::Triple(t)) if t.iter().any(|x| !x.is_finite()) => Err(format!("`{v}` has a value that is not a finite number")),
-            _ => Ok(()),
-        };
-        ok.map_err(|e| format!("--{}: {e}", p.flag()))?;
-    }
-    Ok(())
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Checks every parameter's current value against its kind, naming the flag.
+    pub fn check_all<C>(params: &'static [Param<C>], c: &C) -> Result<(), String> {
+        for p in params {
+            let Some(v) = (p.get)(c) else { continue };
+            let ok = match (&p.kind, &v) {
+                (k @ Kind::Count { .. }, Value::Count(n)) => k.check_count(*n).map(|_| ()),
+                (k @ Kind::Real { .. }, Value::Real(x)) => k.check_real(*x).map(|_| ()),
+                (k @ Kind::Size { .. }, Value::Size([w, h])) => k.check_size(*w as f64, *h as f64, &v.to_string()).map(|_| ()),
+                (Kind::Triple, Value::Triple(t)) if t.iter().any(|x| !x.is_finite()) => Err(format!("`{v}` has a value that is not a finite number")),
+                _ => Ok(()),
+            };
+            ok.map_err(|e| format!("--{}: {e}", p.flag()))?;
+        }
+        Ok(())
+    }
 
     #[test]
     fn kinds_parse_text_and_toml_alike() {

@@ -8,7 +8,7 @@ use crate::optics::ior::IorKind;
 use crate::photon::gather::Filter;
 use crate::photon::map::MapKind;
 use crate::scenes::{SceneKind, SceneOptions};
-use crate::spectral::eye::EyeMode;
+use crate::spectral::options::EyeMode;
 use crate::spectral::SpectralConfig;
 use crate::spectrum::cie::GamutMap;
 use crate::spectrum::colormap::ColorMap;

@@ -9,7 +9,7 @@
 //! with `--eye split`, the ray splits into N monochromatic rays at once
 //! (report 001's method).
 
-use super::render::RenderOptions;
+use super::options::{EyeMode, RenderOptions};
 use crate::photon::map::SurfaceMap;
 use crate::sampling::Rng;
 use crate::spectrum::cie::cie_y_integral;
@@ -17,15 +17,6 @@ use crate::spectrum::sampler::WavelengthSampler;
 use crate::world::interface::{cross, Polarisation};
 use crate::world::{Surface, World};
 use glam::{DVec2, DVec3};
-
-crate::named_enum! {
-    pub enum EyeMode {
-        /// One sampled wavelength goes on (pbrt-v4's hero wavelength).
-        Hero = "hero",
-        /// Split into `--split` monochromatic rays at the first dispersive face (report 001).
-        Split = "split",
-    }
-}
 
 const MAX_DEPTH: usize = 64;
 /// Interfaces up to this depth split an eye path into its reflected and

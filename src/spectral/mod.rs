@@ -8,6 +8,7 @@
 
 pub mod eye;
 pub mod film;
+pub mod options;
 pub mod render;
 pub mod strip;
 
@@ -18,8 +19,8 @@ use crate::scenes::SceneOptions;
 use crate::spectrum::cie::GamutMap;
 use crate::timing::Real;
 use anyhow::{bail, Result};
-use eye::EyeMode;
-use render::{RenderOptions, SpectralRender};
+use options::{EyeMode, RenderOptions};
+use render::SpectralRender;
 use std::path::PathBuf;
 
 /// A whole run (`refract prism`, a scene file, a sweep row): the scene,

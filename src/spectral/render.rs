@@ -2,34 +2,19 @@
 //! maps (`photon`), then the eye pass (`eye`) reads them back through the
 //! camera. Times each pass and counts what it did.
 
-use super::eye::{Eye, EyeMode};
+use super::eye::Eye;
 use super::film::XyzImage;
+use super::options::RenderOptions;
 use crate::photon::emit::{light_pass, LightStats};
-use crate::photon::gather::{Filter, Lookup};
-use crate::photon::map::{MapKind, SurfaceMap};
+use crate::photon::map::SurfaceMap;
 use crate::progress::Progress;
 use crate::sampling::Rng;
-use crate::spectrum::colormap::ColorMap;
 use crate::spectrum::sampler::WavelengthSampler;
 use crate::spectrum::Spectrum;
 use crate::world::{Emission, World};
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 use std::time::Instant;
-
-#[derive(Clone, Debug)]
-pub struct RenderOptions {
-    pub photons: u64,
-    pub map: MapKind,
-    pub filter: Filter,
-    pub lookup: Lookup,
-    pub spp: u32,
-    pub seed: u64,
-    pub eye: EyeMode,
-    pub split: u32,
-    /// How a wavelength becomes colour: CIE, or one of the reports' maps.
-    pub colours: ColorMap,
-}
 
 /// A finished render and what it measured.
 pub struct SpectralRender {

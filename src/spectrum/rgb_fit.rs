@@ -10,8 +10,23 @@
 //! the paper does for saturated colours.
 
 use super::cie::{cmf, XYZ_TO_SRGB};
-use super::spectra::d65;
 use glam::{DMat3, DVec3};
+
+/// The white a reflectance is seen under: the illuminant times the CIE
+/// functions at 5 nm over 380-780 nm, and its Y for normalisation.
+pub struct White {
+    weights: Vec<(f64, DVec3)>,
+    norm: f64,
+}
+
+impl White {
+    /// `illuminant` in relative units (D65 for sRGB).
+    pub fn new(illuminant: impl Fn(f64) -> f64) -> White {
+        let weights: Vec<(f64, DVec3)> = (0..=80).map(|i| 380.0 + 5.0 * i as f64).map(|l| (l, illuminant(l) * cmf(l))).collect();
+        let norm = weights.iter().map(|(_, w)| w.y).sum();
+        White { weights, norm }
+    }
+}
 
 #[derive(Copy, Clone, Debug, PartialEq)]
 pub struct SigmoidPolynomial {
@@ -35,28 +50,25 @@ impl SigmoidPolynomial {
         sigmoid((self.c[0] * x + self.c[1]) * x + self.c[2])
     }
 
-    /// Linear sRGB of this reflectance under D65 (5 nm, 380-780 nm),
+    /// Linear sRGB of this reflectance under `white` (D65 for sRGB),
     /// normalised so a perfect white reflector is about (1, 1, 1).
-    pub fn rgb(&self) -> DVec3 {
-        let (sum, norm) = (0..=80).map(|i| 380.0 + 5.0 * i as f64).fold((DVec3::ZERO, 0.0), |(s, n), l| {
-            let w = d65().eval(l) * cmf(l);
-            (s + w * self.eval(l), n + w.y)
-        });
-        XYZ_TO_SRGB * (sum / norm)
+    pub fn rgb(&self, white: &White) -> DVec3 {
+        let sum: DVec3 = white.weights.iter().map(|&(l, w)| w * self.eval(l)).sum();
+        XYZ_TO_SRGB * (sum / white.norm)
     }
 
     /// Fits a reflectance to linear sRGB `target` (components clamped to
     /// [0.001, 0.999]: 0 and 1 need infinite coefficients). Returns the fit
     /// and its largest remaining RGB error.
-    pub fn fit(target: DVec3) -> (SigmoidPolynomial, f64) {
+    pub fn fit(target: DVec3, white: &White) -> (SigmoidPolynomial, f64) {
         let target = target.clamp(DVec3::splat(1e-3), DVec3::splat(0.999));
         let mut c = DVec3::ZERO; // grey 0.5
-        let grey = SigmoidPolynomial { c: [0.0; 3] }.rgb();
+        let grey = SigmoidPolynomial { c: [0.0; 3] }.rgb(white);
         for step in 1..=8 {
             let goal = grey.lerp(target, step as f64 / 8.0);
             for _ in 0..30 {
                 let p = SigmoidPolynomial { c: c.to_array() };
-                let r = goal - p.rgb();
+                let r = goal - p.rgb(white);
                 if r.abs().max_element() < 1e-6 {
                     break;
                 }
@@ -68,7 +80,7 @@ impl SigmoidPolynomial {
                     let mut b = c;
                     a[k] += h;
                     b[k] -= h;
-                    *col = (SigmoidPolynomial { c: a.to_array() }.rgb() - SigmoidPolynomial { c: b.to_array() }.rgb()) / (2.0 * h);
+                    *col = (SigmoidPolynomial { c: a.to_array() }.rgb(white) - SigmoidPolynomial { c: b.to_array() }.rgb(white)) / (2.0 * h);
                 }
                 let j = DMat3::from_cols(cols[0], cols[1], cols[2]);
                 if j.determinant().abs() < 1e-14 {
@@ -84,7 +96,7 @@ impl SigmoidPolynomial {
             }
         }
         let fit = SigmoidPolynomial { c: c.to_array() };
-        let err = (fit.rgb() - target).abs().max_element();
+        let err = (fit.rgb(white) - target).abs().max_element();
         (fit, err)
     }
 }
@@ -93,14 +105,20 @@ impl SigmoidPolynomial {
 mod tests {
     use super::*;
 
+    fn d65() -> White {
+        let d = crate::spectrum::spectra::d65();
+        White::new(|l| d.eval(l))
+    }
+
     #[test]
     fn fits_round_trip_over_the_rgb_cube() {
         let levels = [0.02, 0.2, 0.5, 0.8, 0.98];
         let mut worst: f64 = 0.0;
+        let white = d65();
         for &r in &levels {
             for &g in &levels {
                 for &b in &levels {
-                    let (fit, err) = SigmoidPolynomial::fit(DVec3::new(r, g, b));
+                    let (fit, err) = SigmoidPolynomial::fit(DVec3::new(r, g, b), &white);
                     worst = worst.max(err);
                     assert!((360..=830).all(|l| (0.0..=1.0).contains(&fit.eval(l as f64))));
                 }
@@ -111,7 +129,7 @@ mod tests {
 
     #[test]
     fn grey_is_flat() {
-        let (fit, _) = SigmoidPolynomial::fit(DVec3::splat(0.5));
+        let (fit, _) = SigmoidPolynomial::fit(DVec3::splat(0.5), &d65());
         let v: Vec<f64> = (400..=700).step_by(50).map(|l| fit.eval(l as f64)).collect();
         assert!(v.iter().all(|x| (x - v[0]).abs() < 0.02), "{v:?}");
     }

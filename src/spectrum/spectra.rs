@@ -3,7 +3,7 @@
 //! (Planck; report 001's lights), narrow emission lines (a CFL's mercury and
 //! phosphor lines, a laser) and smooth spectra fitted to RGB colours.
 
-use super::rgb_fit::SigmoidPolynomial;
+use super::rgb_fit::{SigmoidPolynomial, White};
 use crate::data::{Table, CFL_LINES, D65, FL, FL3};
 use std::fmt;
 use std::sync::Arc;
@@ -112,13 +112,9 @@ impl Spectrum {
         if scale == 0.0 {
             return Spectrum::Constant(0.0);
         }
-        let (fit, _) = SigmoidPolynomial::fit(rgb / scale);
+        let d65 = d65();
+        let (fit, _) = SigmoidPolynomial::fit(rgb / scale, &White::new(|l| d65.eval(l)));
         Spectrum::Rgb { fit, scale, illuminant }
-    }
-
-    /// True when the spectrum is the same at every wavelength.
-    pub fn is_constant(&self) -> bool {
-        matches!(self, Spectrum::Constant(_))
     }
 
     /// A light spectrum by name: `E`, `D65`, `FL1`..`FL12`, `FL3.1`..`FL3.15`,

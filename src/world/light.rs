@@ -29,14 +29,3 @@ pub struct Light {
     /// over 360-830 nm).
     pub power: f64,
 }
-
-impl Light {
-    /// Area the beam's cross-section covers, m^2 (0 for other lights).
-    pub fn beam_area(&self) -> f64 {
-        match &self.emission {
-            Emission::Beam { half, disc: true, .. } => std::f64::consts::PI * half.x * half.y,
-            Emission::Beam { half, disc: false, .. } => 4.0 * half.x * half.y,
-            _ => 0.0,
-        }
-    }
-}

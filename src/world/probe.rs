@@ -5,6 +5,7 @@
 
 use super::interface::cross;
 use super::{Surface, World};
+use crate::optics::fresnel::train_transmittance;
 use glam::DVec3;
 
 #[derive(Clone, Debug, PartialEq)]
@@ -28,7 +29,7 @@ pub struct ProbeRay {
 pub fn probe(scene: &World, nm: f64) -> ProbeRay {
     let (mut o, d0) = scene.probe;
     let mut d = d0;
-    let (mut ts, mut tp) = (1.0, 1.0);
+    let mut crossed = Vec::new();
     let mut medium = 0;
     let mut skip = None;
     let mut faces = 0;
@@ -47,8 +48,7 @@ pub fn probe(scene: &World, nm: f64) -> ProbeRay {
         faces += 1;
         match c.refracted {
             Some(t) => {
-                ts *= 1.0 - c.fresnel.rs;
-                tp *= 1.0 - c.fresnel.rp;
+                crossed.push(c.fresnel);
                 d = t;
                 medium = c.to;
             }
@@ -68,5 +68,5 @@ pub fn probe(scene: &World, nm: f64) -> ProbeRay {
     } else if dev <= -180.0 {
         dev += 360.0;
     }
-    ProbeRay { nm, exit_point: o, exit_dir: d, deviation_deg: dev, transmittance: if tir { 0.0 } else { 0.5 * (ts + tp) }, tir, faces, path }
+    ProbeRay { nm, exit_point: o, exit_dir: d, deviation_deg: dev, transmittance: if tir { 0.0 } else { train_transmittance(&crossed) }, tir, faces, path }
 }
