@@ -2,7 +2,7 @@
 //! off, only light refracted out of the mesh is left: for a cube with the
 //! light at its centre, each face lets light out only inside the circle of
 //! radius d tan(asin(1/n)) round the foot of the perpendicular (beyond it
-//! total internal reflection traps it).
+//! total internal reflection traps it; docs/physics.md §1).
 
 use crate::common::*;
 

@@ -28,7 +28,7 @@ fn single_prism_matches_the_closed_form_deviation() {
     let scene = build(&SceneOptions::new(SceneKind::SinglePrism)).unwrap();
     let g = by_name("N-BK7").unwrap();
     let a = 60f64.to_radians();
-    // Incidence: minimum deviation at d (PHYSICS.md §3: 49.3233 deg).
+    // Incidence: minimum deviation at d (docs/physics.md §3: 49.3233 deg).
     let th1 = (g.sellmeier(lines::LD) * (a / 2.0).sin()).asin();
     assert!((th1.to_degrees() - 49.3233).abs() < 1e-4);
     for nm in [lines::C, lines::LD, lines::F, 435.8343, 700.0] {

@@ -125,7 +125,7 @@ fn cfl_lines_give_separate_tube_images_in_order_and_spacing() {
         let r = render(&s, &opts(1, 4), &hidden());
         x.push(centroid(&r).x);
     }
-    // Prediction from PHYSICS.md's exit angles (+4.280, +0.707, -0.321 deg):
+    // Prediction from docs/physics.md's exit angles (+4.280, +0.707, -0.321 deg):
     // the tube seen through the prism shifts by -delta in angle, so the
     // spacings between images scale as the differences of tan(delta).
     let d = [4.280f64, 0.707, -0.321].map(|a| a.to_radians().tan());
@@ -134,7 +134,7 @@ fn cfl_lines_give_separate_tube_images_in_order_and_spacing() {
     let want = (d[0] - d[1]) / (d[1] - d[2]);
     assert!((ratio / want - 1.0).abs() < 0.05, "spacing ratio {ratio} vs {want}");
     // Absolute spacing: focal length in pixels from the camera's field of
-    // view. PHYSICS.md's angles are for a ray along the axis and a source at
+    // view. docs/physics.md's angles are for a ray along the axis and a source at
     // infinity; here the camera's rays meet the prism up to 5 degrees off
     // axis and the tube is 1 m away, so allow 10 %.
     let s = scene(SceneKind::AmiciLamp, None, size);

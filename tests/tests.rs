@@ -20,6 +20,8 @@ mod off_fuzz;
 mod spectral_oracles;
 // Prism scenes against closed-form deviation and the Amici oracle.
 mod prism_optics;
+// Reports 001 and 003: the ball lens, the Cornell laser.
+mod scene_optics;
 // Whole prism renders: energy, landing points, chroma, the CFL's line images.
 mod prism_render;
 // The experiment runner: rows, plots, resume, shards, failures as rows.
@@ -28,3 +30,5 @@ mod sweep;
 mod figures;
 // The modules import only downward (docs/architecture.md).
 mod layers;
+// Citations of docs/physics.md point at sections that exist.
+mod docs;

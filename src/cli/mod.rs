@@ -64,8 +64,10 @@ pub enum Command {
         #[arg(default_value = "off")]
         dir: PathBuf,
     },
-    /// Report 000: white light dispersed by an Amici prism, by photon
-    /// mapping. `refract prism trace` probes the optics ray by ray.
+    /// The spectral photon mapper: report 000's Amici prism (amici-screen,
+    /// amici-lamp), report 001's glass spheres and report 003's Cornell
+    /// boxes and album cover (--scene). `refract prism trace` probes the
+    /// optics ray by ray.
     Prism(PrismArgs),
     /// Run an experiment file (experiments/*.toml): a grid of runs, one CSV
     /// row each, and its plots; `refract sweep merge` joins shards.

@@ -1,5 +1,5 @@
 //! Report 004's extended Phong model for a point light inside a translucent
-//! object ("Illumination Model"):
+//! object ("Illumination Model"; docs/physics.md §10):
 //!
 //! Color = Ka * Ambient + (Diffuse + Specular) / (1 + c d^2)
 //! Diffuse  = Kd * |cos beta| * ObjectColor * LightColor   (translucent)

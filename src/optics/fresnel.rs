@@ -1,5 +1,5 @@
 //! Fresnel equations for a dielectric interface, unpolarised light, s and
-//! p kept apart for paths through several faces (PHYSICS.md §2).
+//! p kept apart for paths through several faces (docs/physics.md §2).
 
 /// Reflectances of the two polarisations at one interface.
 #[derive(Copy, Clone, Debug, PartialEq)]

@@ -71,7 +71,7 @@ impl IorModel {
         }
     }
 
-    /// Index at wavelength `nm`.
+    /// Index at wavelength `nm` (docs/physics.md §7).
     pub fn n(&self, nm: f64) -> f64 {
         match self {
             IorModel::Constant(n) => *n,

@@ -1,4 +1,4 @@
-//! Snell's law in vector form (report 000's construction; PHYSICS.md §1).
+//! Snell's law in vector form (report 000's construction; docs/physics.md §1).
 //! Total internal reflection is a return value (`None`), not an error: the
 //! caller reflects instead. Works unchanged for relative indices below 1
 //! (report 004's mirror-like "low IOR") and for grazing rays.
@@ -10,7 +10,7 @@ macro_rules! snell_impl {
         /// `None` under total internal reflection (`k = cos^2 theta_t < 0`).
         #[inline]
         pub fn $refract(d: $v, n: $v, eta: $f) -> Option<$v> {
-            // PHYSICS.md §1: n must point into the second medium, d.n > 0.
+            // docs/physics.md §1: n must point into the second medium, d.n > 0.
             let n = if d.dot(n) < 0.0 { -n } else { n };
             let cos_i = d.dot(n).min(1.0);
             let k = 1.0 - eta * eta * (1.0 - cos_i * cos_i);

@@ -1,6 +1,7 @@
 //! Density estimation: the filter kernels that turn photons into
 //! irradiance (filtering the photon map's colour was report 000's named
-//! problem). Each kernel is normalised over a disc of radius r.
+//! problem). Each kernel is normalised over a disc of radius r
+//! (docs/physics.md §9).
 
 use std::f64::consts::PI;
 

@@ -1,6 +1,7 @@
 //! The anchor scene (not from a report): a 60 degree prism of `--glass`, a
 //! 2 cm round beam at minimum deviation for the d line, and a matte screen
 //! 4 m behind, perpendicular to the d line; the camera looks at the screen.
+//! Minimum deviation: docs/physics.md §3.
 
 use super::{glass_medium, light_spectrum, rotate_z, SceneOptions};
 use crate::optics::glass::lines;

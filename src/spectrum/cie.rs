@@ -1,7 +1,7 @@
 //! CIE 1931 colour: spectrum to XYZ with the 2-degree colour-matching
 //! functions (embedded from `data/cie1931_2deg_cmf.csv`, CIE 015:2018 via
 //! colour-science 0.4.7), XYZ to linear sRGB (IEC 61966-2-1), gamut mapping,
-//! exposure and the sRGB transfer function (PHYSICS.md §5).
+//! exposure and the sRGB transfer function (docs/physics.md §5).
 
 use crate::data::{Table, CMF_1931};
 use glam::{DMat3, DVec3};

@@ -190,7 +190,7 @@ pub fn laser(nm: f64) -> Spectrum {
     Spectrum::Lines { lines: vec![(nm, 1.0)], fwhm: 1.0 }
 }
 
-/// A tri-phosphor compact fluorescent lamp as separate lines
+/// A tri-phosphor compact fluorescent lamp (docs/physics.md §6) as separate lines
 /// (`data/cfl_lines.csv`: Hg I lines and Eu3+/Tb3+ phosphor peaks, 1.5 nm
 /// wide) plus the broad Eu2+ blue band (50 nm wide). The table gives no
 /// strengths; the powers below are our estimate of a warm-white lamp (the

@@ -9,7 +9,7 @@ use glam::DVec3;
 
 /// Polarisation a path keeps from light to screen: through a prism train
 /// (faces sharing one plane of incidence) s and p stay separate, and the
-/// average of the two gives the unpolarised answer (PHYSICS.md §2).
+/// average of the two gives the unpolarised answer (docs/physics.md §2).
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 pub enum Polarisation {
     S,

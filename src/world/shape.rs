@@ -85,7 +85,7 @@ pub struct Sphere {
 }
 
 impl Sphere {
-    /// Nearest root beyond the start; `leaving` when the ray starts on this
+    /// Nearest root beyond the start (docs/physics.md §8); `leaving` when the ray starts on this
     /// sphere (then the root at the start is ignored).
     #[inline]
     pub fn intersect(&self, o: DVec3, d: DVec3, leaving: bool) -> Option<f64> {
@@ -99,5 +99,47 @@ impl Sphere {
         let q = disc.sqrt();
         let eps = if leaving { 1e-7 * self.radius } else { 0.0 };
         [-b - q, -b + q].into_iter().find(|&t| t > eps)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sampling::Rng;
+
+    /// Against the geometric construction: the ray's closest approach to
+    /// the centre is at t_c = (c - o).d, at distance q = |(c - o) x d|; it
+    /// hits iff q <= R, at t_c -/+ sqrt(R^2 - q^2).
+    #[test]
+    fn ray_sphere_matches_the_geometric_closed_form() {
+        let mut rng = Rng::new(5, 0, 0);
+        let mut v = || DVec3::new(rng.f64() - 0.5, rng.f64() - 0.5, rng.f64() - 0.5);
+        let (mut hits, mut misses) = (0, 0);
+        for _ in 0..10_000 {
+            let s = Sphere { name: "s".into(), centre: v() * 4.0, radius: 0.2 + v().x.abs() * 2.0, surface: Surface::Mirror { reflectance: 1.0 } };
+            let o = v() * 8.0;
+            // Aimed near the sphere, so about as many rays hit as miss.
+            let d = (s.centre + v() * (3.0 * s.radius) - o).normalize();
+            let oc = s.centre - o;
+            let (tc, q) = (oc.dot(d), oc.cross(d).length());
+            let got = s.intersect(o, d, false);
+            if q > s.radius {
+                assert!(got.is_none(), "a ray passing {q} from the centre of a sphere of radius {} misses it", s.radius);
+                misses += 1;
+                continue;
+            }
+            let half = (s.radius * s.radius - q * q).sqrt();
+            let want = [tc - half, tc + half].into_iter().find(|&t| t > 0.0);
+            match (got, want) {
+                (Some(t), Some(w)) => {
+                    assert!((t - w).abs() < 1e-9 * (1.0 + w.abs()), "t {t} vs {w}");
+                    assert!((((o + t * d) - s.centre).length() - s.radius).abs() < 1e-9, "the hit lies on the sphere");
+                    hits += 1;
+                }
+                (None, None) => misses += 1,
+                (g, w) => panic!("intersect {g:?}, closed form {w:?}"),
+            }
+        }
+        assert!(hits > 500 && misses > 500, "both cases tried: {hits} hits, {misses} misses");
     }
 }

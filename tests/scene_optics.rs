@@ -1,0 +1,77 @@
+//! Reports 001 and 003's scenes against closed-form optics: a glass ball
+//! focuses a collimated beam where the paraxial ball-lens formula says, and
+//! the Cornell box's laser lands on the wall where `refract prism trace`
+//! (the probe) says.
+
+use glam::DVec3;
+use refract::optics::ior::IorModel;
+use refract::photon::emit::light_pass;
+use refract::scenes::{build, SceneKind, SceneOptions};
+use refract::spectrum::colormap::ColorMap;
+use refract::spectrum::spectra::NamedSpectrum;
+use refract::world::probe::probe;
+use refract::world::{Medium, Sphere, Surface, World};
+
+/// A glass ball of index `n` and radius `r` at the origin, and the axis
+/// distance from its centre where a ray entering parallel to the axis at
+/// height `h` crosses the axis after two refractions.
+fn ball_focus(n: f64, r: f64, h: f64) -> f64 {
+    let mut w = World::new("ball", vec![Medium::Air, Medium::Glass { name: "n".into(), ior: IorModel::Constant(n) }], 8, 8);
+    w.spheres.push(Sphere { name: "ball".into(), centre: DVec3::ZERO, radius: r, surface: Surface::Interface { front: 0, back: 1 } });
+    w.probe = (DVec3::new(-3.0 * r, h, 0.0), DVec3::X);
+    let p = probe(&w, 550.0);
+    assert_eq!(p.faces, 2, "in and out of the ball");
+    assert!(!p.tir);
+    // Where the exit ray meets y = 0.
+    let t = -p.exit_point.y / p.exit_dir.y;
+    (p.exit_point + t * p.exit_dir).x
+}
+
+#[test]
+fn a_glass_ball_focuses_at_the_paraxial_focal_length() {
+    for (n, r) in [(1.5, 1.0), (1.5168, 0.5), (1.8, 0.38), (1.33, 2.0)] {
+        // Effective focal length from the centre: f = n R / (2 (n - 1)).
+        let f = n * r / (2.0 * (n - 1.0));
+        let paraxial = ball_focus(n, r, 1e-3 * r);
+        assert!((paraxial / f - 1.0).abs() < 1e-5, "n {n}, R {r}: focus {paraxial} vs {f}");
+        // Spherical aberration: rays farther out focus closer to the ball.
+        let marginal = ball_focus(n, r, 0.3 * r);
+        assert!(marginal < paraxial - 1e-3 * r, "n {n}: marginal {marginal} vs paraxial {paraxial}");
+    }
+}
+
+#[test]
+fn the_cornell_laser_lands_where_the_probe_says() {
+    for nm in [450.0, 532.0, 650.0] {
+        let mut o = SceneOptions::new(SceneKind::CornellLaser);
+        o.light = Some(NamedSpectrum::parse(&format!("laser:{nm}")).unwrap());
+        let mut scene = build(&o).unwrap();
+        // The laser alone, stored where it first lands.
+        scene.lights.truncate(1);
+        scene.bounces = 0;
+        let p = probe(&scene, nm);
+        assert_eq!(p.faces, 2, "through the prism: in and out");
+        // Just past the exit face, so the ray does not meet it again.
+        let start = p.exit_point + 1e-9 * p.exit_dir;
+        let hit = scene.intersect(start, p.exit_dir, None).expect("the beam reaches a wall");
+        let spot = start + hit.t * p.exit_dir;
+        let Surface::Diffuse { map, .. } = *scene.surface(hit.face) else { panic!("the beam lands on a matte wall, not {}", scene.name(hit.face)) };
+        let face = &scene.faces[hit.face];
+        let (_, eu, ev) = face.frame.unwrap();
+        let uv = face.uv(spot).unwrap();
+        let want = glam::DVec2::new(uv.x * eu.length(), uv.y * ev.length());
+        let pass = light_pass(&scene, 40_000, 7, ColorMap::Cie, &refract::progress::Silent);
+        // Photon-weighted centre of what landed within 5 cm of the prediction.
+        let (mut sum, mut weight) = (glam::DVec2::ZERO, 0.0);
+        for ph in &pass.photons[map] {
+            let q = glam::DVec2::new(ph.pos[0] as f64, ph.pos[1] as f64);
+            if (q - want).length() < 0.05 {
+                sum += q * ph.xyz[1] as f64;
+                weight += ph.xyz[1] as f64;
+            }
+        }
+        assert!(weight > 0.0, "{nm} nm: nothing landed near {want}");
+        let centre = sum / weight;
+        assert!((centre - want).length() < 5e-4, "{nm} nm on {}: photons centred at {centre}, probe says {want}", scene.name(hit.face));
+    }
+}
