@@ -3,7 +3,7 @@
 //! and never see this module.
 
 use crate::progress::Progress;
-use indicatif::{MultiProgress, ProgressBar, ProgressDrawTarget, ProgressStyle};
+use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
 use std::sync::Mutex;
 
 /// One bar per stage, drawn on standard error while the stage runs.
@@ -15,11 +15,6 @@ pub struct Bars {
 impl Bars {
     pub fn new() -> Bars {
         Bars { multi: MultiProgress::new(), bars: Mutex::new(Vec::new()) }
-    }
-
-    /// Bars that draw nothing (inside sweeps, where one bar counts runs).
-    pub fn hidden() -> Bars {
-        Bars { multi: MultiProgress::with_draw_target(ProgressDrawTarget::hidden()), bars: Mutex::new(Vec::new()) }
     }
 
     fn with(&self, stage: &'static str, f: impl FnOnce(&ProgressBar)) {
@@ -34,6 +29,14 @@ impl Default for Bars {
     fn default() -> Self {
         Bars::new()
     }
+}
+
+/// A bar that counts whole items (figures, runs), with the current item's
+/// name beside it.
+pub fn counter(len: u64, prefix: &str, unit: &str) -> ProgressBar {
+    let template = format!("{{prefix}} [{{bar:40}}] {{pos}}/{{len}} {unit} {{msg}} eta {{eta}}");
+    let style = ProgressStyle::with_template(&template).unwrap_or_else(|_| ProgressStyle::default_bar());
+    ProgressBar::new(len).with_style(style).with_prefix(prefix.to_string())
 }
 
 /// The unit a stage counts, for the rate shown beside its bar.

@@ -146,9 +146,7 @@ pub fn run(o: &FigureOptions) -> Result<Outcome> {
     let dir = o.out.join("figures");
     std::fs::create_dir_all(&dir).with_context(|| format!("cannot create {}", dir.display()))?;
     let mut records = read_records(&o.out);
-    let bar = indicatif::ProgressBar::new(todo.len() as u64).with_style(
-        indicatif::ProgressStyle::with_template("figures [{bar:40}] {pos}/{len} {msg} eta {eta}").unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
-    );
+    let bar = crate::terminal::counter(todo.len() as u64, "figures", "");
     let mut failed = Vec::new();
     for id in todo {
         bar.set_message(id.clone());

@@ -65,6 +65,23 @@ pub fn map_summaries() -> Vec<MapSummary> {
 /// Writes the CSVs and plots into `dir`; returns a short text summary.
 pub fn write_report(dir: &Path, glass: &Glass) -> Result<String> {
     std::fs::create_dir_all(dir)?;
+    let errors = write_ior_report(dir, glass)?;
+    let maps = write_colour_map_report(dir)?;
+    let mut out = format!("IOR models for {} against Sellmeier, 380-780 nm:\n", glass.name);
+    for e in &errors {
+        writeln!(out, "  {:<11} max |dn| {:.2e} (400-700: {:.2e})", e.model.name(), e.max_abs_380_780, e.max_abs_400_700)?;
+    }
+    writeln!(out, "Colour maps against CIE, 400-700 nm:")?;
+    for m in &maps {
+        writeln!(out, "  {:<11} mean Delta E {:6.2}, max {:6.2}, mean hue error {:5.1} deg", m.map.name(), m.mean_delta_e, m.max_delta_e, m.mean_hue_deg)?;
+    }
+    writeln!(out, "wrote {}/{{ior_models,ior_models_summary,colour_maps,colour_maps_summary}}.csv and plots", dir.display())?;
+    Ok(out)
+}
+
+/// n(lambda) of every model (CSV and plot) and each model's error against
+/// Sellmeier (summary CSV and plot).
+fn write_ior_report(dir: &Path, glass: &Glass) -> Result<Vec<IorError>> {
     // n(lambda) of every model.
     let models: Vec<(IorKind, IorModel)> = IorKind::ALL.iter().map(|&k| (k, IorModel::for_glass(glass, k))).collect();
     let mut csv = String::from("wavelength_nm");
@@ -117,8 +134,12 @@ pub fn write_report(dir: &Path, glass: &Glass) -> Result<String> {
             series: series(true),
         },
     )?;
+    Ok(errors)
+}
 
-    // Colour maps against CIE.
+/// Every colour map against CIE: per-wavelength CSV, summary, strips and
+/// the Delta E plot.
+fn write_colour_map_report(dir: &Path) -> Result<Vec<MapSummary>> {
     let mut csv = String::from("wavelength_nm,map,r_lin,g_lin,b_lin,delta_e,hue_err_deg\n");
     for map in ColorMap::ALL {
         for l in (380..=780).step_by(5) {
@@ -156,15 +177,5 @@ pub fn write_report(dir: &Path, glass: &Glass) -> Result<String> {
                 .collect(),
         },
     )?;
-
-    let mut out = format!("IOR models for {} against Sellmeier, 380-780 nm:\n", glass.name);
-    for e in &errors {
-        writeln!(out, "  {:<11} max |dn| {:.2e} (400-700: {:.2e})", e.model.name(), e.max_abs_380_780, e.max_abs_400_700)?;
-    }
-    writeln!(out, "Colour maps against CIE, 400-700 nm:")?;
-    for m in &maps {
-        writeln!(out, "  {:<11} mean Delta E {:6.2}, max {:6.2}, mean hue error {:5.1} deg", m.map.name(), m.mean_delta_e, m.max_delta_e, m.mean_hue_deg)?;
-    }
-    writeln!(out, "wrote {}/{{ior_models,ior_models_summary,colour_maps,colour_maps_summary}}.csv and plots", dir.display())?;
-    Ok(out)
+    Ok(maps)
 }

@@ -325,12 +325,7 @@ impl Sweep<'_> {
     /// predecessor (for changed_px) is done before it; runs within a wave
     /// go in parallel with `jobs` above 1.
     fn run_all(&self, mine: &[&RunSpec], jobs: usize) -> Result<()> {
-        let bar = indicatif::ProgressBar::new(mine.len() as u64)
-            .with_style(
-                indicatif::ProgressStyle::with_template("{prefix} [{bar:40}] {pos}/{len} runs, eta {eta}")
-                    .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
-            )
-            .with_prefix(self.e.name.clone());
+        let bar = crate::terminal::counter(mine.len() as u64, &self.e.name, "runs");
         let pool = rayon::ThreadPoolBuilder::new().num_threads(jobs.max(1)).build()?;
         let mut waves: std::collections::BTreeMap<usize, Vec<&RunSpec>> = std::collections::BTreeMap::new();
         for r in mine {

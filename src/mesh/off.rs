@@ -145,6 +145,40 @@ impl<'a> Parser<'a> {
     }
 
     fn parse(mut self) -> PResult<Mesh> {
+        let (colour_vertices, nv, nf) = self.header()?;
+        // Capacity bounded by what the text could hold, never by the header.
+        let cap = |n: usize, min_bytes: usize| n.min(self.lex.s.len() / min_bytes + 1);
+        let (positions, vcolors) = self.vertices(nv, colour_vertices, cap(nv, 6))?;
+        let mut triangles: Vec<[u32; 3]> = Vec::with_capacity(cap(nf, 8));
+        let mut tri_colors: Vec<Option<Rgb>> = Vec::with_capacity(cap(nf, 8));
+        let mut stats = MeshStats { faces: nf, ..Default::default() };
+        let mut poly: Vec<u32> = Vec::new();
+        for f in 0..nf {
+            let face_colour = self.face(f, nf, nv, &mut poly)?;
+            if poly.len() < 3 {
+                stats.skipped_small += 1;
+                continue;
+            }
+            let before = triangles.len();
+            stats.skipped_degenerate += triangulate(&positions, &poly, &mut triangles);
+            tri_colors.resize(tri_colors.len() + (triangles.len() - before), face_colour);
+        }
+        if let Some((tok, line)) = self.lex.next() {
+            return Err((line, MeshErrorKind::TrailingData(tok.chars().take(40).collect())));
+        }
+        let colors = if colour_vertices {
+            MeshColors::PerVertex(vcolors)
+        } else if tri_colors.iter().any(Option::is_some) {
+            MeshColors::PerTriangle(tri_colors)
+        } else {
+            MeshColors::None
+        };
+        Ok(Mesh { positions, triangles, colors, stats })
+    }
+
+    /// The keyword (OFF or COFF, counts may be glued to it) and the vertex
+    /// and face counts: (colour per vertex, vertices, faces).
+    fn header(&mut self) -> PResult<(bool, usize, usize)> {
         let Some((kw, kw_line)) = self.lex.next() else {
             return Err((1, MeshErrorKind::MissingKeyword("end of file".into())));
         };
@@ -166,10 +200,13 @@ impl<'a> Parser<'a> {
         let nv = self.count("vertex count", first)?;
         let nf = self.count("face count", None)?;
         let _ne = self.count("edge count", None)?;
+        Ok((colour_vertices, nv, nf))
+    }
 
-        // Capacity bounded by what the text could hold, never by the header.
-        let cap = |n: usize, min_bytes: usize| n.min(self.lex.s.len() / min_bytes + 1);
-        let mut positions = Vec::with_capacity(cap(nv, 6));
+    /// `nv` vertices, each x y z and, for COFF, 3 or 4 colour components
+    /// (on the vertex's line, or streamed over lines as some writers do).
+    fn vertices(&mut self, nv: usize, colour_vertices: bool, capacity: usize) -> PResult<(Vec<Vec3>, Vec<Rgb>)> {
+        let mut positions = Vec::with_capacity(capacity);
         let mut vcolors: Vec<Rgb> = Vec::new();
         let mut stream_colors = false;
         for i in 0..nv {
@@ -195,58 +232,39 @@ impl<'a> Parser<'a> {
                 vcolors.push(colour(&toks)?);
             }
         }
+        Ok((positions, vcolors))
+    }
 
-        let mut triangles: Vec<[u32; 3]> = Vec::with_capacity(cap(nf, 8));
-        let mut tri_colors: Vec<Option<Rgb>> = Vec::with_capacity(cap(nf, 8));
-        let mut stats = MeshStats { faces: nf, ..Default::default() };
-        let mut poly: Vec<u32> = Vec::new();
-        for f in 0..nf {
-            let what = format!("face {} of {nf}", f + 1);
-            let (tok, line) = self.expect(&what)?;
-            let k: u64 = tok.parse().map_err(|_| (line, MeshErrorKind::BadToken { what: format!("the vertex count of {what}"), token: tok.into() }))?;
-            poly.clear();
-            for _ in 0..k {
-                let (tok, line) = self.expect(&format!("a vertex index of {what}"))?;
-                let idx: i64 = tok.parse().map_err(|_| (line, MeshErrorKind::BadToken { what: format!("a vertex index of {what}"), token: tok.into() }))?;
-                if idx < 0 || idx as u64 >= nv as u64 {
-                    return Err((line, MeshErrorKind::IndexOutOfRange { face: f + 1, index: tok.into(), count: nv }));
-                }
-                poly.push(idx as u32);
+    /// Face `f` of `nf`: its vertex indices into `poly`, and its colour if
+    /// the line gives one.
+    fn face(&mut self, f: usize, nf: usize, nv: usize, poly: &mut Vec<u32>) -> PResult<Option<Rgb>> {
+        let what = format!("face {} of {nf}", f + 1);
+        let (tok, line) = self.expect(&what)?;
+        let k: u64 = tok.parse().map_err(|_| (line, MeshErrorKind::BadToken { what: format!("the vertex count of {what}"), token: tok.into() }))?;
+        poly.clear();
+        for _ in 0..k {
+            let (tok, line) = self.expect(&format!("a vertex index of {what}"))?;
+            let idx: i64 = tok.parse().map_err(|_| (line, MeshErrorKind::BadToken { what: format!("a vertex index of {what}"), token: tok.into() }))?;
+            if idx < 0 || idx as u64 >= nv as u64 {
+                return Err((line, MeshErrorKind::IndexOutOfRange { face: f + 1, index: tok.into(), count: nv }));
             }
-            let line = self.lex.line;
-            let ctoks: Vec<(&str, usize)> = std::iter::from_fn(|| self.lex.next_on_line()).take(5).map(|t| (t, line)).collect();
-            let face_colour = match ctoks.len() {
-                0 => None,
-                1 => {
-                    // A colormap index (Geomview): checked, but we keep the object colour.
-                    ctoks[0]
-                        .0
-                        .parse::<u32>()
-                        .map_err(|_| (line, MeshErrorKind::BadToken { what: format!("a colour or colormap index for {what}"), token: ctoks[0].0.into() }))?;
-                    None
-                }
-                3 | 4 => Some(colour(&ctoks)?),
-                n => return Err((line, MeshErrorKind::Invalid(format!("{what} has {n} colour components after its indices; expected 0, 1, 3 or 4")))),
-            };
-            if poly.len() < 3 {
-                stats.skipped_small += 1;
-                continue;
+            poly.push(idx as u32);
+        }
+        let line = self.lex.line;
+        let ctoks: Vec<(&str, usize)> = std::iter::from_fn(|| self.lex.next_on_line()).take(5).map(|t| (t, line)).collect();
+        match ctoks.len() {
+            0 => Ok(None),
+            1 => {
+                // A colormap index (Geomview): checked, but we keep the object colour.
+                ctoks[0]
+                    .0
+                    .parse::<u32>()
+                    .map_err(|_| (line, MeshErrorKind::BadToken { what: format!("a colour or colormap index for {what}"), token: ctoks[0].0.into() }))?;
+                Ok(None)
             }
-            let before = triangles.len();
-            stats.skipped_degenerate += triangulate(&positions, &poly, &mut triangles);
-            tri_colors.resize(tri_colors.len() + (triangles.len() - before), face_colour);
+            3 | 4 => Ok(Some(colour(&ctoks)?)),
+            n => Err((line, MeshErrorKind::Invalid(format!("{what} has {n} colour components after its indices; expected 0, 1, 3 or 4")))),
         }
-        if let Some((tok, line)) = self.lex.next() {
-            return Err((line, MeshErrorKind::TrailingData(tok.chars().take(40).collect())));
-        }
-        let colors = if colour_vertices {
-            MeshColors::PerVertex(vcolors)
-        } else if tri_colors.iter().any(Option::is_some) {
-            MeshColors::PerTriangle(tri_colors)
-        } else {
-            MeshColors::None
-        };
-        Ok(Mesh { positions, triangles, colors, stats })
     }
 
     fn vec3(&mut self, what: &str) -> PResult<(Vec3, usize)> {
