@@ -6,7 +6,10 @@ pub const D65: &str = include_str!("../data/cie_d65.csv");
 pub const FL: &str = include_str!("../data/cie_fl.csv");
 pub const FL3: &str = include_str!("../data/cie_fl3.csv");
 pub const GLASSES: &str = include_str!("../data/glasses.csv");
+/// The CFL's line positions with their sources (what `cfl_model.csv` is fitted at).
+#[cfg(test)]
 pub const CFL_LINES: &str = include_str!("../data/cfl_lines.csv");
+pub const CFL_MODEL: &str = include_str!("../data/cfl_model.csv");
 /// The line designations behind `optics::glass::lines` (checked by a test).
 #[cfg(test)]
 pub const FRAUNHOFER: &str = include_str!("../data/fraunhofer_lines.csv");

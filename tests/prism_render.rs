@@ -116,43 +116,44 @@ fn no_dispersion_gives_a_patch_with_no_chroma() {
 }
 
 #[test]
-fn cfl_lines_give_separate_tube_images_in_order_and_spacing() {
-    let size = [640, 120];
-    // Each line alone, as a 1 nm laser-like emitter.
+fn cfl_lines_give_separate_tube_images_where_the_probe_says() {
+    let size = [640, 240];
+    let s = scene(SceneKind::AmiciLamp, None, size);
+    let lamp_x = s.faces.iter().find(|f| f.name.starts_with("cfl tube")).unwrap().verts[0].x;
+    // Each line alone, as a 1 nm laser-like emitter: its image of the tube
+    // is centred where the probe's optics (`refract prism trace`), traced
+    // back from the camera, meet the lamp's axis.
     let mut x = Vec::new();
     for nm in [435.834, 546.075, 611.0] {
         let s = scene(SceneKind::AmiciLamp, Some(&format!("laser:{nm}")), size);
         let r = render(&s, &opts(1, 4), &hidden());
-        x.push(centroid(&r).x);
+        let got = centroid(&r).x;
+        let a = refract::scenes::amici::lamp_image_angle(&s, s.camera.pos, lamp_x, nm).expect("the line is seen through the prism");
+        let dir = DVec3::new(a.cos(), a.sin(), 0.0);
+        let want = s.camera.project(s.camera.pos + dir).unwrap().x;
+        assert!((got - want).abs() < 1.0, "{nm} nm: image centred at column {got:.2}, the probe says {want:.2}");
+        x.push(got);
     }
-    // Prediction from docs/physics.md's exit angles (+4.280, +0.707, -0.321 deg):
-    // the tube seen through the prism shifts by -delta in angle, so the
-    // spacings between images scale as the differences of tan(delta).
-    let d = [4.280f64, 0.707, -0.321].map(|a| a.to_radians().tan());
-    assert!(x[0] < x[1] && x[1] < x[2] || x[0] > x[1] && x[1] > x[2], "order {x:?}");
-    let ratio = (x[0] - x[1]) / (x[1] - x[2]);
-    let want = (d[0] - d[1]) / (d[1] - d[2]);
-    assert!((ratio / want - 1.0).abs() < 0.05, "spacing ratio {ratio} vs {want}");
-    // Absolute spacing: focal length in pixels from the camera's field of
-    // view. docs/physics.md's angles are for a ray along the axis and a source at
-    // infinity; here the camera's rays meet the prism up to 5 degrees off
-    // axis and the tube is 1 m away, so allow 10 %.
-    let s = scene(SceneKind::AmiciLamp, None, size);
-    let f = s.camera.height as f64 / 2.0 / (s.camera.vfov / 2.0).tan();
-    assert!(((x[0] - x[1]).abs() / (f * (d[0] - d[1])) - 1.0).abs() < 0.10, "435.8-546.1 spacing {} px", (x[0] - x[1]).abs());
-    // The whole lamp: a bright image of the right hue at each place.
-    let r = render(&s, &opts(1, 64), &hidden());
+    assert!(x[0] > x[1] && x[1] > x[2], "blue, green, red from right to left: {x:?}");
+    // The whole lamp (at half the size): a bright image of the right hue at
+    // each place, and only the faint phosphor continuum (measured: 10 % of
+    // the blue image) between the blue and blue-green images.
+    let s = scene(SceneKind::AmiciLamp, None, [320, 120]);
+    let mut o = opts(1, 2);
+    o.eye = EyeMode::Lines;
+    o.split = 8;
+    let r = render(&s, &o, &hidden());
     let column = |cx: f64| -> DVec3 {
-        let c = cx as usize;
+        let c = (cx / 2.0).round() as usize;
         (0..r.image.height).map(|y| r.image.linear_srgb(y * r.image.width + c)).sum()
     };
-    let (blue, green, red) = (column(x[0]), column(x[1]), column(x[2]));
+    // The tube's axis falls between its legs: look at a leg, 4 px aside.
+    let (blue, green, red) = (column(x[0] + 6.0), column(x[1] + 6.0), column(x[2] + 6.0));
     assert!(blue.z > blue.x && blue.z > blue.y, "435.8 nm image is blue: {blue:?}");
     assert!(green.y > green.x && green.y > green.z, "546.1 nm image is green: {green:?}");
     assert!(red.x > red.y && red.x > red.z, "611 nm image is red: {red:?}");
-    // And dark between the green and blue images.
-    let gap = column((x[0] + x[1]) / 2.0 + 0.25 * (x[1] - x[0]));
-    assert!(gap.y < 0.2 * green.y, "the images must be separated");
+    let gap = column(x[0] - 0.25 * (x[0] - x[1]));
+    assert!(gap.max_element() < 0.15 * blue.max_element(), "the images must be separated: {gap:?} vs {blue:?}");
 }
 
 #[test]

@@ -15,7 +15,7 @@
 
 use super::{glass_medium, light_spectrum, rotate_z, SceneKind, SceneOptions};
 use crate::optics::ior::IorKind;
-use crate::world::probe::{probe, ProbeRay};
+use crate::world::probe::{probe, probe_ray, ProbeRay};
 use crate::world::{Camera, Emission, Face, Light, Medium, Surface, World};
 use anyhow::{bail, Result};
 use glam::{DVec2, DVec3};
@@ -152,30 +152,79 @@ fn add_screen(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism, design: &
     Ok(())
 }
 
-/// Picture 1: a fluorescent tube 1 m past the prism, and the camera just
-/// before the entry face looking back through the prism at it.
+/// Picture 1: a compact fluorescent lamp 3 m past the prism, and the
+/// camera just before the entry face looking back through the prism at it.
+/// The lamp is a folded tube, as real ones are: two legs of 4 mm tubing
+/// 10 mm apart joined by a bend at the top, 0.27 degrees wide in all as
+/// seen through the prism, so lines farther apart than that make separate
+/// images of it.
 fn add_lamp(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism, design: &World, d_line: &ProbeRay) -> Result<()> {
-    let lamp_x = d_line.exit_point.x + 1.0;
-    let (w, tall) = (0.008, 0.12);
-    let corner = DVec3::new(lamp_x, -w / 2.0, -tall / 2.0);
-    scene.faces.push(Face::rect("lamp", corner, DVec3::new(0.0, 0.0, tall), DVec3::new(0.0, w, 0.0), Surface::Emitter { light: 0 }));
-    scene.lights.push(Light {
-        name: "cfl tube".into(),
-        emission: Emission::Area { face: scene.faces.len() - 1 },
-        spectrum: light_spectrum(o, "cfl-lines")?,
-        power: 1.0,
-    });
-    // The camera looks back the way light from the lines between 404 and
-    // 700 nm arrives.
-    let mid_dev = (probe(design, 404.0).deviation_deg + probe(design, 700.0).deviation_deg) / 2.0;
+    let x = d_line.exit_point.x + LAMP_DISTANCE;
+    let spectrum = light_spectrum(o, "cfl-lines")?;
+    let (d, gap, tall) = (0.004, 0.006, 0.1);
+    // Emitting faces toward -x (the prism): the two legs and the bend.
+    let parts = [
+        (DVec3::new(x, -gap / 2.0 - d, -tall / 2.0), DVec3::new(0.0, 0.0, tall), DVec3::new(0.0, d, 0.0)),
+        (DVec3::new(x, gap / 2.0, -tall / 2.0), DVec3::new(0.0, 0.0, tall), DVec3::new(0.0, d, 0.0)),
+        (DVec3::new(x, -gap / 2.0 - d, tall / 2.0), DVec3::new(0.0, 0.0, d), DVec3::new(0.0, gap + 2.0 * d, 0.0)),
+    ];
+    let area: f64 = parts.iter().map(|(_, u, v)| u.cross(*v).length()).sum();
+    for (k, (corner, eu, ev)) in parts.into_iter().enumerate() {
+        let light = scene.lights.len();
+        scene.faces.push(Face::rect(&format!("cfl tube {k}"), corner, eu, ev, Surface::Emitter { light }));
+        scene.lights.push(Light {
+            name: format!("cfl tube {k}"),
+            emission: Emission::Area { face: scene.faces.len() - 1 },
+            spectrum: spectrum.clone(),
+            // The same radiance on every part: power in proportion to area.
+            power: eu.cross(ev).length() / area,
+        });
+    }
+    // The camera frames the lamp's images from the violet mercury line to
+    // the deep red europium line (where each appears, found by tracing back
+    // through the prism), with 5 % to spare on each side.
     let cam = DVec3::new(prism.parts[0][1].x - 0.03, 0.0, 0.0);
-    let look = rotate_z(DVec3::X, (-mid_dev).to_radians());
-    let hfov = 11.0f64.to_radians();
+    // (Through the flint's cemented face the violet line may lie beyond
+    // total internal reflection; then the frame starts at the blue line.)
+    let blue = lamp_image_angle(design, cam, x, 404.656).or_else(|| lamp_image_angle(design, cam, x, 435.834));
+    let (Some(blue), Some(red)) = (blue, lamp_image_angle(design, cam, x, 711.0)) else {
+        bail!("--incidence: the lamp cannot be seen through the prism at 405-711 nm");
+    };
+    let look = rotate_z(DVec3::X, (blue + red) / 2.0);
+    let hfov = (blue - red).abs() * 1.1 + (d + gap + d) * 2.0 / LAMP_DISTANCE;
     let vfov = 2.0 * ((hfov / 2.0).tan() * o.height as f64 / o.width as f64).atan();
     scene.camera = Camera::look_at(cam, cam + look, DVec3::Z, vfov.to_degrees(), o.width, o.height);
     scene.probe = (cam, DVec3::X);
     Ok(())
 }
+
+/// The direction (radians from +x, in the xy plane) of the camera ray
+/// from `cam` that, at wavelength `nm`, goes through the prism and meets
+/// the lamp's axis (y = 0 at x = `lamp_x`): where the lamp's image in that
+/// wavelength appears. Found by bisection with the probe's optics.
+pub fn lamp_image_angle(design: &World, cam: DVec3, lamp_x: f64, nm: f64) -> Option<f64> {
+    let miss = |a: f64| -> Option<f64> {
+        let p = probe_ray(design, cam, rotate_z(DVec3::X, a), nm);
+        (!p.tir && p.exit_dir.x > 0.0).then(|| p.exit_point.y + p.exit_dir.y / p.exit_dir.x * (lamp_x - p.exit_point.x))
+    };
+    // A sign change on a grid of directions, then bisection.
+    let grid: Vec<(f64, f64)> = (0..=100).map(|k| -0.25 + 0.005 * k as f64).filter_map(|a| miss(a).map(|f| (a, f))).collect();
+    let w = grid.windows(2).find(|w| w[0].1 * w[1].1 <= 0.0)?;
+    let ((mut lo, mut f_lo), mut hi) = (w[0], w[1].0);
+    for _ in 0..60 {
+        let mid = 0.5 * (lo + hi);
+        let f = miss(mid)?;
+        if (f < 0.0) == (f_lo < 0.0) {
+            (lo, f_lo) = (mid, f);
+        } else {
+            hi = mid;
+        }
+    }
+    Some(0.5 * (lo + hi))
+}
+
+/// How far the lamp stands past the prism's exit face, m.
+pub const LAMP_DISTANCE: f64 = 3.0;
 #[cfg(test)]
 mod tests {
     use super::*;

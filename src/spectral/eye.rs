@@ -31,6 +31,9 @@ pub(super) struct Eye<'a> {
     pub opts: &'a RenderOptions,
     /// Wavelengths for white paths at a dispersive face (all lights' spectra).
     pub sampler: WavelengthSampler,
+    /// The same spectrum as a mixture for `--eye lines`: each emission line,
+    /// then the rest, with its share of the power.
+    pub components: Vec<(f64, WavelengthSampler)>,
     /// Per light: (radiance per watt-spectrum unit, its sampler) for emitters.
     pub lights: Vec<(f64, WavelengthSampler)>,
 }
@@ -59,8 +62,13 @@ enum Step {
 impl Eye<'_> {
     /// XYZ radiance along a camera ray; `u_lambda` stratifies wavelengths.
     pub fn radiance(&self, o: DVec3, d: DVec3, u_lambda: f64, rng: &mut Rng, rays: &mut u64) -> DVec3 {
-        let pol = if rng.f64() < 0.5 { Polarisation::S } else { Polarisation::P };
-        let mut stack = vec![Path { o, d, skip: None, nm: None, weight: 1.0, pol, depth: 0 }];
+        let start = Path { o, d, skip: None, nm: None, weight: 1.0, pol: Polarisation::S, depth: 0 };
+        let mut stack = if self.opts.eye == EyeMode::Lines {
+            // Both polarisations, each with half the weight: no noise from choosing.
+            vec![Path { weight: 0.5, ..start }, Path { weight: 0.5, pol: Polarisation::P, ..start }]
+        } else {
+            vec![Path { pol: if rng.f64() < 0.5 { Polarisation::S } else { Polarisation::P }, ..start }]
+        };
         let mut sum = DVec3::ZERO;
         while let Some(mut p) = stack.pop() {
             while p.depth < MAX_DEPTH {
@@ -104,6 +112,29 @@ impl Eye<'_> {
     /// wavelength, or (report 001) `--split` rays, all but one pushed on
     /// the stack.
     fn pick_wavelength(&self, p: &mut Path, u_lambda: f64, stack: &mut Vec<Path>) {
+        if self.opts.eye == EyeMode::Lines && !self.components.is_empty() {
+            // One ray per component k of the mixture p = sum w_k p_k, its
+            // wavelength drawn from p_k, weighted w_k / p(l): an unbiased
+            // estimate with no noise from choosing among the lines.
+            // The last component (the continuum, if any) gets `--split`
+            // stratified rays, each with its share of the weight.
+            let last = self.components.len() - 1;
+            let mut first = None;
+            for (k, (w, s)) in self.components.iter().enumerate() {
+                let n = if k == last { self.opts.split.max(1) } else { 1 };
+                for j in 0..n {
+                    let (l, _) = s.sample((j as f64 + u_lambda) / n as f64);
+                    let q = Path { nm: Some(l), weight: p.weight * w / (n as f64 * self.sampler.pdf(l).max(1e-300)), ..*p };
+                    if first.is_none() {
+                        first = Some(q);
+                    } else {
+                        stack.push(q);
+                    }
+                }
+            }
+            *p = first.unwrap_or(*p);
+            return;
+        }
         if self.opts.eye == EyeMode::Split {
             let n = self.opts.split.max(1);
             for k in 1..n {

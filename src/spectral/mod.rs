@@ -163,7 +163,7 @@ pub struct TimingRow {
     pub filter: &'static str,
     pub radius_m: Real,
     pub k: Option<usize>,
-    /// `hero`, or `splitN`.
+    /// `hero`, `lines`, or `splitN`.
     pub eye: String,
     pub threads: usize,
     pub trace_s: Real,
@@ -191,7 +191,7 @@ impl TimingRow {
             radius_m: Real(r.radius),
             k: cfg.k,
             eye: match cfg.eye {
-                EyeMode::Hero => "hero".into(),
+                EyeMode::Hero | EyeMode::Lines => cfg.eye.name().into(),
                 EyeMode::Split => format!("split{}", cfg.split),
             },
             threads: r.threads,

@@ -7,11 +7,14 @@ use crate::photon::map::MapKind;
 use crate::spectrum::colormap::ColorMap;
 
 crate::named_enum! {
+    /// How an eye path takes its wavelength at a dispersive face.
     pub enum EyeMode {
         /// One sampled wavelength goes on (pbrt-v4's hero wavelength).
         Hero = "hero",
         /// Split into `--split` monochromatic rays at the first dispersive face (report 001).
         Split = "split",
+        /// One ray per emission line of the lights (its wavelength drawn within the line) and `--split` for the rest of the spectrum: no noise from line spectra.
+        Lines = "lines",
     }
 }
 

@@ -4,7 +4,7 @@
 
 use super::eye::Eye;
 use super::film::XyzImage;
-use super::options::RenderOptions;
+use super::options::{EyeMode, RenderOptions};
 use crate::photon::emit::{light_pass, LightStats};
 use crate::photon::map::SurfaceMap;
 use crate::progress::Progress;
@@ -67,7 +67,9 @@ pub fn render(scene: &World, opts: &RenderOptions, progress: &dyn Progress) -> S
             (l.power / (std::f64::consts::PI * area), WavelengthSampler::new(&l.spectrum))
         })
         .collect();
-    let eye = Eye { scene, maps, opts, sampler: WavelengthSampler::new(&eye_spectrum), lights };
+    let sampler = WavelengthSampler::new(&eye_spectrum);
+    let components = if opts.eye == EyeMode::Lines { mixture(&eye_spectrum, sampler.integral()) } else { Vec::new() };
+    let eye = Eye { scene, maps, opts, sampler, components, lights };
 
     let cam = &scene.camera;
     progress.start("eye", cam.height as u64);
@@ -96,4 +98,38 @@ pub fn render(scene: &World, opts: &RenderOptions, progress: &dyn Progress) -> S
     progress.finish("eye");
     let render_s = t.elapsed().as_secs_f64();
     SpectralRender { image: XyzImage { width: cam.width, height: cam.height, xyz }, stats: pass.stats, trace_s, build_s, render_s, map_bytes, eye_rays: rays }
+}
+
+/// A spectrum as a mixture for `--eye lines`: one component per emission
+/// line (lines at the same wavelength, from several lights, merged), and
+/// one for the rest, each with its share of the integral `total`. Lines
+/// with under 0.1 % of the power join the rest.
+fn mixture(s: &Spectrum, total: f64) -> Vec<(f64, WavelengthSampler)> {
+    let (lines, rest) = s.split_lines();
+    let mut merged: Vec<(f64, f64, f64)> = Vec::new();
+    for (c, p, w) in lines {
+        match merged.iter_mut().find(|m| m.0 == c && m.2 == w) {
+            Some(m) => m.1 += p,
+            None => merged.push((c, p, w)),
+        }
+    }
+    let mut rest: Vec<Spectrum> = rest.into_iter().collect();
+    let mut out = Vec::new();
+    for (c, p, fwhm) in merged {
+        let one = Spectrum::Lines { lines: vec![(c, p)], fwhm };
+        let sampler = WavelengthSampler::new(&one);
+        let share = sampler.integral() / total;
+        if share < 1e-3 {
+            rest.push(one);
+        } else if share > 0.0 {
+            out.push((share, sampler));
+        }
+    }
+    if !rest.is_empty() {
+        let sampler = WavelengthSampler::new(&Spectrum::Sum(rest));
+        if sampler.integral() > 0.0 {
+            out.push((sampler.integral() / total, sampler));
+        }
+    }
+    out
 }

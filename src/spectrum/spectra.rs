@@ -4,7 +4,7 @@
 //! phosphor lines, a laser) and smooth spectra fitted to RGB colours.
 
 use super::rgb_fit::{SigmoidPolynomial, White};
-use crate::data::{Table, CFL_LINES, D65, FL, FL3};
+use crate::data::{Table, CFL_MODEL, D65, FL, FL3};
 use std::fmt;
 use std::sync::Arc;
 
@@ -117,6 +117,28 @@ impl Spectrum {
         Spectrum::Rgb { fit, scale, illuminant }
     }
 
+    /// The emission lines in this spectrum, each (centre nm, power, fwhm nm),
+    /// and everything else as one spectrum (`None` when there is nothing
+    /// else).
+    pub fn split_lines(&self) -> (Vec<(f64, f64, f64)>, Option<Spectrum>) {
+        let mut lines = Vec::new();
+        let mut rest = Vec::new();
+        let mut stack = vec![self];
+        while let Some(s) = stack.pop() {
+            match s {
+                Spectrum::Sum(parts) => stack.extend(parts.iter()),
+                Spectrum::Lines { lines: ls, fwhm } => lines.extend(ls.iter().map(|&(c, p)| (c, p, *fwhm))),
+                other => rest.push(other.clone()),
+            }
+        }
+        let rest = match rest.len() {
+            0 => None,
+            1 => rest.pop(),
+            _ => Some(Spectrum::Sum(rest)),
+        };
+        (lines, rest)
+    }
+
     /// A light spectrum by name: `E`, `D65`, `FL1`..`FL12`, `FL3.1`..`FL3.15`,
     /// `blackbody:K`, `cfl-lines`, `laser:NM` (case does not matter).
     pub fn light(name: &str) -> Result<Spectrum, UnknownSpectrum> {
@@ -190,38 +212,34 @@ pub fn laser(nm: f64) -> Spectrum {
     Spectrum::Lines { lines: vec![(nm, 1.0)], fwhm: 1.0 }
 }
 
-/// A tri-phosphor compact fluorescent lamp (docs/physics.md §6) as separate lines
-/// (`data/cfl_lines.csv`: Hg I lines and Eu3+/Tb3+ phosphor peaks, 1.5 nm
-/// wide) plus the broad Eu2+ blue band (50 nm wide). The table gives no
-/// strengths; the powers below are our estimate of a warm-white lamp (the
-/// 611, 543-546 and 436 nm features dominate, as in CIE FL11's spikes).
+/// A tri-phosphor compact fluorescent lamp (docs/physics.md §6): its Hg I
+/// and Eu3+/Tb3+ lines as narrow Gaussians over the weak phosphor
+/// continuum, from `data/cfl_model.csv` (positions from the line tables,
+/// strengths fitted to CIE F12's 5 nm bands by `scripts/fit_cfl.py`).
 pub fn cfl_lines() -> Spectrum {
-    let t = Table::parse(CFL_LINES);
-    let species = t.column("species").expect("species column");
-    let nm = t.numbers("wavelength_nm").expect("wavelength column");
-    let power = |s: &str, l: f64| match (s, l.round() as i64) {
-        ("Hg", 436) => 1.0,
-        ("Hg", 546) => 1.2,
-        ("Hg", 405) => 0.35,
-        ("Hg", 408) => 0.05,
-        ("Hg", 577) | ("Hg", 579) => 0.15,
-        ("Eu3+", 611) => 2.0,
-        ("Tb3+", 543) => 1.4,
-        ("Tb3+", 488) => 0.45,
-        ("Tb3+", _) => 0.25,
-        _ => 0.0,
-    };
-    let mut lines = Vec::new();
-    let mut bands = Vec::new();
-    for (row, &l) in t.rows.iter().zip(&nm) {
-        let s = row[species].as_str();
-        if s == "Eu2+" {
-            bands.push((l, 0.9));
-        } else if power(s, l) > 0.0 {
-            lines.push((l, power(s, l)));
+    let t = Table::parse(CFL_MODEL);
+    let col = |n: &str| t.column(n).expect("cfl_model.csv columns");
+    let (kind, nm, power, fwhm) = (col("kind"), col("wavelength_nm"), col("power"), col("fwhm_nm"));
+    let num = |r: &Vec<String>, c: usize| r[c].parse::<f64>().unwrap_or(0.0);
+    // One Lines spectrum per line width, then the continuum (10 nm knots).
+    let mut widths: Vec<(f64, Vec<(f64, f64)>)> = Vec::new();
+    let mut knots: Vec<(f64, f64)> = Vec::new();
+    for r in &t.rows {
+        if r[kind] == "continuum" {
+            knots.push((num(r, nm), num(r, power)));
+            continue;
+        }
+        let (w, line) = (num(r, fwhm), (num(r, nm), num(r, power)));
+        match widths.iter_mut().find(|(x, _)| *x == w) {
+            Some((_, lines)) => lines.push(line),
+            None => widths.push((w, vec![line])),
         }
     }
-    Spectrum::Sum(vec![Spectrum::Lines { lines, fwhm: 1.5 }, Spectrum::Lines { lines: bands, fwhm: 50.0 }])
+    let mut parts: Vec<Spectrum> = widths.into_iter().map(|(fwhm, lines)| Spectrum::Lines { lines, fwhm }).collect();
+    if let [(start, _), (next, _), ..] = knots[..] {
+        parts.push(Spectrum::Tabulated { start, step: next - start, values: Arc::new(knots.iter().map(|k| k.1).collect()) });
+    }
+    Spectrum::Sum(parts)
 }
 
 #[cfg(test)]
@@ -278,5 +296,39 @@ mod tests {
         assert!((area - 3.0).abs() < 1e-6, "{area}");
         // Half maximum at +-fwhm/2.
         assert!((s.eval(501.0) / s.eval(500.0) - 0.5).abs() < 1e-9);
+    }
+
+    /// The CFL model reproduces what it was fitted to (CIE F12's colour and
+    /// band shape) and keeps its lines where the line tables put them.
+    #[test]
+    fn cfl_model_matches_f12_and_the_line_tables() {
+        let cfl = cfl_lines();
+        let f12 = fluorescent("FL12").unwrap();
+        let (a, b) = (cfl.to_xyz().normalised().xy(), f12.to_xyz().normalised().xy());
+        assert!((a.0 - b.0).abs() < 0.008 && (a.1 - b.1).abs() < 0.008, "xy {a:?} vs F12 {b:?}");
+        // 5 nm band averages against F12's samples: relative RMS misfit.
+        let band = |l: f64| (0..50).map(|k| cfl.eval(l - 2.5 + 0.1 * (k as f64 + 0.5))).sum::<f64>() / 50.0;
+        let (mut num, mut den) = (0.0, 0.0);
+        for i in 0..=80 {
+            let l = 380.0 + 5.0 * i as f64;
+            num += (band(l) - f12.eval(l)).powi(2);
+            den += f12.eval(l).powi(2);
+        }
+        assert!((num / den).sqrt() < 0.2, "band misfit {}", (num / den).sqrt());
+        let table = Table::parse(crate::data::CFL_LINES).numbers("wavelength_nm").unwrap();
+        let Spectrum::Sum(parts) = &cfl else { panic!("a sum of lines and continuum") };
+        let mut n = 0;
+        for p in parts {
+            if let Spectrum::Lines { lines, .. } = p {
+                for (c, _) in lines {
+                    n += 1;
+                    // Eu3+ satellites are named by range in the table (587-600, 626, 650, 705-710).
+                    let near = table.iter().any(|t| (t - c).abs() <= 2.0)
+                        || [(587.0, 600.0), (614.0, 632.0), (650.0, 650.0), (705.0, 711.0)].iter().any(|(lo, hi)| (lo - 1.0..=hi + 1.0).contains(c));
+                    assert!(near, "line {c} nm is not in data/cfl_lines.csv");
+                }
+            }
+        }
+        assert!(n >= 12, "{n} lines");
     }
 }

@@ -26,8 +26,14 @@ pub struct ProbeRay {
     pub path: Vec<DVec3>,
 }
 
+/// The scene's probe ray (`World::probe`) at wavelength `nm`.
 pub fn probe(scene: &World, nm: f64) -> ProbeRay {
-    let (mut o, d0) = scene.probe;
+    probe_ray(scene, scene.probe.0, scene.probe.1, nm)
+}
+
+/// Any ray from `o` along `d0` at wavelength `nm`, until it is back in air.
+pub fn probe_ray(scene: &World, o: DVec3, d0: DVec3, nm: f64) -> ProbeRay {
+    let mut o = o;
     let mut d = d0;
     let mut crossed = Vec::new();
     let mut medium = 0;
