@@ -22,6 +22,8 @@ mod spectral_oracles;
 mod prism_optics;
 // Reports 001 and 003: the ball lens, the Cornell laser.
 mod scene_optics;
+// The contrasting figures differ where their captions say.
+mod figure_content;
 // Whole prism renders: energy, landing points, chroma, the CFL's line images.
 mod prism_render;
 // The experiment runner: rows, plots, resume, shards, failures as rows.
