@@ -31,6 +31,54 @@ impl Image {
     }
 }
 
+crate::named_enum! {
+    /// What an output image is written as, chosen by its extension.
+    pub enum ImageFormat {
+        /// PNG, 8-bit sRGB.
+        Png = "png",
+        /// Binary PPM (P6), 8-bit sRGB, as report 004 writes it.
+        Ppm = "ppm",
+        /// Portable float map: linear sRGB, for measurement.
+        Pfm = "pfm",
+    }
+}
+
+/// Checks an output path before any work is done (the reason is one line,
+/// for the caller to prefix with the flag or prompt): an extension among `allowed`, a folder that exists,
+/// and at the path nothing yet or a regular file (the output replaces
+/// only regular files: never a folder, a device, a FIFO or a link).
+pub fn check_output(path: &Path, allowed: &[ImageFormat]) -> Result<ImageFormat, String> {
+    use crate::names::Named;
+    let shown = path.display();
+    let names = || allowed.iter().map(|f| format!(".{}", f.name())).collect::<Vec<_>>().join(", ");
+    let ext = path.extension().map(|e| e.to_string_lossy().to_ascii_lowercase()).unwrap_or_default();
+    let format = ImageFormat::from_name(&ext).filter(|f| allowed.contains(f));
+    match std::fs::symlink_metadata(path) {
+        Ok(m) if m.is_dir() => return Err(format!("{shown} is a folder; name an image file in it")),
+        Ok(m) if m.file_type().is_symlink() => return Err(format!("{shown} is a symbolic link; name the file itself")),
+        Ok(m) if !m.is_file() => return Err(format!("{shown} is not a regular file (a device, FIFO or socket); refract replaces only regular files")),
+        _ => {}
+    }
+    let Some(format) = format else { return Err(format!("`{shown}` does not end in an image extension refract writes here ({})", names())) };
+    match path.parent().filter(|d| !d.as_os_str().is_empty()) {
+        Some(dir) if !dir.is_dir() => Err(format!("folder {} does not exist", dir.display())),
+        _ => Ok(format),
+    }
+}
+
+/// Checks a CSV path a run will append to, before any work: its folder
+/// exists and nothing but a regular file is there.
+pub fn check_csv(path: &Path) -> Result<(), String> {
+    match std::fs::symlink_metadata(path) {
+        Ok(m) if !m.is_file() => return Err(format!("{} is not a regular file", path.display())),
+        _ => {}
+    }
+    match path.parent().filter(|d| !d.as_os_str().is_empty()) {
+        Some(dir) if !dir.is_dir() => Err(format!("folder {} does not exist", dir.display())),
+        _ => Ok(()),
+    }
+}
+
 /// Writes `bytes` (8-bit RGB) as PNG if the name ends in `.png`, else PPM.
 pub fn write_rgb8(path: &Path, width: usize, height: usize, bytes: &[u8]) -> Result<()> {
     let png = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("png"));

@@ -108,3 +108,64 @@ fn empty_and_single_point_meshes_render_the_background() {
         assert!(px.chunks(3).all(|c| c == [10, 20, 30]), "{name}: expected only background");
     }
 }
+
+/// Paths and counts are checked before any work: one line naming the flag,
+/// exit 1, and no output file appears.
+#[test]
+fn outputs_threads_and_csv_paths_are_checked_before_the_render() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let cube = repo("off/cube.off");
+    let c = cube.to_str().unwrap();
+    std::fs::create_dir(d.join("folder.png")).unwrap();
+    assert!(std::process::Command::new("mkfifo").arg(d.join("fifo.png")).status().unwrap().success());
+    let cases: Vec<(Vec<&str>, &str, &str)> = vec![
+        (vec!["interior", "--off", c, "--out", "x.jpg"], "--out: `x.jpg` does not end in an image extension refract writes here (.png, .ppm)", "x.jpg"),
+        (vec!["interior", "--off", c, "--out", "noext"], "--out: `noext` does not end in an image extension", "noext"),
+        (vec!["interior", "--off", c, "--out", "x.pfm"], "--out: `x.pfm` does not end in an image extension refract writes here (.png, .ppm)", "x.pfm"),
+        (vec!["interior", "--off", c, "--out", "folder.png"], "--out: folder.png is a folder", ""),
+        (vec!["interior", "--off", c, "--out", "fifo.png"], "--out: fifo.png is not a regular file", ""),
+        (vec!["interior", "--off", c, "--out", "o.png", "--timing-csv", "no/such/t.csv"], "--timing-csv: folder no/such does not exist", "o.png"),
+        (vec!["interior", "--off", c, "--out", "o.png", "--threads", "1000"], "--threads: 1000 is more than four times the", "o.png"),
+        (
+            vec!["prism", "--photons", "1000", "--size", "8,8", "--out", "p.jpg"],
+            "--out: `p.jpg` does not end in an image extension refract writes here (.png, .ppm, .pfm)",
+            "p.jpg",
+        ),
+        (vec!["prism", "--photons", "1000", "--size", "8,8", "--out", "p.png", "--threads", "999"], "--threads: 999 is more than four times the", "p.png"),
+        (
+            vec!["prism", "--photons", "1000", "--size", "8,8", "--out", "p.png", "--timing-csv", "folder.png"],
+            "--timing-csv: folder.png is not a regular file",
+            "p.png",
+        ),
+        (vec!["prism", "trace", "--scene", "sphere-metal"], "prism trace: the sphere-metal scene has no prism to trace through", ""),
+    ];
+    for (args, needle, output) in cases {
+        let o = run(&args, "", d);
+        assert_clean_failure(&o, needle);
+        assert_eq!(o.status.code(), Some(1), "{args:?}");
+        if !output.is_empty() {
+            assert!(!d.join(output).exists(), "{args:?} left {output}");
+        }
+    }
+    assert!(d.join("folder.png").is_dir(), "the folder is untouched");
+    use std::os::unix::fs::FileTypeExt;
+    assert!(std::fs::symlink_metadata(d.join("fifo.png")).unwrap().file_type().is_fifo(), "the FIFO is untouched");
+}
+
+/// `refract` alone prints the usage and the commands on stderr; a mistyped
+/// flag keeps clap's suggestion and the `--help` hint.
+#[test]
+fn bare_command_and_typos_help_the_user() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = run(&[], "", dir.path());
+    assert_eq!(o.status.code(), Some(2));
+    let err = stderr(&o);
+    assert!(err.contains("Usage: refract") && err.contains("Commands:") && err.contains("figures") && err.contains("interior"), "{err}");
+    let o = run(&["prism", "--photon", "5"], "", dir.path());
+    assert_eq!(o.status.code(), Some(2));
+    let err = stderr(&o);
+    assert!(err.contains("unexpected argument '--photon'") && err.contains("--photons") && err.contains("try '--help'"), "{err}");
+    let o = run(&["prism", "--map", "octree"], "", dir.path());
+    assert!(stderr(&o).contains("[possible values: buffer, kdtree]"), "{}", stderr(&o));
+}

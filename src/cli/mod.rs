@@ -307,6 +307,12 @@ pub fn run(cli: Cli) -> Result<()> {
                     PathBuf::from("results").join(format!("{}.png", scene.id))
                 }
             };
+            use crate::image_io::ImageFormat;
+            let formats: &[ImageFormat] = match scene.mode {
+                crate::experiment::params::Mode::Prism => &[ImageFormat::Png, ImageFormat::Ppm, ImageFormat::Pfm],
+                crate::experiment::params::Mode::Interior => &[ImageFormat::Png, ImageFormat::Ppm],
+            };
+            crate::image_io::check_output(&out, formats).map_err(|e| anyhow::anyhow!("--out: {e}"))?;
             let secs = scene.render(&out, &crate::terminal::Bars::new())?;
             eprintln!("wrote {} ({secs:.2} s)", out.display());
             Ok(())
@@ -320,6 +326,12 @@ pub fn run(cli: Cli) -> Result<()> {
 }
 
 fn run_interior(args: InteriorArgs) -> Result<()> {
+    // What the flags fix is checked before any question is asked.
+    crate::params::check_threads(args.params.config().threads).map_err(anyhow::Error::msg)?;
+    if let Some(path) = &args.timing_csv {
+        crate::image_io::check_csv(path).map_err(|e| anyhow::anyhow!("--timing-csv: {e}"))?;
+        crate::timing::check_header::<crate::interior::TimingRow>(path)?;
+    }
     let cfg = if args.flag_mode() {
         args.flag_config()?
     } else {
@@ -328,9 +340,6 @@ fn run_interior(args: InteriorArgs) -> Result<()> {
         let mut out = std::io::stdout();
         crate::params::prompts::ask_all(&mut input, &mut out, args.params.config())?
     };
-    if let Some(path) = &args.timing_csv {
-        crate::timing::check_header::<crate::interior::TimingRow>(path)?;
-    }
     let report = crate::interior::run(&cfg)?;
     for n in &report.notes {
         eprintln!("note: {n}");
@@ -443,6 +452,12 @@ fn run_glass(args: GlassArgs) -> Result<()> {
 fn run_prism(args: PrismArgs) -> Result<()> {
     if let Some(PrismCommand::Trace { scene, wavelengths }) = args.probe {
         let built = crate::scenes::build(&scene.config().scene)?;
+        if !built.faces.iter().any(|f| matches!(f.surface, crate::world::Surface::Interface { .. })) {
+            bail!(
+                "prism trace: the {} scene has no prism to trace through (amici-screen, amici-lamp, single-prism, the cornell scenes and dark-side have one)",
+                built.name
+            );
+        }
         let mut o = String::new();
         outln!(o, "wavelength_nm,exit_x,exit_y,exit_z,deviation_deg,transmittance");
         for nm in wavelengths {
@@ -458,14 +473,15 @@ fn run_prism(args: PrismArgs) -> Result<()> {
     let mut cfg = args.params.config();
     cfg.out = args.out.clone();
     cfg.validate()?;
-    if let Some(parent) = cfg.out.parent() {
-        if cfg.out.starts_with("results") && !parent.as_os_str().is_empty() {
-            std::fs::create_dir_all(parent).with_context(|| format!("cannot create {}", parent.display()))?;
-        } else if !parent.as_os_str().is_empty() && !parent.is_dir() {
-            bail!("--out: folder {} does not exist", parent.display());
-        }
+    crate::params::check_threads(cfg.threads).map_err(anyhow::Error::msg)?;
+    // The default folder, results/, is made; any other must exist.
+    if let Some(parent) = cfg.out.parent().filter(|p| !p.as_os_str().is_empty() && cfg.out.starts_with("results")) {
+        std::fs::create_dir_all(parent).with_context(|| format!("cannot create {}", parent.display()))?;
     }
+    use crate::image_io::ImageFormat;
+    crate::image_io::check_output(&cfg.out, &[ImageFormat::Png, ImageFormat::Ppm, ImageFormat::Pfm]).map_err(|e| anyhow::anyhow!("--out: {e}"))?;
     if let Some(path) = &args.timing_csv {
+        crate::image_io::check_csv(path).map_err(|e| anyhow::anyhow!("--timing-csv: {e}"))?;
         crate::timing::check_header::<crate::spectral::TimingRow>(path)?;
     }
     let report = crate::spectral::run(&cfg, &crate::terminal::Bars::new())?;

@@ -49,6 +49,7 @@ pub fn interior_config(given: &[(String, Value)]) -> Result<InteriorConfig> {
     for (k, v) in given {
         params::apply_toml(interior::PARAMS, &mut cfg, k, v).map_err(|m| anyhow!("{k}: {m}"))?;
     }
+    params::check_threads(cfg.threads).map_err(anyhow::Error::msg)?;
     Ok(cfg)
 }
 
@@ -58,6 +59,7 @@ pub fn prism_config(given: &[(String, Value)]) -> Result<SpectralConfig> {
     for (k, v) in given {
         params::apply_toml(prism::PARAMS, &mut cfg, k, v).map_err(|m| anyhow!("{k}: {m}"))?;
     }
+    params::check_threads(cfg.threads).map_err(anyhow::Error::msg)?;
     cfg.validate()?;
     Ok(cfg)
 }

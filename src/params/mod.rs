@@ -213,18 +213,25 @@ pub(crate) fn parse_real(s: &str) -> Result<f64, String> {
     Ok(v)
 }
 
-/// An output file name whose folder exists.
+/// An output image for the interior mode (.png or .ppm) whose folder
+/// exists, and where nothing but a regular file stands.
 pub fn out_path(s: &str) -> Result<PathBuf, String> {
     let s = s.trim();
     if s.is_empty() {
         return Err("the file name is empty".into());
     }
     let p = PathBuf::from(s);
-    match p.parent() {
-        Some(dir) if !dir.as_os_str().is_empty() && !dir.is_dir() => Err(format!("folder {} does not exist", dir.display())),
-        _ if p.is_dir() => Err(format!("{s} is a folder")),
-        _ => Ok(p),
+    crate::image_io::check_output(&p, &[crate::image_io::ImageFormat::Png, crate::image_io::ImageFormat::Ppm]).map(|_| p)
+}
+
+/// A thread count for this machine: 0 (all cores) up to four times its
+/// cores, so a mistyped count cannot spawn thousands of threads.
+pub fn check_threads(n: usize) -> Result<(), String> {
+    let cores = std::thread::available_parallelism().map_or(1, |c| c.get());
+    if n > 4 * cores {
+        return Err(format!("--threads: {n} is more than four times the {cores} cores of this machine (at most {})", 4 * cores));
     }
+    Ok(())
 }
 
 /// An existing file.
