@@ -15,13 +15,24 @@ pub fn draw_all(e: &Experiment, dir: &Path, header: &[String], rows: &[Vec<Strin
         match p.kind {
             PlotKind::Table => status_table(p, dir, header, rows)?,
             PlotKind::Line => {
-                let chart = line_chart(p, header, rows)?;
+                let mut chart = line_chart(p, header, rows)?;
+                chart.subtitle = fixed_text(e);
                 render(&dir.join(format!("{}.png", p.file)), &chart)?;
                 render(&dir.join(format!("{}.svg", p.file)), &chart)?;
             }
         }
     }
     Ok(())
+}
+
+/// What the experiment held fixed, for the subtitle.
+fn fixed_text(e: &Experiment) -> String {
+    let parts: Vec<String> = e.fixed.iter().map(|(k, v)| format!("{} {}", k.replace('_', " "), super::params::cell(v))).collect();
+    if parts.is_empty() {
+        String::new()
+    } else {
+        format!("fixed: {}", parts.join(", "))
+    }
 }
 
 fn col(header: &[String], name: &str) -> Result<usize> {
@@ -59,8 +70,10 @@ pub fn line_chart(p: &PlotSpec, header: &[String], rows: &[Vec<String>]) -> Resu
     for r in rows.iter().filter(|r| r[status] == "ok") {
         let (Ok(x), Ok(y)) = (r[xi].parse::<f64>(), r[yi].parse::<f64>()) else { continue };
         let key = si.iter().zip(&p.series).map(|(&i, n)| format!("{}={}", n.trim_start_matches("param_"), r[i])).collect::<Vec<_>>().join(", ");
-        let tx = |v: f64, log: bool| if log { (v > 0.0).then(|| v.log10()) } else { Some(v) };
-        let (Some(x), Some(y)) = (tx(x, p.log_x), tx(y, p.log_y)) else { continue };
+        // Log axes show positive values only.
+        if (p.log_x && !(x > 0.0)) || (p.log_y && !(y > 0.0)) {
+            continue;
+        }
         match groups.iter_mut().find(|g| g.0 == key) {
             Some(g) => g.1.push((x, y)),
             None => groups.push((key, vec![(x, y)])),
@@ -79,16 +92,62 @@ pub fn line_chart(p: &PlotSpec, header: &[String], rows: &[Vec<String>]) -> Resu
                 }
             }
             let points: Vec<(f64, f64)> = groups.into_iter().map(|(x, ys)| (x, median(&ys))).collect();
-            let label = if name.is_empty() { p.y.clone() } else { name };
-            let label = match (p.fit, slope(&points)) {
+            let label = if name.is_empty() { axis_title(&p.y) } else { name };
+            let logged: Vec<(f64, f64)> = points.iter().map(|&(x, y)| (if p.log_x { x.log10() } else { x }, if p.log_y { y.log10() } else { y })).collect();
+            let label = match (p.fit, slope(&logged)) {
                 (true, Some(s)) => format!("{label} (slope {s:.2})"),
                 _ => label,
             };
             Series { name: label, points, color: *color }
         })
         .collect();
-    let axis = |name: &str, log: bool| if log { format!("log10 {name}") } else { name.to_string() };
-    Ok(LineChart { title: p.title.clone(), x_label: axis(&p.x, p.log_x), y_label: axis(&p.y, p.log_y), series })
+    Ok(LineChart {
+        title: p.title.clone(),
+        subtitle: String::new(),
+        x_label: axis_title(&p.x).into(),
+        y_label: axis_title(&p.y).into(),
+        log_x: p.log_x,
+        log_y: p.log_y,
+        series,
+    })
+}
+
+/// What a runs.csv column is, with its unit, for an axis.
+pub fn axis_title(column: &str) -> String {
+    let known = [
+        ("param_trace", "maximum trace count"),
+        ("param_ior", "refractive index"),
+        ("param_shininess", "shininess n"),
+        ("param_photons", "photons traced"),
+        ("param_spp", "samples per pixel"),
+        ("param_split", "rays per split"),
+        ("param_size", "image size (pixels)"),
+        ("param_radius", "gather radius (m)"),
+        ("param_incidence", "angle of incidence (degrees)"),
+        ("triangles", "triangles"),
+        ("rays", "rays traced"),
+        ("load_s", "load time (s)"),
+        ("build_s", "build time (s)"),
+        ("trace_s", "light pass time (s)"),
+        ("render_s", "render time (s)"),
+        ("total_s", "total time (s)"),
+        ("rays_per_s", "rays per second"),
+        ("photons", "photons traced"),
+        ("stored", "photons stored"),
+        ("photons_per_s", "photons per second"),
+        ("nan_count", "NaN or infinite pixels"),
+        ("fireflies", "firefly pixels"),
+        ("tir_fraction", "fraction of rays totally reflected"),
+        ("highlight_px", "highlight area (pixels of luminance >= 0.75)"),
+        ("changed_px", "pixels changed from the previous value"),
+        ("rmse", "RMSE against the reference (8-bit levels)"),
+        ("psnr", "PSNR against the reference (dB)"),
+        ("rel_rmse", "relative RMSE against the reference"),
+    ];
+    match known.iter().find(|k| k.0 == column) {
+        Some((_, t)) => t.to_string(),
+        None => column.trim_start_matches("param_").replace('_', " "),
+    }
 }
 
 /// One row per run: its case and parameters, then whether it failed, its

@@ -5,6 +5,7 @@
 
 use crate::image_io::{write_rgb8, write_text};
 use anyhow::{anyhow, Result};
+use plotters::coord::ranged1d::ValueFormatter;
 use plotters::prelude::*;
 use std::path::Path;
 use std::sync::Once;
@@ -30,12 +31,37 @@ pub struct Series {
     pub color: RGBColor,
 }
 
-/// A line chart with labelled axes (units in the labels) and a legend.
+/// A line chart with labelled axes (units in the labels), a point marker
+/// at every measured value, and a legend.
+#[derive(Default)]
 pub struct LineChart {
     pub title: String,
+    /// A second line under the title: what was held fixed.
+    pub subtitle: String,
     pub x_label: String,
     pub y_label: String,
+    /// Logarithmic axes, ticked in real units.
+    pub log_x: bool,
+    pub log_y: bool,
     pub series: Vec<Series>,
+}
+
+/// A tick label in real units: whole numbers without a decimal point,
+/// others with as few digits as tell them apart.
+pub fn tick(v: &f64) -> String {
+    let v = *v;
+    if !v.is_finite() {
+        return String::new();
+    }
+    if v == v.round() && v.abs() < 1e15 {
+        return format!("{}", v as i64);
+    }
+    let a = v.abs();
+    if !(1e-3..1e6).contains(&a) {
+        return format!("{v:.0e}");
+    }
+    let s = format!("{v:.3}");
+    s.trim_end_matches('0').trim_end_matches('.').to_string()
 }
 
 pub const PALETTE: [RGBColor; 8] = [
@@ -51,41 +77,117 @@ pub const PALETTE: [RGBColor; 8] = [
 
 const SIZE: (u32, u32) = (960, 600);
 
+/// The data's range on one axis: finite values (positive ones on a log
+/// axis, out to whole decades), padded a little; a unit range when there
+/// is none.
+fn range(values: impl Iterator<Item = f64>, log: bool) -> (f64, f64) {
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for v in values.filter(|v| v.is_finite() && (!log || *v > 0.0)) {
+        (lo, hi) = (lo.min(v), hi.max(v));
+    }
+    if !lo.is_finite() {
+        return if log { (1.0, 10.0) } else { (0.0, 1.0) };
+    }
+    if log {
+        // Whole decades, so the axis is ticked at 1, 2, 5 ... of each.
+        let (a, b) = (lo.log10().floor(), hi.log10().ceil());
+        (10f64.powf(a), 10f64.powf(if b > a { b } else { a + 1.0 }))
+    } else {
+        let hi = if hi > lo { hi } else { lo + 1.0 };
+        let pad = (hi - lo) * 0.05;
+        (lo - pad, hi + pad)
+    }
+}
+
+/// Ticks of a log axis over whole decades: 1, 2 and 5 of each (1 alone
+/// when the axis spans more than three decades).
+fn decade_ticks((lo, hi): (f64, f64)) -> Vec<f64> {
+    let (a, b) = (lo.log10().round() as i32, hi.log10().round() as i32);
+    let steps: &[f64] = if b - a > 3 { &[1.0] } else { &[1.0, 2.0, 5.0] };
+    (a..=b).flat_map(|k| steps.iter().map(move |m| m * 10f64.powi(k))).filter(|v| *v >= lo * 0.999 && *v <= hi * 1.001).collect()
+}
+
+/// The legend, beneath the plot so it never covers data: two columns of
+/// a coloured line and the series' name.
+fn legend<DB: DrawingBackend>(area: &DrawingArea<DB, plotters::coord::Shift>, chart: &LineChart) -> Result<()>
+where
+    DB::ErrorType: 'static,
+{
+    let (w, _) = area.dim_in_pixel();
+    let col_w = (w as i32 - 120) / 2;
+    for (k, s) in chart.series.iter().enumerate() {
+        let (x, y) = (100 + (k as i32 % 2) * col_w, 8 + (k as i32 / 2) * 22);
+        area.draw(&PathElement::new(vec![(x, y + 8), (x + 24, y + 8)], s.color.stroke_width(3))).map_err(|e| anyhow!("{e}"))?;
+        area.draw(&Text::new(s.name.clone(), (x + 32, y), ("sans-serif", 15).into_font())).map_err(|e| anyhow!("{e}"))?;
+    }
+    Ok(())
+}
+
+/// Height of the legend strip for `n` series.
+fn legend_height(n: usize) -> u32 {
+    if n == 0 {
+        0
+    } else {
+        16 + 22 * n.div_ceil(2) as u32
+    }
+}
+
 /// Draws on any backend; `render` picks PNG or SVG.
 fn draw<DB: DrawingBackend>(root: DrawingArea<DB, plotters::coord::Shift>, chart: &LineChart) -> Result<()>
 where
     DB::ErrorType: 'static,
 {
     root.fill(&WHITE).map_err(|e| anyhow!("{e}"))?;
-    let pts = chart.series.iter().flat_map(|s| s.points.iter()).filter(|p| p.0.is_finite() && p.1.is_finite());
-    let (mut x0, mut x1, mut y0, mut y1) = (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY);
-    for &(x, y) in pts {
-        (x0, x1, y0, y1) = (x0.min(x), x1.max(x), y0.min(y), y1.max(y));
-    }
-    if !x0.is_finite() {
-        (x0, x1, y0, y1) = (0.0, 1.0, 0.0, 1.0);
-    }
-    let pad = ((y1 - y0) * 0.05).max(1e-12);
-    let (y0, y1) = (y0 - pad, y1 + pad);
-    let x1 = if x1 > x0 { x1 } else { x0 + 1.0 };
-    let mut c = ChartBuilder::on(&root)
-        .caption(&chart.title, ("sans-serif", 24))
-        .margin(16)
-        .x_label_area_size(48)
-        .y_label_area_size(80)
-        .build_cartesian_2d(x0..x1, y0..y1)
+    let root = root.titled(&chart.title, ("sans-serif", 24)).map_err(|e| anyhow!("{e}"))?;
+    let root = if chart.subtitle.is_empty() { root } else { root.titled(&chart.subtitle, ("sans-serif", 15)).map_err(|e| anyhow!("{e}"))? };
+    let (_, h) = root.dim_in_pixel();
+    let (root, below) = root.split_vertically(h.saturating_sub(legend_height(chart.series.len())));
+    legend(&below, chart)?;
+    let pts = || chart.series.iter().flat_map(|s| s.points.iter());
+    let x = range(pts().map(|p| p.0), chart.log_x);
+    let y = range(pts().map(|p| p.1), chart.log_y);
+    let mut b = ChartBuilder::on(&root);
+    b.margin(16).x_label_area_size(48).y_label_area_size(80);
+    let lx = || (x.0..x.1).log_scale().with_key_points(decade_ticks(x));
+    let ly = || (y.0..y.1).log_scale().with_key_points(decade_ticks(y));
+    match (chart.log_x, chart.log_y) {
+        (false, false) => finish(b.build_cartesian_2d(x.0..x.1, y.0..y.1).map_err(|e| anyhow!("{e}"))?, chart),
+        (true, false) => finish(b.build_cartesian_2d(lx(), y.0..y.1).map_err(|e| anyhow!("{e}"))?, chart),
+        (false, true) => finish(b.build_cartesian_2d(x.0..x.1, ly()).map_err(|e| anyhow!("{e}"))?, chart),
+        (true, true) => finish(b.build_cartesian_2d(lx(), ly()).map_err(|e| anyhow!("{e}"))?, chart),
+    }?;
+    root.present().map_err(|e| anyhow!("{e}"))?;
+    Ok(())
+}
+
+/// Axes and lines with point markers, whatever the axes' scales.
+fn finish<'a, DB, X, Y>(mut c: ChartContext<'a, DB, Cartesian2d<X, Y>>, chart: &LineChart) -> Result<()>
+where
+    DB: DrawingBackend + 'a,
+    DB::ErrorType: 'static,
+    X: Ranged<ValueType = f64> + ValueFormatter<f64>,
+    Y: Ranged<ValueType = f64> + ValueFormatter<f64>,
+{
+    c.configure_mesh()
+        .x_desc(&chart.x_label)
+        .y_desc(&chart.y_label)
+        .x_labels(12)
+        .y_labels(12)
+        .x_label_formatter(&tick)
+        .y_label_formatter(&tick)
+        .label_style(("sans-serif", 15))
+        .draw()
         .map_err(|e| anyhow!("{e}"))?;
-    c.configure_mesh().x_desc(&chart.x_label).y_desc(&chart.y_label).label_style(("sans-serif", 15)).draw().map_err(|e| anyhow!("{e}"))?;
+    let ok = |p: &(f64, f64)| p.0.is_finite() && p.1.is_finite() && (!chart.log_x || p.0 > 0.0) && (!chart.log_y || p.1 > 0.0);
     for s in &chart.series {
         let color = s.color;
-        let pts: Vec<(f64, f64)> = s.points.iter().copied().filter(|p| p.0.is_finite() && p.1.is_finite()).collect();
-        c.draw_series(LineSeries::new(pts, color.stroke_width(2)))
-            .map_err(|e| anyhow!("{e}"))?
-            .label(&s.name)
-            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(3)));
+        let pts: Vec<(f64, f64)> = s.points.iter().copied().filter(ok).collect();
+        // A marker on each measured value (not on dense curves).
+        if pts.len() <= 60 {
+            c.draw_series(pts.iter().map(|&p| Circle::new(p, 4, color.filled()))).map_err(|e| anyhow!("{e}"))?;
+        }
+        c.draw_series(LineSeries::new(pts, color.stroke_width(2))).map_err(|e| anyhow!("{e}"))?;
     }
-    c.configure_series_labels().background_style(WHITE.mix(0.85)).border_style(BLACK).label_font(("sans-serif", 15)).draw().map_err(|e| anyhow!("{e}"))?;
-    root.present().map_err(|e| anyhow!("{e}"))?;
     Ok(())
 }
 
@@ -152,4 +254,21 @@ pub fn colour_strips(path: &Path, title: &str, x_range: (f64, f64), rows: &[Stri
         root.present().map_err(|e| anyhow!("{e}"))?;
     }
     write_rgb8(path, size.0 as usize, size.1 as usize, &buf)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ticks_read_in_real_units() {
+        assert_eq!(tick(&180000.0), "180000");
+        assert_eq!(tick(&0.25), "0.25");
+        assert_eq!(tick(&0.1), "0.1");
+        assert_eq!(tick(&2e-5), "2e-5");
+        let t = decade_ticks((0.01, 1.0));
+        assert_eq!(t.len(), 7);
+        assert!((t[1] - 0.02).abs() < 1e-12 && (t[6] - 1.0).abs() < 1e-12, "{t:?}");
+        assert_eq!(decade_ticks((1.0, 1e6)).len(), 7, "only powers of ten over many decades");
+    }
 }

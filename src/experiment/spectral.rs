@@ -123,6 +123,7 @@ fn write_ior_report(dir: &Path, glass: &Glass) -> Result<Vec<IorError>> {
             x_label: "wavelength (nm)".into(),
             y_label: "n".into(),
             series: series(false),
+            ..Default::default()
         },
     )?;
     render(
@@ -132,6 +133,7 @@ fn write_ior_report(dir: &Path, glass: &Glass) -> Result<Vec<IorError>> {
             x_label: "wavelength (nm)".into(),
             y_label: "n - n_Sellmeier".into(),
             series: series(true),
+            ..Default::default()
         },
     )?;
     Ok(errors)
@@ -175,6 +177,7 @@ fn write_colour_map_report(dir: &Path) -> Result<Vec<MapSummary>> {
                     color,
                 })
                 .collect(),
+            ..Default::default()
         },
     )?;
     Ok(maps)
