@@ -94,7 +94,13 @@ pub fn write_rgb8(path: &Path, width: usize, height: usize, bytes: &[u8]) -> Res
     })
 }
 
+/// Writes the image; refuses, naming the count, one with NaN or infinite
+/// pixels (they would otherwise show as black).
 pub fn write_image(path: &Path, img: &Image) -> Result<()> {
+    let bad = img.pixels.iter().filter(|p| !p.is_finite()).count();
+    if bad > 0 {
+        anyhow::bail!("{}: {bad} of {} pixels came out NaN or infinite; nothing written", path.display(), img.pixels.len());
+    }
     write_rgb8(path, img.width, img.height, &img.to_rgb8())
 }
 

@@ -139,6 +139,11 @@ fn outputs_threads_and_csv_paths_are_checked_before_the_render() {
             "p.png",
         ),
         (vec!["prism", "trace", "--scene", "sphere-metal"], "prism trace: the sphere-metal scene has no prism to trace through", ""),
+        (
+            vec!["prism", "--photons", "1000", "--size", "8,8", "--radius", "1e-160", "--out", "nan.png"],
+            "nan.png: 64 of 64 pixels came out NaN or infinite",
+            "nan.png",
+        ),
     ];
     for (args, needle, output) in cases {
         let o = run(&args, "", d);

@@ -43,7 +43,19 @@ impl XyzImage {
     }
 
     /// Writes .png/.ppm (display) or .pfm (linear sRGB times exposure).
+    /// Refuses, naming the count, an image with NaN or infinite pixels
+    /// (before or after the exposure): they would otherwise show as black.
     pub fn write(&self, path: &Path, exposure: f64, gamut: GamutMap) -> Result<()> {
+        // Finite in f32 too: the PFM stores f32.
+        let finite = |v: f64| v.is_finite() && (v as f32).is_finite();
+        let bad = (0..self.xyz.len()).map(|i| self.linear_srgb(i) * exposure).filter(|c| !(finite(c.x) && finite(c.y) && finite(c.z))).count();
+        if bad > 0 {
+            anyhow::bail!(
+                "{}: {bad} of {} pixels came out NaN or infinite (exposure {exposure:e}); nothing written. A gather radius far below the photon spacing or an extreme exposure does this",
+                path.display(),
+                self.xyz.len()
+            );
+        }
         let ext = path.extension().map(|e| e.to_string_lossy().to_ascii_lowercase()).unwrap_or_default();
         if ext == "pfm" {
             // Portable float map: little-endian, rows bottom to top.
@@ -53,8 +65,7 @@ impl XyzImage {
                     for x in 0..self.width {
                         let c = self.linear_srgb(y * self.width + x) * exposure;
                         for v in [c.x, c.y, c.z] {
-                            let v = if v.is_finite() { v as f32 } else { 0.0 };
-                            f.write_all(&v.to_le_bytes())?;
+                            f.write_all(&(v as f32).to_le_bytes())?;
                         }
                     }
                 }
