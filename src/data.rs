@@ -14,6 +14,39 @@ pub const CFL_MODEL: &str = include_str!("../data/cfl_model.csv");
 #[cfg(test)]
 pub const FRAUNHOFER: &str = include_str!("../data/fraunhofer_lines.csv");
 
+/// The most bytes one input file may hold: 2 GiB, or what the environment
+/// variable `REFRACT_MAX_INPUT_BYTES` says (for bigger meshes).
+pub fn max_input_bytes() -> u64 {
+    std::env::var("REFRACT_MAX_INPUT_BYTES").ok().and_then(|v| v.trim().parse().ok()).unwrap_or(2 << 30)
+}
+
+/// Reads an input file (a mesh, a scene or an experiment): only a regular
+/// file, and no more than `max_input_bytes`, so a device or a FIFO named
+/// by mistake cannot be read until memory runs out.
+pub fn read_input(path: &std::path::Path) -> std::io::Result<Vec<u8>> {
+    use std::io::{Error, ErrorKind, Read};
+    let meta = std::fs::metadata(path)?;
+    if !meta.is_file() {
+        return Err(Error::new(ErrorKind::InvalidInput, "not a regular file (a folder, device or FIFO); refract reads only regular files"));
+    }
+    let cap = max_input_bytes();
+    let too_big = || Error::new(ErrorKind::InvalidInput, format!("larger than the {cap}-byte limit on inputs (set REFRACT_MAX_INPUT_BYTES to raise it)"));
+    if meta.len() > cap {
+        return Err(too_big());
+    }
+    let mut bytes = Vec::with_capacity(meta.len() as usize);
+    std::fs::File::open(path)?.take(cap + 1).read_to_end(&mut bytes)?;
+    if bytes.len() as u64 > cap {
+        return Err(too_big());
+    }
+    Ok(bytes)
+}
+
+/// `read_input` as UTF-8 text.
+pub fn read_input_text(path: &std::path::Path) -> std::io::Result<String> {
+    String::from_utf8(read_input(path)?).map_err(|_| std::io::Error::new(std::io::ErrorKind::InvalidData, "not UTF-8 text"))
+}
+
 /// A CSV table with `#` comment lines: its header and rows of fields.
 pub struct Table {
     pub header: Vec<String>,

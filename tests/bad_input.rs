@@ -174,3 +174,28 @@ fn bare_command_and_typos_help_the_user() {
     let o = run(&["prism", "--map", "octree"], "", dir.path());
     assert!(stderr(&o).contains("[possible values: buffer, kdtree]"), "{}", stderr(&o));
 }
+
+/// Inputs are read only from regular files and up to a size cap, and a
+/// prompt answer only up to a line's cap: a device, a FIFO or endless
+/// input is a one-line error, never a read until memory runs out.
+#[test]
+fn inputs_are_bounded() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    assert!(std::process::Command::new("mkfifo").arg(d.join("scene.toml")).status().unwrap().success());
+    for (args, needle) in [
+        (vec!["interior", "--off", "/dev/zero", "--out", "o.png"], "/dev/zero: cannot read the file: not a regular file"),
+        (vec!["render", "scene.toml"], "scene.toml: cannot read: not a regular file"),
+        (vec!["sweep", "scene.toml"], "scene.toml: cannot read: not a regular file"),
+    ] {
+        let o = run(&args, "", d);
+        assert_clean_failure(&o, needle);
+    }
+    assert!(!d.join("o.png").exists());
+    let cube = repo("off/cube.off");
+    let o = bin().args(["interior", "--off", cube.to_str().unwrap(), "--out", "o.png"]).current_dir(d).env("REFRACT_MAX_INPUT_BYTES", "100").output().unwrap();
+    assert_clean_failure(&o, "larger than the 100-byte limit on inputs (set REFRACT_MAX_INPUT_BYTES to raise it)");
+    // An endless first answer.
+    let o = run(&["interior"], &"7".repeat(100_000), d);
+    assert_clean_failure(&o, "the answer to \"Maximum ray trace count\" is longer than 4096 bytes");
+}

@@ -33,7 +33,7 @@ pub struct SceneFile {
 
 impl SceneFile {
     pub fn load(path: &Path, quick: bool) -> Result<SceneFile> {
-        let text = std::fs::read_to_string(path).map_err(|e| anyhow!("{}: cannot read: {e}", path.display()))?;
+        let text = crate::data::read_input_text(path).map_err(|e| anyhow!("{}: cannot read: {e}", path.display()))?;
         Self::parse(&text, &path.display().to_string(), quick)
     }
 

@@ -120,7 +120,7 @@ pub fn parse_toml(text: &str, file: &str) -> Result<Table> {
 
 impl Experiment {
     pub fn load(path: &Path, quick: bool) -> Result<Experiment> {
-        let text = std::fs::read_to_string(path).map_err(|e| anyhow!("{}: cannot read: {e}", path.display()))?;
+        let text = crate::data::read_input_text(path).map_err(|e| anyhow!("{}: cannot read: {e}", path.display()))?;
         Experiment::parse(&text, &path.display().to_string(), quick)
     }
 

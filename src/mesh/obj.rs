@@ -13,7 +13,7 @@ use std::path::Path;
 pub fn read_obj(path: &Path) -> Result<Mesh, MeshError> {
     let name = path.display().to_string();
     let err = |line: usize, kind: MeshErrorKind| MeshError { path: name.clone(), line, kind };
-    let bytes = std::fs::read(path).map_err(|e| err(0, e.into()))?;
+    let bytes = crate::data::read_input(path).map_err(|e| err(0, e.into()))?;
     check(&bytes).map_err(|(line, kind)| err(line, kind))?;
     let opts = tobj::LoadOptions { triangulate: true, single_index: true, ignore_points: true, ignore_lines: true };
     let (models, _) = tobj::load_obj_buf(&mut std::io::Cursor::new(&bytes), &opts, |_| Ok(Default::default()))

@@ -32,7 +32,7 @@ use std::path::Path;
 /// Reads and parses an OFF file; errors name the file and line.
 pub fn read_off(path: &Path) -> Result<Mesh, MeshError> {
     let name = path.display().to_string();
-    let bytes = std::fs::read(path).map_err(|e| MeshError { path: name.clone(), line: 0, kind: e.into() })?;
+    let bytes = crate::data::read_input(path).map_err(|e| MeshError { path: name.clone(), line: 0, kind: e.into() })?;
     parse_off(&bytes, &name)
 }
 

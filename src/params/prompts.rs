@@ -14,9 +14,14 @@ use std::io::{BufRead, Write};
 pub enum PromptError {
     #[error("input ended before an answer to \"{0}\"")]
     EndOfInput(String),
+    #[error("the answer to \"{0}\" is longer than 4096 bytes")]
+    TooLong(String),
     #[error("reading standard input: {0}")]
     Io(#[from] std::io::Error),
 }
+
+/// The longest answer read from one line.
+const MAX_ANSWER: u64 = 4096;
 
 /// Asks one prompt until `parse` accepts the answer.
 fn ask<T>(input: &mut dyn BufRead, out: &mut dyn Write, prompt: &str, parse: impl Fn(&str) -> Result<T, String>) -> Result<T, PromptError> {
@@ -24,7 +29,12 @@ fn ask<T>(input: &mut dyn BufRead, out: &mut dyn Write, prompt: &str, parse: imp
         write!(out, "{prompt}: ")?;
         out.flush()?;
         let mut line = String::new();
-        if input.read_line(&mut line)? == 0 {
+        // At most MAX_ANSWER bytes of a line: endless input is not an answer.
+        let n = std::io::Read::take(&mut *input, MAX_ANSWER).read_line(&mut line)?;
+        if n as u64 == MAX_ANSWER && !line.ends_with('\n') {
+            return Err(PromptError::TooLong(prompt.to_string()));
+        }
+        if n == 0 {
             writeln!(out)?;
             return Err(PromptError::EndOfInput(prompt.to_string()));
         }
