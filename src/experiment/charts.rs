@@ -104,8 +104,8 @@ pub fn line_chart(p: &PlotSpec, header: &[String], rows: &[Vec<String>]) -> Resu
     Ok(LineChart {
         title: p.title.clone(),
         subtitle: String::new(),
-        x_label: axis_title(&p.x).into(),
-        y_label: axis_title(&p.y).into(),
+        x_label: axis_title(&p.x),
+        y_label: axis_title(&p.y),
         log_x: p.log_x,
         log_y: p.log_y,
         series,
