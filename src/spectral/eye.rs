@@ -34,8 +34,9 @@ pub(super) struct Eye<'a> {
     /// The same spectrum as a mixture for `--eye lines`: each emission line,
     /// then the rest, with its share of the power.
     pub components: Vec<(f64, WavelengthSampler)>,
-    /// Per light: (radiance per watt-spectrum unit, its sampler) for emitters.
-    pub lights: Vec<(f64, WavelengthSampler)>,
+    /// Per light seen directly: its radiance per watt-spectrum unit, its
+    /// sampler, and the colour of its whole spectrum (for white paths).
+    pub lights: Vec<(f64, WavelengthSampler, DVec3)>,
 }
 
 /// One eye path: where it is, where it goes, its wavelength once it has
@@ -199,9 +200,9 @@ impl Eye<'_> {
 
     /// Radiance of an emitter seen directly.
     fn emitted(&self, p: &Path, light: usize) -> DVec3 {
-        let (scale, s) = &self.lights[light];
+        let (scale, s, white) = &self.lights[light];
         match p.nm {
-            None => s.mean_weight(self.opts.colours) * scale * p.weight,
+            None => *white * scale * p.weight,
             Some(nm) => self.opts.colours.xyz_weight(nm) * (s.pdf(nm) * scale) * p.weight,
         }
     }

@@ -64,7 +64,9 @@ pub fn render(scene: &World, opts: &RenderOptions, progress: &dyn Progress) -> S
                 _ => 1.0,
             };
             // Lambertian emitter: radiance P / (pi A), spread over wavelength by the spectrum's pdf.
-            (l.power / (std::f64::consts::PI * area), WavelengthSampler::new(&l.spectrum))
+            let sampler = WavelengthSampler::new(&l.spectrum);
+            let white = sampler.mean_weight(opts.colours);
+            (l.power / (std::f64::consts::PI * area), sampler, white)
         })
         .collect();
     let sampler = WavelengthSampler::new(&eye_spectrum);
