@@ -29,7 +29,7 @@ pub enum Command {
     /// Every figure of the four reports as results/figures/<id>.png, the
     /// shipped sweeps' plots, and results/index.html (the gallery).
     Figures {
-        /// Smaller images and fewer photons (about 3 minutes on 2 cores)
+        /// Smaller images and fewer photons (about 35 s on 2 cores; the full set takes several minutes)
         #[arg(long)]
         quick: bool,
         /// Only these figure ids, comma-separated (then no sweeps run)
