@@ -2,20 +2,14 @@
 //! prompts, interior scene files and experiments): one row each. Defaults
 //! come from `InteriorConfig::with_defaults`.
 
-use super::{choices, Kind, Param, Value};
+use super::{choices, pick, Kind, Param, Value};
 use crate::geometry::AccelKind;
 use crate::interior::config::{InteriorConfig, SceneKind, SpecularOpacity};
 use crate::mesh::source::MeshSource;
-use crate::names::Named;
 use std::path::PathBuf;
 
 fn mesh(s: &str) -> Result<(), String> {
     MeshSource::parse(s).map(|_| ())
-}
-
-fn pick<T: Named>(t: T) -> Value {
-    let i = T::VALUES.iter().position(|v| v.0 == t).unwrap_or(0);
-    Value::Choice(i, T::VALUES[i].1)
 }
 
 fn f32s(v: &Value) -> glam::Vec3 {

@@ -427,6 +427,12 @@ impl Kind {
     }
 }
 
+/// A `Named` enum's value as a choice (its index among the choices).
+pub fn pick<T: Named>(t: T) -> Value {
+    let i = T::VALUES.iter().position(|v| v.0 == t).unwrap_or(0);
+    Value::Choice(i, T::VALUES[i].1)
+}
+
 /// The choices of a `Named` enum, for `Kind::Choice`.
 pub fn choices<T: Named>() -> Vec<(&'static str, &'static str)> {
     T::choices()

@@ -1,8 +1,7 @@
 //! The parameters of a spectral run (`refract prism`, prism scene files and
 //! experiments): one row each. Defaults come from `SpectralConfig::new`.
 
-use super::{choices, End, Kind, Param, Value};
-use crate::names::Named;
+use super::{choices, pick, End, Kind, Param, Value};
 use crate::optics::glass;
 use crate::optics::ior::IorKind;
 use crate::photon::gather::Filter;
@@ -37,11 +36,6 @@ fn light_name(s: &str) -> Result<(), String> {
 fn glass_value(g: &glass::Glass) -> Value {
     let i = glass::catalogue().iter().position(|c| c.name == g.name).unwrap_or(0);
     Value::Choice(i, glass::catalogue()[i].name.as_str())
-}
-
-fn pick<T: Named>(t: T) -> Value {
-    let i = T::VALUES.iter().position(|v| v.0 == t).unwrap_or(0);
-    Value::Choice(i, T::VALUES[i].1)
 }
 
 const SCENE: &str = "Scene";
