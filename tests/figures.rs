@@ -55,3 +55,20 @@ fn render_takes_a_scene_file_and_names_a_bad_line() {
     let o = run(&["render", bad.to_str().unwrap()], "", dir.path());
     assert_clean_failure(&o, "bad.toml:3: `colour`: unknown key");
 }
+
+/// `render --set KEY=VALUE` overrides a scene file's parameters through the
+/// mode's table; a bad key or value is a one-line error before any work.
+#[test]
+fn render_overrides_parameters() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = repo("scenes/css552-p5.toml");
+    let out = dir.path().join("small.png");
+    let o = run(&["render", scene.to_str().unwrap(), "--set", "photons=20000", "--set", "size=160,60", "--out", out.to_str().unwrap()], "", dir.path());
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(image::open(&out).unwrap().to_rgb8().dimensions(), (160, 60));
+    let o = run(&["render", scene.to_str().unwrap(), "--set", "photons=0", "--out", "x.png"], "", dir.path());
+    assert_clean_failure(&o, "--set photons: 0 is not between 1 and 2000000000");
+    let o = run(&["render", scene.to_str().unwrap(), "--set", "colour=1", "--out", "x.png"], "", dir.path());
+    assert_clean_failure(&o, "--set: `colour` is not a prism parameter");
+    assert!(!dir.path().join("x.png").exists());
+}

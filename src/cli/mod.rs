@@ -52,6 +52,9 @@ pub enum Command {
         /// Output image (.png, .ppm; prism scenes also .pfm)
         #[arg(long)]
         out: Option<PathBuf>,
+        /// Override a parameter of the scene file, e.g. --set photons=100000 --set size=320,120 (repeatable)
+        #[arg(long, value_name = "KEY=VALUE")]
+        set: Vec<String>,
     },
     /// Report 004: a point light inside a translucent OFF mesh. With none of
     /// the report's flags (--trace ... --ior) it asks the report's 13
@@ -298,8 +301,9 @@ pub fn run(cli: Cli) -> Result<()> {
             }
             Ok(())
         }
-        Command::Render { file, quick, out } => {
-            let scene = crate::experiment::scene_file::SceneFile::load(&file, quick)?;
+        Command::Render { file, quick, out, set } => {
+            let mut scene = crate::experiment::scene_file::SceneFile::load(&file, quick)?;
+            scene.set(&set)?;
             let out = match out {
                 Some(o) => o,
                 None => {

@@ -101,6 +101,24 @@ impl SceneFile {
         }
     }
 
+    /// Overrides parameters with `KEY=VALUE` texts (as typed on the command
+    /// line), each checked by its row of the mode's table.
+    pub fn set(&mut self, overrides: &[String]) -> Result<()> {
+        for o in overrides {
+            let (k, v) = o.split_once('=').ok_or_else(|| anyhow!("--set: `{o}` is not KEY=VALUE"))?;
+            let k = k.trim().replace('-', "_");
+            let value = match self.mode {
+                Mode::Interior => crate::params::find(crate::params::interior::PARAMS, &k).map(|p| p.kind.parse_text(v)),
+                Mode::Prism => crate::params::find(crate::params::prism::PARAMS, &k).map(|p| p.kind.parse_text(v)),
+            }
+            .ok_or_else(|| anyhow!("--set: `{k}` is not a {} parameter", self.mode.name()))?
+            .map_err(|e| anyhow!("--set {k}: {e}"))?;
+            self.params.retain(|(p, _)| *p != k);
+            self.params.push((k, value.to_toml()));
+        }
+        Ok(())
+    }
+
     /// The parameters as `key = value` text, for the gallery.
     pub fn describe(&self) -> String {
         self.params.iter().map(|(k, v)| format!("{k} = {v}")).collect::<Vec<_>>().join(", ")

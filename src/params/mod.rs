@@ -82,6 +82,22 @@ impl fmt::Display for Value {
 }
 
 impl Value {
+    /// As a TOML value, as a scene file would write it.
+    pub fn to_toml(&self) -> toml::Value {
+        use toml::Value as T;
+        match self {
+            Value::Count(n) => T::Integer(*n as i64),
+            Value::Real(x) => T::Float(*x),
+            Value::Flag(b) => T::Boolean(*b),
+            Value::Path(p) => T::String(p.display().to_string()),
+            Value::Choice(_, name) => T::String(name.to_string()),
+            Value::Text(t) => T::String(t.clone()),
+            Value::Size([w, h]) => T::Array(vec![T::Integer(*w as i64), T::Integer(*h as i64)]),
+            Value::Triple(t) => T::Array(t.iter().map(|x| T::Float(*x)).collect()),
+            Value::Rgb(c) => T::Array(c.iter().map(|x| T::Integer(*x as i64)).collect()),
+        }
+    }
+
     pub fn count(&self) -> u64 {
         match self {
             Value::Count(n) => *n,
