@@ -183,3 +183,33 @@ fn render_and_sweep_make_the_same_image() {
         assert_eq!(size, if mode == "interior" { (401, 401) } else { (640, 240) }, "{mode}: the defaults' size");
     }
 }
+
+/// A second sweep into a folder another sweep is writing stops with the
+/// holder's pid; a lock left by a process that is gone is taken over; and
+/// `--resume` drops rows that are not this experiment's runs.
+#[test]
+fn sweeps_lock_their_folder_and_resume_drops_garbage() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    std::fs::create_dir_all(&out).unwrap();
+    let me = std::process::id();
+    std::fs::write(out.join(".lock"), me.to_string()).unwrap();
+    let o = sweep(&[&tiny(), "--quick", "--out", out.to_str().unwrap()], &repo(""));
+    assert_clean_failure(&o, &format!("another sweep (pid {me}) is writing this folder"));
+    std::fs::write(out.join(".lock"), "4000000000").unwrap();
+    let o = sweep(&[&tiny(), "--quick", "--out", out.to_str().unwrap()], &repo(""));
+    assert!(o.status.success(), "a stale lock is taken over: {}", stderr(&o));
+    assert!(!out.join(".lock").exists(), "the lock is removed at the end");
+    // A garbage row with a valid width, and a duplicate of run 0.
+    let text = std::fs::read_to_string(out.join("runs.csv")).unwrap();
+    let mut lines: Vec<String> = text.lines().map(str::to_string).collect();
+    let width = lines[0].split(',').count();
+    lines.push(vec!["999"; width].join(","));
+    lines.push(lines[1].clone());
+    std::fs::write(out.join("runs.csv"), lines.join("\n") + "\n").unwrap();
+    let o = sweep(&[&tiny(), "--quick", "--resume", "--out", out.to_str().unwrap()], &repo(""));
+    assert!(o.status.success(), "{}", stderr(&o));
+    let (_, r) = rows(&out);
+    assert_eq!(r.len(), 4, "only the experiment's 4 quick runs remain");
+    assert!(stderr(&o).contains("4 of 4 runs"), "{}", stderr(&o));
+}

@@ -266,13 +266,56 @@ struct Sweep<'a> {
     errors: Mutex<Vec<anyhow::Error>>,
 }
 
+/// A sweep's claim on its output folder: `.lock` holds the process id,
+/// and a second sweep into the same folder stops with a clear error
+/// (two writers would lose rows). A lock whose process is gone is stale
+/// and taken over. Removed when the sweep ends.
+struct FolderLock(PathBuf);
+
+impl FolderLock {
+    fn take(dir: &Path) -> Result<FolderLock> {
+        let path = dir.join(".lock");
+        for _ in 0..2 {
+            match std::fs::OpenOptions::new().write(true).create_new(true).open(&path) {
+                Ok(mut f) => {
+                    write!(f, "{}", std::process::id())?;
+                    return Ok(FolderLock(path));
+                }
+                Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => {
+                    let holder = std::fs::read_to_string(&path).unwrap_or_default();
+                    let alive = holder.trim().parse::<u32>().is_ok_and(|pid| Path::new(&format!("/proc/{pid}")).exists());
+                    if alive {
+                        bail!("{}: another sweep (pid {}) is writing this folder; wait for it, or use another --out", dir.display(), holder.trim());
+                    }
+                    // Stale: its process is gone.
+                    let _ = std::fs::remove_file(&path);
+                }
+                Err(e) => return Err(e).with_context(|| format!("cannot create {}", path.display())),
+            }
+        }
+        bail!("{}: cannot take the folder's lock", dir.display())
+    }
+}
+
+impl Drop for FolderLock {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_file(&self.0);
+    }
+}
+
 /// Runs the experiment; returns the output folder and a summary line.
 pub fn run(e: &Experiment, opts: &SweepOptions) -> Result<(PathBuf, String)> {
     let dir = opts.out.clone().unwrap_or_else(|| PathBuf::from("results").join(&e.name));
     std::fs::create_dir_all(&dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    let _lock = FolderLock::take(&dir)?;
     let header = header(e);
     let csv_path = dir.join("runs.csv");
-    let existing = if opts.resume { read_rows(&csv_path, &header)? } else { Vec::new() };
+    let all = expand(e);
+    let mut existing = if opts.resume { read_rows(&csv_path, &header)? } else { Vec::new() };
+    // Only rows of this experiment's runs, each once: a garbage or foreign
+    // row is dropped, not counted forever.
+    let mut seen = HashSet::new();
+    existing.retain(|r| r[0].parse::<usize>().is_ok_and(|id| id < all.len() && seen.insert(id)));
     // Start the file afresh with the complete rows only.
     write_rows(&csv_path, &header, &existing)?;
     let done: HashSet<usize> = existing.iter().filter_map(|r| r[0].parse().ok()).collect();
@@ -284,7 +327,7 @@ pub fn run(e: &Experiment, opts: &SweepOptions) -> Result<(PathBuf, String)> {
     let sweep = Sweep {
         e,
         names: param_names(e),
-        all: expand(e),
+        all,
         meshes,
         reference,
         frames: Mutex::new(HashMap::new()),
