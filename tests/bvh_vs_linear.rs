@@ -11,6 +11,9 @@ fn render(mesh: refract::mesh::Mesh, accel: AccelKind, tweak: impl Fn(&mut Inter
     render_mesh(mesh, &cfg).unwrap().image
 }
 
+/// A named change to the configuration.
+type Setting = (&'static str, fn(&mut InteriorConfig));
+
 #[test]
 fn identical_pixels_on_several_meshes_and_settings() {
     let meshes = [
@@ -19,7 +22,7 @@ fn identical_pixels_on_several_meshes_and_settings() {
         ("torus", generate::torus(32, 16).to_mesh()),
         ("icosphere", generate::icosphere(4)),
     ];
-    let settings: [(&str, fn(&mut InteriorConfig)); 4] = [
+    let settings: [Setting; 4] = [
         ("default", |_| {}),
         ("trace 6, rotated", |c| {
             c.max_trace = 6;
