@@ -36,7 +36,8 @@ fn quick_figures_render_and_the_gallery_lists_every_id() {
     }
     assert!(html.contains("not rendered yet"), "figures left out by --only are marked");
     assert!(html.contains("Quick set"), "the quick gallery says it is quick");
-    // Render times are kept out of the committed files.
+    // Render times are kept out of the committed files, the page included.
+    assert!(!html.contains("render time on this machine"));
     assert!(!std::fs::read_to_string(out.join("figures/figures.csv")).unwrap().contains("render_s"));
     assert!(std::fs::read_to_string(out.join("timings/figures.csv")).unwrap().starts_with("id,render_s"));
 }
