@@ -17,6 +17,10 @@ pub fn draw_all(e: &Experiment, dir: &Path, header: &[String], rows: &[Vec<Strin
             PlotKind::Line => {
                 let mut chart = line_chart(p, header, rows)?;
                 chart.subtitle = fixed_text(e);
+                let timed = |c: &str| c.ends_with("_s") || c.ends_with("per_s");
+                if e.quick && (timed(&p.x) || timed(&p.y)) {
+                    chart.subtitle.push_str(" (quick run: too short for its times to be measurements)");
+                }
                 render(&dir.join(format!("{}.png", p.file)), &chart)?;
                 render(&dir.join(format!("{}.svg", p.file)), &chart)?;
             }

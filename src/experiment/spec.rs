@@ -81,6 +81,8 @@ pub struct Experiment {
     pub reference: Option<Vec<(String, Value)>>,
     pub images: bool,
     pub plots: Vec<PlotSpec>,
+    /// Read with its [quick] settings: small runs whose times are noise.
+    pub quick: bool,
 }
 
 /// The line of `key` inside `[section]` (the `nth` such section for arrays
@@ -151,6 +153,7 @@ impl Experiment {
             },
             images,
             plots: p.plots(&outputs)?,
+            quick,
         })
     }
 }
