@@ -66,19 +66,6 @@ pub fn check_output(path: &Path, allowed: &[ImageFormat]) -> Result<ImageFormat,
     }
 }
 
-/// Checks a CSV path a run will append to, before any work: its folder
-/// exists and nothing but a regular file is there.
-pub fn check_csv(path: &Path) -> Result<(), String> {
-    match std::fs::symlink_metadata(path) {
-        Ok(m) if !m.is_file() => return Err(format!("{} is not a regular file", path.display())),
-        _ => {}
-    }
-    match path.parent().filter(|d| !d.as_os_str().is_empty()) {
-        Some(dir) if !dir.is_dir() => Err(format!("folder {} does not exist", dir.display())),
-        _ => Ok(()),
-    }
-}
-
 /// Writes `bytes` (8-bit RGB) as PNG if the name ends in `.png`, else PPM.
 pub fn write_rgb8(path: &Path, width: usize, height: usize, bytes: &[u8]) -> Result<()> {
     let png = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("png"));

@@ -35,9 +35,16 @@ pub fn cell(v: f64) -> String {
     }
 }
 
-/// Checks, before any work is done, that `path` is absent, empty or has
-/// exactly the columns of record type `T`.
+/// Checks, before any work is done, that `path` is in a folder that
+/// exists and is absent, or a regular file that is empty or has exactly
+/// the columns of record type `T` (a FIFO or device is never read).
 pub fn check_header<T: Serialize + Default>(path: &Path) -> Result<()> {
+    if std::fs::symlink_metadata(path).is_ok_and(|m| !m.is_file()) {
+        bail!("{} is not a regular file", path.display());
+    }
+    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty() && !d.is_dir()) {
+        bail!("folder {} does not exist", dir.display());
+    }
     check_line(path, &header_of::<T>()?)
 }
 

@@ -333,8 +333,7 @@ fn run_interior(args: InteriorArgs) -> Result<()> {
     // What the flags fix is checked before any question is asked.
     crate::params::check_threads(args.params.config().threads).map_err(anyhow::Error::msg)?;
     if let Some(path) = &args.timing_csv {
-        crate::image_io::check_csv(path).map_err(|e| anyhow::anyhow!("--timing-csv: {e}"))?;
-        crate::timing::check_header::<crate::interior::TimingRow>(path)?;
+        crate::timing::check_header::<crate::interior::TimingRow>(path).context("--timing-csv")?;
     }
     let cfg = if args.flag_mode() {
         args.flag_config()?
@@ -485,8 +484,7 @@ fn run_prism(args: PrismArgs) -> Result<()> {
     use crate::image_io::ImageFormat;
     crate::image_io::check_output(&cfg.out, &[ImageFormat::Png, ImageFormat::Ppm, ImageFormat::Pfm]).map_err(|e| anyhow::anyhow!("--out: {e}"))?;
     if let Some(path) = &args.timing_csv {
-        crate::image_io::check_csv(path).map_err(|e| anyhow::anyhow!("--timing-csv: {e}"))?;
-        crate::timing::check_header::<crate::spectral::TimingRow>(path)?;
+        crate::timing::check_header::<crate::spectral::TimingRow>(path).context("--timing-csv")?;
     }
     let report = crate::spectral::run(&cfg, &crate::terminal::Bars::new())?;
     if let Some(path) = &args.timing_csv {
