@@ -26,9 +26,13 @@ from scipy.optimize import nnls
 
 # (species, nm, fwhm_nm): the lines of data/cfl_lines.csv and the Eu3+
 # satellites it names (587-600, 626, 650, 705-710 nm; Y2O3:Eu3+ 5D0-7F1,2,3,4 lines).
+# Mercury lines of a low-pressure discharge are far narrower than 0.3 nm
+# (Doppler width ~0.002 nm); 0.3 nm is under one pixel of the Amici figure
+# and still three of the sampler's 0.1 nm bins. Phosphor lines are broader
+# (several Stark components), 2-4 nm.
 LINES = [
-    ("Hg", 404.656, 1.0), ("Hg", 407.784, 1.0), ("Hg", 435.834, 1.0), ("Hg", 546.075, 1.0),
-    ("Hg", 576.961, 1.0), ("Hg", 579.067, 1.0),
+    ("Hg", 404.656, 0.3), ("Hg", 407.784, 0.3), ("Hg", 435.834, 0.3), ("Hg", 546.075, 0.3),
+    ("Hg", 576.961, 0.3), ("Hg", 579.067, 0.3),
     ("Tb3+", 487.0, 2.5), ("Tb3+", 490.0, 2.5), ("Tb3+", 541.0, 2.0), ("Tb3+", 544.5, 2.0), ("Tb3+", 549.5, 2.0), ("Tb3+", 587.0, 4.0), ("Tb3+", 621.0, 3.0),
     ("Eu3+", 593.0, 3.0), ("Eu3+", 599.0, 3.0), ("Eu3+", 611.0, 2.0), ("Eu3+", 615.0, 2.0), ("Eu3+", 619.0, 2.0),
     ("Eu3+", 626.0, 3.0), ("Eu3+", 631.0, 3.0), ("Eu3+", 650.0, 3.0), ("Eu3+", 707.0, 3.0), ("Eu3+", 711.0, 3.0),

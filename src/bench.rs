@@ -286,3 +286,52 @@ fn error_chart(series: &[(String, Runs)]) -> crate::experiment::plot::LineChart 
             .collect(),
     }
 }
+
+/// The figures that stand for photographs (report 000's lamp and strip,
+/// report 001's spheres, report 003's Cornell boxes and album cover):
+/// each must come out the same whatever the seed.
+pub const PHOTOGRAPH_LIKE: [&str; 9] = [
+    "css552-p1",
+    "css552-p5",
+    "cs348b-sphere-arealight",
+    "cs348b-sphere-metal",
+    "cs348b-final",
+    "pm-laser-prism",
+    "pm-pointlight-faint",
+    "pm-mirror-tube",
+    "pm-dark-side",
+];
+
+/// Convergence of the photograph-like figures: each scene file in
+/// `scenes` rendered at seeds 1 and 2 (full or quick parameters), the
+/// relative RMSE of luminance between the two renders (the issue's
+/// target: under 2 %), and the time of one render.
+pub fn figures(quick: bool, scenes: &std::path::Path, only: &[String]) -> Result<String> {
+    if let Some(bad) = only.iter().find(|o| !PHOTOGRAPH_LIKE.contains(&o.as_str())) {
+        anyhow::bail!("--only: {bad} is not one of the photograph-like figures ({})", PHOTOGRAPH_LIKE.join(", "));
+    }
+    let mut out = String::new();
+    writeln!(out, "figure convergence: two renders of each scene file, seeds 1 and 2, {} parameters", if quick { "quick" } else { "full" })?;
+    writeln!(out, "{:<26} {:>9} {:>10} {:>9}", "figure", "render_s", "rel_rmse", "under_2%")?;
+    for id in PHOTOGRAPH_LIKE.iter().filter(|id| only.is_empty() || only.iter().any(|o| o == *id)) {
+        let file = crate::experiment::scene_file::SceneFile::load(&scenes.join(format!("{id}.toml")), quick)?;
+        let mut cfg = crate::experiment::params::prism_config(&file.params)?;
+        let mut images = Vec::new();
+        let mut secs = Vec::new();
+        for seed in [1, 2] {
+            cfg.seed = seed;
+            let t = Instant::now();
+            images.push(crate::spectral::render_config(&cfg, &crate::progress::Silent)?.render.image);
+            secs.push(t.elapsed().as_secs_f64());
+        }
+        // Symmetric in the two renders: against their mean.
+        let mean = crate::spectral::film::XyzImage {
+            width: images[0].width,
+            height: images[0].height,
+            xyz: images[0].xyz.iter().zip(&images[1].xyz).map(|(a, b)| (*a + *b) / 2.0).collect(),
+        };
+        let rel = relative_rmse(&images[0], &mean) * 2.0;
+        writeln!(out, "{:<26} {:>9.2} {:>10.4} {:>9}", id, secs.iter().sum::<f64>() / 2.0, rel, if rel < 0.02 { "yes" } else { "no" })?;
+    }
+    Ok(out)
+}

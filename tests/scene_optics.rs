@@ -75,3 +75,25 @@ fn the_cornell_laser_lands_where_the_probe_says() {
         assert!((centre - want).length() < 5e-4, "{nm} nm on {}: photons centred at {centre}, probe says {want}", scene.name(hit.face));
     }
 }
+
+#[test]
+fn the_laser_spectrum_on_the_back_wall_is_long_enough_to_read() {
+    // Where 400 and 700 nm land (the probe's optics), projected through the
+    // figure's camera (pm-laser-prism is 480x360): at least 80 px apart,
+    // both on the back wall.
+    let mut o = SceneOptions::new(SceneKind::CornellLaser);
+    o.crown = refract::optics::glass::by_name("N-SF11").unwrap();
+    o.ior = refract::optics::ior::IorKind::Musgrave;
+    [o.width, o.height] = [480, 360];
+    let scene = build(&o).unwrap();
+    let land = |nm: f64| {
+        let p = probe(&scene, nm);
+        assert!(!p.tir && p.faces == 2, "{nm} nm must pass through the prism");
+        let start = p.exit_point + 1e-9 * p.exit_dir;
+        let hit = scene.intersect(start, p.exit_dir, None).expect("the fan reaches a wall");
+        assert_eq!(scene.name(hit.face), "back wall", "{nm} nm");
+        scene.camera.project(start + hit.t * p.exit_dir).expect("in view")
+    };
+    let length = (land(400.0) - land(700.0)).length();
+    assert!(length >= 80.0, "the spectrum is {length:.1} px long");
+}

@@ -109,6 +109,20 @@ pub enum BenchCommand {
         #[arg(long, default_value = "results/bench")]
         out: PathBuf,
     },
+    /// Whether the photograph-like figures have converged: each rendered
+    /// at two seeds, the relative RMSE of luminance between them (target
+    /// under 2 %) and the render time.
+    Figures {
+        /// The scene files' quick parameters
+        #[arg(long)]
+        quick: bool,
+        /// Only these figures (comma-separated ids)
+        #[arg(long, value_delimiter = ',')]
+        only: Vec<String>,
+        /// Folder of the scene files
+        #[arg(long, default_value = "scenes")]
+        scenes: PathBuf,
+    },
 }
 
 #[derive(Args, Debug)]
@@ -130,7 +144,8 @@ pub struct PrismArgs {
 pub enum PrismCommand {
     /// One ray per wavelength through the scene's prism with the renderer's
     /// own optics: CSV of wavelength_nm, exit direction x,y,z, deviation_deg
-    /// (counter-clockwise positive, toward the crown apices), transmittance.
+    /// (counter-clockwise positive, toward the crown apices), transmittance;
+    /// a ray totally reflected inside leaves the direction cells empty.
     Trace {
         #[command(flatten)]
         scene: Given<param_args::PrismScene>,
@@ -326,6 +341,7 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Glass(args) => run_glass(args),
         Command::Bench { which: BenchCommand::Interior { quick } } => write_stdout(&crate::bench::interior(quick)?),
         Command::Bench { which: BenchCommand::Prism { quick, out } } => write_stdout(&crate::bench::prism(quick, &out)?),
+        Command::Bench { which: BenchCommand::Figures { quick, only, scenes } } => write_stdout(&crate::bench::figures(quick, &scenes, &only)?),
     }
 }
 
@@ -466,7 +482,7 @@ fn run_prism(args: PrismArgs) -> Result<()> {
         for nm in wavelengths {
             let p = crate::world::probe::probe(&built, nm);
             if p.tir {
-                outln!(o, "{nm},nan,nan,nan,nan,0");
+                outln!(o, "{nm},,,,,0");
             } else {
                 outln!(o, "{nm},{:.9},{:.9},{:.9},{:.6},{:.6}", p.exit_dir.x, p.exit_dir.y, p.exit_dir.z, p.deviation_deg, p.transmittance);
             }

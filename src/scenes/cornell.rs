@@ -61,12 +61,24 @@ pub fn build(o: &SceneOptions) -> Result<World> {
     cornell_box(&mut s);
     s.bounces = 4;
     let n_d = o.crown.sellmeier(crate::optics::glass::lines::LD);
-    // The spectrum fans toward the back wall, a little to the right.
-    let cross = prism_cross_section(DVec2::new(-0.1, -0.3), 0.3, n_d, 70f64.to_radians());
+    let min_deviation = (n_d * 0.5f64).asin();
+    // The spectrum fans toward the back wall, a little to the right. The
+    // laser's prism stands at the front left, so the fan crosses the box
+    // and meets the back wall obliquely, and the laser meets it 7 degrees
+    // short of minimum deviation: the light leaves nearer grazing, where
+    // the fan spreads nearly twice as wide (docs/physics.md §11). Its
+    // spectrum on the back wall is 92 px long at 480x360.
+    let laser = o.kind == SceneKind::CornellLaser;
+    let (centre, exit, default_incidence) = if laser {
+        (DVec2::new(-0.75, -0.7), 66f64.to_radians(), min_deviation - 7f64.to_radians())
+    } else {
+        (DVec2::new(-0.1, -0.3), 70f64.to_radians(), min_deviation)
+    };
+    let cross = prism_cross_section(centre, 0.3, n_d, exit);
     if !o.no_prism {
         s.add_extruded("prism", &[(cross, 1)], 0.0, 0.5);
     }
-    let incidence = o.incidence_deg.map_or((n_d * 0.5f64).asin(), f64::to_radians);
+    let incidence = o.incidence_deg.map_or(default_incidence, f64::to_radians);
     let (aim, dir) = into_left_face(cross, incidence);
     let aim = aim + DVec3::Z * 0.25;
     match o.kind {

@@ -62,14 +62,17 @@ enum Step {
 
 impl Eye<'_> {
     /// XYZ radiance along a camera ray; `u_lambda` stratifies wavelengths.
-    pub fn radiance(&self, o: DVec3, d: DVec3, u_lambda: f64, rng: &mut Rng, rays: &mut u64) -> DVec3 {
-        let start = Path { o, d, skip: None, nm: None, weight: 1.0, pol: Polarisation::S, depth: 0 };
-        let mut stack = if self.opts.eye == EyeMode::Lines {
-            // Both polarisations, each with half the weight: no noise from choosing.
-            vec![Path { weight: 0.5, ..start }, Path { weight: 0.5, pol: Polarisation::P, ..start }]
-        } else {
-            vec![Path { pol: if rng.f64() < 0.5 { Polarisation::S } else { Polarisation::P }, ..start }]
+    /// `sample` is the sample's index in its pixel: with `--eye lines`
+    /// the pixel's samples alternate between the two polarisations.
+    pub fn radiance(&self, o: DVec3, d: DVec3, u_lambda: f64, sample: usize, rng: &mut Rng, rays: &mut u64) -> DVec3 {
+        let alternate = self.opts.eye == EyeMode::Lines && self.opts.spp > 1;
+        let pol = match alternate {
+            true if sample % 2 == 0 => Polarisation::S,
+            true => Polarisation::P,
+            false if rng.f64() < 0.5 => Polarisation::S,
+            false => Polarisation::P,
         };
+        let mut stack = vec![Path { o, d, skip: None, nm: None, weight: 1.0, pol, depth: 0 }];
         let mut sum = DVec3::ZERO;
         while let Some(mut p) = stack.pop() {
             while p.depth < MAX_DEPTH {

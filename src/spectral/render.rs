@@ -8,7 +8,7 @@ use super::options::{EyeMode, RenderOptions};
 use crate::photon::emit::{light_pass, LightStats};
 use crate::photon::map::SurfaceMap;
 use crate::progress::Progress;
-use crate::sampling::Rng;
+use crate::sampling::{multi_jittered, Rng};
 use crate::spectrum::sampler::WavelengthSampler;
 use crate::spectrum::Spectrum;
 use crate::world::{Emission, World};
@@ -84,12 +84,15 @@ pub fn render(scene: &World, opts: &RenderOptions, progress: &dyn Progress) -> S
             let mut rays = 0;
             for (x, px) in row.iter_mut().enumerate() {
                 let mut sum = DVec3::ZERO;
-                for s in 0..opts.spp {
-                    let mut rng = Rng::new(opts.seed, (y * cam.width + x) as u64, 0x1000 + s as u64);
-                    let (jx, jy) = if opts.spp == 1 { (0.5, 0.5) } else { (rng.f64(), rng.f64()) };
-                    let u_lambda = (s as f64 + rng.f64()) / opts.spp as f64;
+                let pixel = (y * cam.width + x) as u64;
+                // Positions and wavelengths stratified over the pixel's
+                // samples; one sample looks through the pixel's centre.
+                let pattern = multi_jittered(opts.spp as usize, &mut Rng::new(opts.seed, pixel, 0x0fff));
+                for (s, &[jx, jy, u_lambda]) in pattern.iter().enumerate() {
+                    let mut rng = Rng::new(opts.seed, pixel, 0x1000 + s as u64);
+                    let (jx, jy) = if opts.spp == 1 { (0.5, 0.5) } else { (jx, jy) };
                     let d = cam.ray(x as f64 + jx, y as f64 + jy);
-                    sum += eye.radiance(cam.pos, d, u_lambda, &mut rng, &mut rays);
+                    sum += eye.radiance(cam.pos, d, u_lambda, s, &mut rng, &mut rays);
                 }
                 *px = sum / opts.spp as f64;
             }

@@ -73,10 +73,8 @@ impl World {
             if Some(i) == skip {
                 continue;
             }
-            if let Some(t) = f.intersect(o, d) {
-                if best.is_none_or(|b| t < b.t) {
-                    best = Some(FaceHit { t, face: i });
-                }
+            if let Some(t) = f.intersect_before(o, d, best.map_or(f64::INFINITY, |b| b.t)) {
+                best = Some(FaceHit { t, face: i });
             }
         }
         let n = self.faces.len();

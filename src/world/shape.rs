@@ -16,6 +16,13 @@ pub struct Face {
     /// For parallelogram faces: corner and edge vectors, the (u, v) frame
     /// of the report's per-object photon buffer.
     pub frame: Option<(DVec3, DVec3, DVec3)>,
+    /// A sphere around the vertices (centre, radius squared): rays that
+    /// pass outside it skip the plane and polygon tests.
+    bound: (DVec3, f64),
+    /// Per edge a -> b: the in-plane outward test n x (b - a), its offset
+    /// at a, and the tolerance (a point p is inside if every
+    /// p . m - c >= -tol), precomputed for the hot loop.
+    edges: Vec<(DVec3, f64, f64)>,
 }
 
 impl Face {
@@ -25,7 +32,18 @@ impl Face {
         if (verts[1] - verts[0]).cross(verts[2] - verts[0]).dot(n) < 0.0 {
             verts.reverse();
         }
-        Face { name: name.into(), verts, normal: n, surface, frame: None }
+        let centre = verts.iter().sum::<DVec3>() / verts.len() as f64;
+        let r2 = verts.iter().map(|v| v.distance_squared(centre)).fold(0.0, f64::max);
+        let k = verts.len();
+        let edges = (0..k)
+            .map(|i| {
+                let (a, b) = (verts[i], verts[(i + 1) % k]);
+                // (b - a) x (p - a) . n = (p - a) . (n x (b - a)).
+                let m = n.cross(b - a);
+                (m, a.dot(m), 1e-12 * (b - a).length_squared().max(1e-30))
+            })
+            .collect();
+        Face { name: name.into(), verts, normal: n, surface, frame: None, bound: (centre, r2 * (1.0 + 1e-9) + 1e-18), edges }
     }
 
     /// Parallelogram from a corner and two edges; normal eu x ev.
@@ -38,23 +56,30 @@ impl Face {
     /// Ray-plane distance if the hit lies inside the polygon.
     #[inline]
     pub fn intersect(&self, o: DVec3, d: DVec3) -> Option<f64> {
+        self.intersect_before(o, d, f64::INFINITY)
+    }
+
+    /// The same, for hits nearer than `t_max` only (the polygon test is
+    /// skipped for farther planes).
+    #[inline]
+    pub fn intersect_before(&self, o: DVec3, d: DVec3, t_max: f64) -> Option<f64> {
+        // The bounding sphere first (d need not be unit: compare scaled).
+        let (c, r2) = self.bound;
+        let oc = c - o;
+        let (b, dd) = (oc.dot(d), d.length_squared());
+        if oc.length_squared() * dd - b * b > r2 * dd {
+            return None;
+        }
         let denom = d.dot(self.normal);
         if denom == 0.0 || !denom.is_finite() {
             return None;
         }
         let t = (self.verts[0] - o).dot(self.normal) / denom;
-        if !(t > 0.0) {
+        if !(t > 0.0 && t < t_max) {
             return None;
         }
         let p = o + t * d;
-        let k = self.verts.len();
-        for i in 0..k {
-            let (a, b) = (self.verts[i], self.verts[(i + 1) % k]);
-            if (b - a).cross(p - a).dot(self.normal) < -1e-12 * (b - a).length_squared().max(1e-30) {
-                return None;
-            }
-        }
-        Some(t)
+        self.edges.iter().all(|&(m, c, tol)| p.dot(m) - c >= -tol).then_some(t)
     }
 
     /// (u, v) in [0, 1]^2 of a point on a parallelogram face.
