@@ -10,7 +10,7 @@ use refract::spectral::options::RenderOptions;
 use refract::spectral::render::{render, SpectralRender};
 use refract::spectrum::sampler::WavelengthSampler;
 use refract::world::probe::probe;
-use refract::world::{Face, Surface, World};
+use refract::world::{Albedo, Face, Surface, World};
 
 fn hidden() -> refract::progress::Silent {
     refract::progress::Silent
@@ -59,7 +59,7 @@ fn energy_on_the_screen_is_the_emitted_power_times_fresnel_transmittance() {
         let f = s.maps[0];
         let (c, eu, ev) = s.faces[f].frame.unwrap();
         let mid = c + eu / 2.0 + ev / 2.0;
-        s.faces[f] = Face::rect("big screen", mid - eu * 5.0 - ev * 5.0, eu * 10.0, ev * 10.0, Surface::Diffuse { albedo: [0.8; 3], map: 0 });
+        s.faces[f] = Face::rect("big screen", mid - eu * 5.0 - ev * 5.0, eu * 10.0, ev * 10.0, Surface::Diffuse { albedo: Albedo::new([0.8; 3]), map: 0 });
         let pass = light_pass(&s, 400_000, 3, refract::spectrum::colormap::ColorMap::Cie, &refract::progress::Silent);
         let measured = pass.stats.stored_power / pass.stats.emitted_power;
         // Analytic: the light's spectrum-weighted (prod Ts + prod Tp) / 2.

@@ -97,3 +97,76 @@ fn the_laser_spectrum_on_the_back_wall_is_long_enough_to_read() {
     let length = (land(400.0) - land(700.0)).length();
     assert!(length >= 80.0, "the spectrum is {length:.1} px long");
 }
+
+/// A matte wall of `albedo` 1 m before the camera, lit from the side by a
+/// wide beam of `light` (which never meets the glass, so both renders
+/// share one photon map); with `plate`, a 1 cm N-SF11 plate stands in
+/// between, face-on. Returns the mean XYZ over the image.
+fn wall_through_plate(albedo: [f64; 3], light: &str, plate: bool) -> DVec3 {
+    use refract::photon::gather::{Filter, Lookup};
+    use refract::spectral::options::{EyeMode, RenderOptions};
+    use refract::world::{Albedo, Emission, Face, Light};
+    let glass = refract::optics::glass::by_name("N-SF11").unwrap();
+    let ior = IorModel::for_glass(glass, refract::optics::ior::IorKind::Sellmeier);
+    let mut w = World::new("plate", vec![Medium::Air, Medium::Glass { name: "N-SF11".into(), ior }], 24, 16);
+    let v = DVec3::new;
+    // Normal -x (toward the camera): u along +z, v along +y.
+    w.faces.push(refract::world::Face::rect(
+        "wall",
+        v(1.0, -0.5, -0.5),
+        v(0.0, 0.0, 1.0),
+        v(0.0, 1.0, 0.0),
+        Surface::Diffuse { albedo: Albedo::new(albedo), map: 0 },
+    ));
+    w.maps.push(0);
+    if plate {
+        // Normals point out of the glass.
+        w.faces.push(Face::rect("plate front", v(0.4, -0.3, -0.3), v(0.0, 0.6, 0.0), v(0.0, 0.0, 0.6), Surface::Interface { front: 0, back: 1 }));
+        w.faces.push(Face::rect("plate back", v(0.41, -0.3, -0.3), v(0.0, 0.0, 0.6), v(0.0, 0.6, 0.0), Surface::Interface { front: 0, back: 1 }));
+    }
+    let dir = v(0.6, 0.8, 0.0).normalize();
+    let u = DVec3::Z.cross(dir).normalize();
+    w.lights.push(Light {
+        name: "beam".into(),
+        emission: Emission::Beam { centre: v(1.0, 0.0, 0.0) - dir * 0.5, dir, u, v: DVec3::Z, half: glam::DVec2::new(0.2, 0.2), disc: false },
+        spectrum: NamedSpectrum::parse(light).unwrap().spectrum,
+        power: 1.0,
+    });
+    w.camera = refract::world::Camera::look_at(DVec3::ZERO, DVec3::X, DVec3::Z, 6.0, 24, 16);
+    let o = RenderOptions {
+        photons: 400_000,
+        map: refract::photon::map::MapKind::Kdtree,
+        filter: Filter::Cone,
+        lookup: Lookup::Radius(0.02),
+        spp: 16,
+        seed: 3,
+        eye: EyeMode::Hero,
+        split: 8,
+        colours: ColorMap::Cie,
+    };
+    let r = refract::spectral::render::render(&w, &o, &refract::progress::Silent);
+    r.image.xyz.iter().sum::<DVec3>() / r.image.xyz.len() as f64
+}
+
+#[test]
+fn a_glass_plate_keeps_the_colour_of_the_wall_behind_it() {
+    let xy = |c: DVec3| glam::DVec2::new(c.x, c.y) / (c.x + c.y + c.z);
+    // At normal incidence each face of N-SF11 (n = 1.76-1.81) reflects
+    // 7.6-8.3 %: the plate passes 84-86 % whatever the colour.
+    for light in ["d65", "cfl-lines", "laser:532"] {
+        for albedo in [[0.12, 0.55, 0.12], [0.75, 0.12, 0.1], [0.1, 0.2, 0.8], [0.75; 3]] {
+            let (bare, seen) = (wall_through_plate(albedo, light, false), wall_through_plate(albedo, light, true));
+            let shift = (xy(seen) - xy(bare)).length();
+            assert!(shift < 0.005, "{light}, albedo {albedo:?}: the plate moves the chromaticity by {shift:.4}");
+            if light == "laser:532" {
+                // Laser light off any wall is still 532 nm light: the wall's
+                // reflectance spectrum scales it (an RGB product would
+                // shift its colour, even below zero).
+                let line = xy(refract::spectrum::cie::cmf(532.0));
+                assert!((xy(bare) - line).length() < 0.005, "albedo {albedo:?}: 532 nm comes back at {:?}, not {line:?}", xy(bare));
+            }
+            let t = seen.y / bare.y;
+            assert!((0.82..0.88).contains(&t), "{light}, albedo {albedo:?}: the plate passes {t:.3} of the luminance");
+        }
+    }
+}

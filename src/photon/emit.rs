@@ -5,11 +5,15 @@
 //! matte surface.
 //!
 //! A photon is white (it carries the light's whole spectrum as XYZ) until
-//! it meets a medium whose index varies with wavelength; there it takes one
-//! wavelength, sampled in proportion to the light's spectrum and stratified
-//! over the photons, and carries cmf(lambda) from then on. So a prism with a
-//! constant index leaves the colour exactly white, and spectral work is
-//! done only where something disperses.
+//! it meets a medium whose index varies with wavelength, or bounces off a
+//! matte surface; there it takes one wavelength, sampled in proportion to
+//! the light's spectrum and stratified over the photons, and carries
+//! cmf(lambda) from then on. So a prism with a constant index leaves the
+//! colour exactly white, and spectral work is done only where something
+//! disperses or colours the light. Matte surfaces reflect spectrally: a
+//! photon is stored as the flux the surface sends on, its reflectance
+//! spectrum times the photon's wavelength, or times the light's whole
+//! spectrum for a white photon.
 
 use super::map::Photon;
 use crate::progress::Progress;
@@ -66,8 +70,20 @@ pub fn light_pass(scene: &World, total: u64, seed: u64, colours: ColorMap, progr
     progress.start("light", total);
     for (li, light) in scene.lights.iter().enumerate() {
         let n = ((total as f64 * light.power / power).round() as u64).max(1);
+        let emission = &light.emission;
         let sampler = WavelengthSampler::new(&light.spectrum);
         let white = sampler.mean_weight(colours);
+        // What one watt of this light's whole spectrum leaves as from each
+        // matte surface: its spectrum times the surface's reflectance.
+        let reflected: Vec<DVec3> = scene
+            .maps
+            .iter()
+            .map(|&f| match &scene.faces[f].surface {
+                Surface::Diffuse { albedo, .. } => sampler.mean_weight_times(colours, |nm| albedo.at(nm)),
+                _ => DVec3::ZERO,
+            })
+            .collect();
+        let source = Emitted { power: 0.0, white, reflected: &reflected, sampler: &sampler };
         let per_photon = light.power / n as f64;
         let mut key = Rng::new(seed, li as u64, 0xfeed);
         let offsets = [key.f64(), key.f64(), key.f64()];
@@ -83,12 +99,13 @@ pub fn light_pass(scene: &World, total: u64, seed: u64, colours: ColorMap, progr
                     // Beams take stratified positions; lights that emit in all
                     // directions take random ones (a Halton lattice folded by
                     // mirrors shows as a checkerboard on the walls).
-                    let (a, b) = match light.emission {
+                    let (a, b) = match emission {
                         Emission::Beam { .. } => (u[0], u[1]),
                         _ => (rng.f64(), rng.f64()),
                     };
-                    let (o, d) = emit(scene, &light.emission, a, b, &mut rng);
-                    trace_photon(scene, o, d, per_photon, white, &sampler, colours, u[2], &mut rng, &mut maps, &mut stats);
+                    let (o, d) = emit(scene, emission, a, b, &mut rng);
+                    let photon = Emitted { power: per_photon, ..source };
+                    trace_photon(scene, o, d, &photon, colours, u[2], &mut rng, &mut maps, &mut stats);
                 }
                 progress.advance("light", b - a);
                 (maps, stats)
@@ -155,20 +172,30 @@ pub fn concentric_disc(a: f64, b: f64) -> DVec2 {
     DVec2::new(r * t.cos(), r * t.sin())
 }
 
+/// What a photon leaves its light with: its power, the XYZ of one watt of
+/// the light's whole spectrum (and of what each matte surface reflects of
+/// it), and the light's wavelength sampler.
+#[derive(Clone, Copy)]
+struct Emitted<'a> {
+    power: f64,
+    white: DVec3,
+    reflected: &'a [DVec3],
+    sampler: &'a WavelengthSampler,
+}
+
 #[allow(clippy::too_many_arguments)]
 fn trace_photon(
     scene: &World,
     mut o: DVec3,
     mut d: DVec3,
-    power: f64,
-    white: DVec3,
-    sampler: &WavelengthSampler,
+    light: &Emitted,
     colours: ColorMap,
     u_lambda: f64,
     rng: &mut Rng,
     maps: &mut [Vec<Photon>],
     stats: &mut LightStats,
 ) {
+    let Emitted { power, white, reflected, sampler } = *light;
     stats.emitted += 1;
     stats.emitted_power += power;
     let pol = if rng.f64() < 0.5 { Polarisation::S } else { Polarisation::P };
@@ -216,21 +243,36 @@ fn trace_photon(
                 let (_, eu, ev) = face.frame.expect("matte surfaces are parallelograms");
                 if let Some(uv) = face.uv(p) {
                     let pos = [(uv.x * eu.length()) as f32, (uv.y * ev.length()) as f32];
-                    maps[map].push(Photon { pos, xyz: [xyz.x as f32, xyz.y as f32, xyz.z as f32] });
+                    // Stored as the flux the surface reflects: at the
+                    // photon's wavelength, or over its light's whole spectrum.
+                    let out = match nm {
+                        Some(l) => xyz * albedo.at(l),
+                        None => reflected[map] * power,
+                    };
+                    maps[map].push(Photon { pos, xyz: [out.x as f32, out.y as f32, out.z as f32] });
                     stats.stored += 1;
                     if bounces == 0 {
                         // Counted once, at the first matte surface it reaches.
                         stats.stored_power += power;
                     }
                 }
-                // Diffuse inter-reflection, where the scene allows it: go on
-                // with probability = mean albedo, colour tinted by it.
-                let keep = (albedo[0] + albedo[1] + albedo[2]) / 3.0;
-                if bounces >= scene.bounces || !(rng.f64() < keep) {
+                // Diffuse inter-reflection, where the scene allows it. A
+                // photon that still carries its light's whole spectrum takes
+                // one wavelength first (the surface's spectrum colours it);
+                // it goes on with probability = the reflectance there, its
+                // colour unchanged.
+                if bounces >= scene.bounces {
+                    return;
+                }
+                let l = *nm.get_or_insert_with(|| {
+                    let (l, _) = sampler.sample(u_lambda);
+                    xyz = colours.xyz_weight(l) * power;
+                    l
+                });
+                if !(rng.f64() < albedo.at(l)) {
                     return;
                 }
                 bounces += 1;
-                xyz = crate::spectrum::cie::tint(xyz, albedo) / keep;
                 d = cosine_direction(face.normal, rng);
             }
             Surface::Emitter { .. } => return,
@@ -248,8 +290,9 @@ mod tests {
 
     /// A closed cube of matte walls (albedo rho, normals inward) with a
     /// point light at its centre: every photon lands, and after k bounces it
-    /// carries rho^k on average, so the flux stored over all maps is
-    /// Phi (1 + rho + ... + rho^B) for B bounces.
+    /// carries rho^k on average; the maps store what the walls reflect, so
+    /// the flux stored over all maps is Phi (rho + rho^2 + ... + rho^(B+1))
+    /// for B bounces.
     #[test]
     fn bounces_store_the_geometric_series_of_the_albedo() {
         let rho = 0.5;
@@ -266,7 +309,7 @@ mod tests {
         for (i, (c, eu, ev)) in walls.into_iter().enumerate() {
             // Wound so the normal (eu x ev) points into the box.
             let (eu, ev) = if eu.cross(ev).dot(-c) > 0.0 { (eu, ev) } else { (ev, eu) };
-            let f = Face::rect(&format!("wall {i}"), c, eu, ev, Surface::Diffuse { albedo: [rho; 3], map: i });
+            let f = Face::rect(&format!("wall {i}"), c, eu, ev, Surface::Diffuse { albedo: crate::world::Albedo::new([rho; 3]), map: i });
             assert!(f.normal.dot(-c) > 0.0, "wall {i} must face inward");
             s.faces.push(f);
             s.maps.push(i);
@@ -277,7 +320,7 @@ mod tests {
             let pass = light_pass(&s, 200_000, 1, ColorMap::Cie, &crate::progress::Silent);
             let stored: f64 = pass.photons.iter().flatten().map(|p| p.xyz[1] as f64).sum();
             let emitted = WavelengthSampler::new(&Spectrum::Constant(1.0)).mean_cmf().y;
-            let want: f64 = (0..=bounces).map(|k| rho.powi(k as i32)).sum();
+            let want: f64 = (1..=bounces + 1).map(|k| rho.powi(k as i32)).sum();
             assert!((stored / emitted / want - 1.0).abs() < 0.01, "{bounces} bounces: {} vs {want}", stored / emitted);
             assert!((pass.stats.stored_power - 1.0).abs() < 1e-9, "first landings carry all the power");
         }

@@ -16,7 +16,7 @@
 use super::{glass_medium, light_spectrum, rotate_z, SceneKind, SceneOptions};
 use crate::optics::ior::IorKind;
 use crate::world::probe::{probe, probe_ray, ProbeRay};
-use crate::world::{Camera, Emission, Face, Light, Medium, Surface, World};
+use crate::world::{Albedo, Camera, Emission, Face, Light, Medium, Surface, World};
 use anyhow::{bail, Result};
 use glam::{DVec2, DVec3};
 
@@ -137,7 +137,13 @@ fn add_screen(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism, design: &
     let tall = width * o.height as f64 / o.width as f64;
     // Normal -x (facing the prism), u along -y, v along +z: u x v = -x.
     let corner = centre + DVec3::new(0.0, width / 2.0, -tall / 2.0);
-    scene.faces.push(Face::rect("screen", corner, DVec3::new(0.0, -width, 0.0), DVec3::new(0.0, 0.0, tall), Surface::Diffuse { albedo: [0.8; 3], map: 0 }));
+    scene.faces.push(Face::rect(
+        "screen",
+        corner,
+        DVec3::new(0.0, -width, 0.0),
+        DVec3::new(0.0, 0.0, tall),
+        Surface::Diffuse { albedo: Albedo::new([0.8; 3]), map: 0 },
+    ));
     scene.maps.push(scene.faces.len() - 1);
     let cam = centre - DVec3::X * 1.0;
     let vfov = 2.0 * ((tall / 2.0) / 1.0).atan().to_degrees();

@@ -9,14 +9,14 @@
 
 use super::{glass_medium, light_spectrum, rotate_z, SceneKind, SceneOptions};
 use crate::spectrum::Spectrum;
-use crate::world::{Camera, Emission, Face, Light, Surface, World};
+use crate::world::{Albedo, Camera, Emission, Face, Light, Surface, World};
 use anyhow::Result;
 use glam::{DVec2, DVec3};
 
 /// A matte parallelogram with its own photon map.
 fn matte(s: &mut World, name: &str, corner: DVec3, eu: DVec3, ev: DVec3, albedo: [f64; 3]) {
     let map = s.maps.len();
-    s.faces.push(Face::rect(name, corner, eu, ev, Surface::Diffuse { albedo, map }));
+    s.faces.push(Face::rect(name, corner, eu, ev, Surface::Diffuse { albedo: Albedo::new(albedo), map }));
     s.maps.push(s.faces.len() - 1);
 }
 

@@ -7,7 +7,7 @@ use super::{glass_medium, light_spectrum, rotate_z, SceneOptions};
 use crate::optics::glass::lines;
 use crate::optics::ior::IorKind;
 use crate::world::probe::probe;
-use crate::world::{Camera, Emission, Face, Light, Medium, Surface, World};
+use crate::world::{Albedo, Camera, Emission, Face, Light, Medium, Surface, World};
 use anyhow::{bail, Result};
 use glam::{DVec2, DVec3};
 
@@ -41,7 +41,7 @@ pub fn build(o: &SceneOptions) -> Result<World> {
     let u = out.cross(DVec3::Z).normalize(); // in the xy plane, across the strip
     let corner = centre - u * (width / 2.0) - DVec3::Z * (high / 2.0);
     // Normal u x z = -out: facing the prism.
-    scene.faces.push(Face::rect("screen", corner, u * width, DVec3::Z * high, Surface::Diffuse { albedo: [0.8; 3], map: 0 }));
+    scene.faces.push(Face::rect("screen", corner, u * width, DVec3::Z * high, Surface::Diffuse { albedo: Albedo::new([0.8; 3]), map: 0 }));
     scene.maps.push(scene.faces.len() - 1);
     let cam = centre - out * 1.0;
     let vfov = 2.0 * ((high / 2.0) / 1.0).atan().to_degrees();

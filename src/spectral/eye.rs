@@ -12,7 +12,6 @@
 use super::options::{EyeMode, RenderOptions};
 use crate::photon::map::SurfaceMap;
 use crate::sampling::Rng;
-use crate::spectrum::cie::cie_y_integral;
 use crate::spectrum::sampler::WavelengthSampler;
 use crate::world::interface::{cross, Polarisation};
 use crate::world::{Surface, World};
@@ -107,7 +106,7 @@ impl Eye<'_> {
                 p.d = crate::optics::snell::reflect_f64(p.d, normal);
                 Step::Continue
             }
-            Surface::Diffuse { albedo, map } => Step::End(if p.d.dot(normal) < 0.0 { self.matte(p, id, x, albedo, map) } else { DVec3::ZERO }),
+            Surface::Diffuse { map, .. } => Step::End(if p.d.dot(normal) < 0.0 { self.matte(p, id, x, map) } else { DVec3::ZERO }),
             Surface::Emitter { light } => Step::End(if p.d.dot(normal) < 0.0 { self.emitted(p, light) } else { DVec3::ZERO }),
         }
     }
@@ -185,19 +184,24 @@ impl Eye<'_> {
     }
 
     /// Radiance leaving a matte surface toward the path: the photon map's
-    /// irradiance times albedo over pi.
-    fn matte(&self, p: &Path, id: usize, x: DVec3, albedo: [f64; 3], map: usize) -> DVec3 {
+    /// reflected flux density over pi (the map stores what the surface
+    /// reflects, spectrally for light of one wavelength).
+    fn matte(&self, p: &Path, id: usize, x: DVec3, map: usize) -> DVec3 {
         let face = &self.scene.faces[id];
         let (Some(uv), Some((_, eu, ev))) = (face.uv(x), face.frame) else { return DVec3::ZERO };
         let pos = DVec2::new(uv.x * eu.length(), uv.y * ev.length());
-        let e = self.maps[map].irradiance(pos, self.opts.filter, self.opts.lookup);
-        let l = crate::spectrum::cie::tint(e, albedo) / std::f64::consts::PI;
+        let l = self.maps[map].irradiance(pos, self.opts.filter, self.opts.lookup) / std::f64::consts::PI;
         match p.nm {
             None => l * p.weight,
-            // Seen through a dispersive face: the map holds XYZ, not a
-            // spectrum; its luminance is spread evenly over wavelength (an
-            // approximation).
-            Some(nm) => self.opts.colours.xyz_weight(nm) * (l.y / cie_y_integral()) * p.weight,
+            // Seen through a dispersive face at wavelength nm, drawn with
+            // pdf q(nm) and weighted 1 / q(nm): the map's colour comes back
+            // times q(nm), so over the wavelengths the path could take it
+            // averages to that colour times the path's transmittance. A
+            // wall seen through a glass plate keeps its colour, and under
+            // a laser its brightness; a matte edge seen through a prism
+            // shows no colour fringe of its own (the map holds XYZ, not
+            // spectra), though the lights' edges do.
+            Some(nm) => l * (p.weight * self.sampler.pdf(nm)),
         }
     }
 

@@ -68,7 +68,18 @@ impl WavelengthSampler {
 
     /// The same with a wavelength-to-colour map's weights.
     pub fn mean_weight(&self, map: super::colormap::ColorMap) -> glam::DVec3 {
-        (0..self.cdf.len() - 1).map(|i| (self.cdf[i + 1] - self.cdf[i]) * map.xyz_weight(LAMBDA_MIN + (i as f64 + 0.5) * BIN_NM)).sum()
+        self.mean_weight_times(map, |_| 1.0)
+    }
+
+    /// The same for this light after a reflectance `r(nm)`: the XYZ one
+    /// watt of it sends on from a surface of that reflectance.
+    pub fn mean_weight_times(&self, map: super::colormap::ColorMap, r: impl Fn(f64) -> f64) -> glam::DVec3 {
+        (0..self.cdf.len() - 1)
+            .map(|i| {
+                let nm = LAMBDA_MIN + (i as f64 + 0.5) * BIN_NM;
+                (self.cdf[i + 1] - self.cdf[i]) * map.xyz_weight(nm) * r(nm)
+            })
+            .sum()
     }
 }
 

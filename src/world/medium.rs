@@ -2,6 +2,8 @@
 //! glass with its index model) and the kinds of surface a face can be.
 
 use crate::optics::ior::IorModel;
+use crate::spectrum::rgb_fit::{SigmoidPolynomial, White};
+use glam::DVec3;
 
 /// What fills a region of space.
 #[derive(Clone, Debug)]
@@ -35,12 +37,56 @@ pub enum Surface {
     /// A smooth boundary between two media (indices into `World::media`);
     /// `front` is the side the normal points to.
     Interface { front: usize, back: usize },
-    /// A matte surface: photons are stored on it (map `map`), the eye reads
-    /// them back. Only its front side is lit. The albedo is linear sRGB,
-    /// applied to the stored colour (an RGB product, not spectral).
-    Diffuse { albedo: [f64; 3], map: usize },
+    /// A matte surface: photons are stored on it (map `map`), as the flux
+    /// it reflects; the eye reads them back. Only its front side is lit.
+    Diffuse { albedo: Albedo, map: usize },
     /// An emitting surface: light `light` seen directly.
     Emitter { light: usize },
     /// A polished metal or mirror: specular reflection of `reflectance`.
     Mirror { reflectance: f64 },
+}
+
+/// A matte surface's reflectance: the linear sRGB it was given, and a
+/// smooth spectrum with that colour under D65 (Jakob & Hanika's sigmoid
+/// polynomial, `spectrum::rgb_fit`), which light of one wavelength meets.
+/// Grey is flat: the same at every wavelength.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Albedo {
+    pub rgb: [f64; 3],
+    fit: Option<SigmoidPolynomial>,
+}
+
+impl Albedo {
+    pub fn new(rgb: [f64; 3]) -> Albedo {
+        let fit = (rgb[0] != rgb[1] || rgb[1] != rgb[2]).then(|| {
+            let d65 = crate::spectrum::spectra::d65();
+            SigmoidPolynomial::fit(DVec3::from(rgb), &White::new(|l| d65.eval(l))).0
+        });
+        Albedo { rgb, fit }
+    }
+
+    /// Reflectance at `nm`.
+    pub fn at(&self, nm: f64) -> f64 {
+        self.fit.map_or(self.rgb[0], |f| f.eval(nm))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_coloured_albedo_is_a_spectrum_of_its_colour() {
+        // Green paint reflects green light and little red or blue.
+        let green = Albedo::new([0.12, 0.55, 0.12]);
+        assert!(green.at(530.0) > 0.4 && green.at(450.0) < 0.2 && green.at(650.0) < 0.2, "{:?}", [450.0, 530.0, 650.0].map(|l| green.at(l)));
+        // Under D65 it has the colour it was given.
+        let d65 = crate::spectrum::spectra::d65();
+        let (fit, _) = SigmoidPolynomial::fit(DVec3::new(0.12, 0.55, 0.12), &White::new(|l| d65.eval(l)));
+        assert!((fit.rgb(&White::new(|l| d65.eval(l))) - DVec3::new(0.12, 0.55, 0.12)).abs().max_element() < 3e-3);
+        assert!((400..=700).all(|l| fit.eval(l as f64) == green.at(l as f64)));
+        // Grey is flat and exact.
+        let grey = Albedo::new([0.8; 3]);
+        assert_eq!((grey.at(400.0), grey.at(700.0)), (0.8, 0.8));
+    }
 }

@@ -16,7 +16,7 @@ pub mod shape;
 
 pub use camera::Camera;
 pub use light::{Emission, Light};
-pub use medium::{Medium, Surface};
+pub use medium::{Albedo, Medium, Surface};
 pub use shape::{Face, Sphere};
 
 use glam::{DVec2, DVec3};
@@ -173,7 +173,13 @@ mod tests {
 
     #[test]
     fn rect_uv_and_hits() {
-        let f = Face::rect("s", DVec3::ZERO, DVec3::new(2.0, 0.0, 0.0), DVec3::new(0.0, 0.0, 1.0), Surface::Diffuse { albedo: [0.8; 3], map: 0 });
+        let f = Face::rect(
+            "s",
+            DVec3::ZERO,
+            DVec3::new(2.0, 0.0, 0.0),
+            DVec3::new(0.0, 0.0, 1.0),
+            Surface::Diffuse { albedo: super::Albedo::new([0.8; 3]), map: 0 },
+        );
         let t = f.intersect(DVec3::new(0.5, 3.0, 0.25), DVec3::NEG_Y).unwrap();
         assert!((t - 3.0).abs() < 1e-12);
         let uv = f.uv(DVec3::new(0.5, 0.0, 0.25)).unwrap();
