@@ -69,7 +69,7 @@ pub fn rotate(u: f64, offset: f64) -> f64 {
 pub fn multi_jittered(n: usize, rng: &mut Rng) -> Vec<[f64; 3]> {
     let n = n.max(1);
     // The grid: m the largest divisor of n not above its square root.
-    let m = (1..=n).take_while(|d| d * d <= n).filter(|d| n % d == 0).last().unwrap_or(1);
+    let m = (1..=n).take_while(|d| d * d <= n).filter(|d| n.is_multiple_of(*d)).last().unwrap_or(1);
     let k = n / m;
     let (ox, oy) = (rng.f64(), rng.f64());
     let mut third: Vec<usize> = (0..n).collect();

@@ -66,7 +66,7 @@ impl Eye<'_> {
     pub fn radiance(&self, o: DVec3, d: DVec3, u_lambda: f64, sample: usize, rng: &mut Rng, rays: &mut u64) -> DVec3 {
         let alternate = self.opts.eye == EyeMode::Lines && self.opts.spp > 1;
         let pol = match alternate {
-            true if sample % 2 == 0 => Polarisation::S,
+            true if sample.is_multiple_of(2) => Polarisation::S,
             true => Polarisation::P,
             false if rng.f64() < 0.5 => Polarisation::S,
             false => Polarisation::P,
