@@ -1,7 +1,8 @@
 //! What the contrasting figures must show, measured on renders of their
 //! own scene files (scenes/*.toml, at their quick size): report 004's pairs
-//! differ where their captions say, and the Cornell box's walls appear in
-//! the sphere at trace count 10 but not at 0.
+//! differ where their captions say, the Cornell box's walls appear in the
+//! sphere at trace count 10 but not at 0, and report 000's Pictures 4-6
+//! differ where theirs do.
 
 use crate::common::repo;
 use refract::experiment::params::interior_config;
@@ -57,4 +58,70 @@ fn the_cornell_walls_show_in_the_sphere_only_when_rays_are_followed() {
     let (t0, t10) = (tinted(&figure("lab-cornell-trace0")), tinted(&figure("lab-cornell-trace10")));
     assert_eq!(t0, 0, "at trace 0 the sphere shows no wall");
     assert!(t10 > 100, "at trace 10 the walls show in the sphere: {t10} tinted pixels");
+}
+
+/// A prism-mode figure's display pixels, rendered in memory at quick size.
+fn prism_figure(id: &str) -> (usize, usize, Vec<u8>) {
+    let s = SceneFile::load(&repo(&format!("scenes/{id}.toml")), true).unwrap();
+    let cfg = refract::experiment::params::prism_config(&s.params).unwrap();
+    let r = refract::spectral::render_config(&cfg, &refract::progress::Silent).unwrap();
+    let img = &r.render.image;
+    (img.width, img.height, img.to_srgb8(r.exposure, cfg.gamut))
+}
+
+#[test]
+fn report_000_pictures_4_to_6_differ_where_their_captions_say() {
+    let (p4, p5, p6) = (prism_figure("css552-p4"), prism_figure("css552-p5"), prism_figure("css552-p6"));
+    let (w, h) = (p4.0, p4.1);
+    let px = |img: &(usize, usize, Vec<u8>), x: usize, y: usize| -> [i32; 3] {
+        let i = (y * w + x) * 3;
+        [img.2[i] as i32, img.2[i + 1] as i32, img.2[i + 2] as i32]
+    };
+    // The slit's image: pixels near white on the screen (upper third),
+    // against the grey table and screen. Its centroid is the same without
+    // the prism (4) and with it at constant index (6), to a pixel.
+    let white = |img: &(usize, usize, Vec<u8>)| -> (f64, usize) {
+        let (mut sx, mut n) = (0.0, 0);
+        for y in 0..h / 3 {
+            for x in 0..w {
+                if px(img, x, y).iter().all(|&c| c > 200) {
+                    sx += x as f64;
+                    n += 1;
+                }
+            }
+        }
+        (if n > 0 { sx / n as f64 } else { f64::NAN }, n)
+    };
+    let ((x4, n4), (x6, n6), (_, n5)) = (white(&p4), white(&p6), white(&p5));
+    assert!(n4 > 5 && n6 > 5, "a white slit image in Pictures 4 and 6: {n4}, {n6} px");
+    assert!((x4 - x6).abs() < 1.0, "the d line lands where it would without the prism: column {x4:.1} against {x6:.1}");
+    assert!(n5 < n4 / 4, "in Picture 5 the light is spread into colours, not white: {n5} white px");
+    // Picture 5's strip: saturated pixels of at least five distinct hues
+    // (sextants of the hue circle and violet) on the screen.
+    let mut hues = std::collections::BTreeSet::new();
+    for y in 0..h / 3 {
+        for x in 0..w {
+            let [r, g, b] = px(&p5, x, y);
+            let (max, min) = (r.max(g).max(b), r.min(g).min(b));
+            if max > 120 && max - min > 80 {
+                let hue = if max == r {
+                    (60 * (g - b) / (max - min) + 360) % 360
+                } else if max == g {
+                    60 * (b - r) / (max - min) + 120
+                } else {
+                    60 * (r - g) / (max - min) + 240
+                };
+                hues.insert(hue / 45);
+            }
+        }
+    }
+    assert!(hues.len() >= 5, "the strip's colours fill {} of 8 hue sectors: {hues:?}", hues.len());
+    // The prism is seen: Pictures 4 and 6 differ over at least 1 % of the
+    // frame (by more than 30 levels in some channel), below the screen.
+    let differ = (h / 3..h).flat_map(|y| (0..w).map(move |x| (x, y))).filter(|&(x, y)| {
+        let (a, b) = (px(&p4, x, y), px(&p6, x, y));
+        (0..3).any(|c| (a[c] - b[c]).abs() > 30)
+    });
+    let n = differ.count();
+    assert!(n > w * h / 100, "the prism must show in Picture 6: {n} px differ from Picture 4");
 }

@@ -217,7 +217,7 @@ const GROUPS: [(&str, &[&str], &str); 8] = [
     (
         "000",
         &["css552-p4", "css552-p5", "css552-p6"],
-        "Before dispersion, after, and with the index held at n_d: the strip appears only with dispersion. (A direct-vision prism leaves the d line undeviated, so on the screen alone Picture 6 matches Picture 4.)",
+        "One view of the bench: no prism and a white slit image; the prism and the rainbow strip; the prism with its index held at n_d and a white slit image in the same place as without it (a direct-vision prism leaves the d line undeviated).",
     ),
     ("004", &["lab-ior1.1-noatten", "lab-ior1.1-atten"], "Look at the corners of the faces: distance attenuation darkens them."),
     ("004", &["lab-ior1.4", "lab-ior1.4-n8"], "The highlight widens at shininess 8."),

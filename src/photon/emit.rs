@@ -67,9 +67,13 @@ pub fn light_pass(scene: &World, total: u64, seed: u64, colours: ColorMap, progr
     if scene.maps.is_empty() || power <= 0.0 {
         return out;
     }
+    let shares: Vec<f64> = match &scene.photon_shares {
+        Some(s) if s.len() == scene.lights.len() && s.iter().sum::<f64>() > 0.0 => s.iter().map(|x| x / s.iter().sum::<f64>()).collect(),
+        _ => scene.lights.iter().map(|l| l.power / power).collect(),
+    };
     progress.start("light", total);
     for (li, light) in scene.lights.iter().enumerate() {
-        let n = ((total as f64 * light.power / power).round() as u64).max(1);
+        let n = ((total as f64 * shares[li]).round() as u64).max(1);
         let emission = &light.emission;
         let sampler = WavelengthSampler::new(&light.spectrum);
         let white = sampler.mean_weight(colours);
@@ -315,6 +319,23 @@ mod tests {
             s.maps.push(i);
         }
         s.lights.push(Light { name: "point".into(), emission: Emission::Point { pos: DVec3::ZERO }, spectrum: Spectrum::Constant(1.0), power: 1.0 });
+        // Two lights of power 1 and 3 (the second dimmer per photon when
+        // photons are shared evenly): the flux stored is the same whether
+        // photons follow power or fixed shares.
+        let mut two = s.clone();
+        two.lights.push(Light {
+            name: "point 2".into(),
+            emission: Emission::Point { pos: DVec3::new(0.2, 0.1, 0.0) },
+            spectrum: Spectrum::Constant(1.0),
+            power: 3.0,
+        });
+        let flux =
+            |w: &World| light_pass(w, 100_000, 2, ColorMap::Cie, &crate::progress::Silent).photons.iter().flatten().map(|p| p.xyz[1] as f64).sum::<f64>();
+        let by_power = flux(&two);
+        two.photon_shares = Some(vec![1.0, 1.0]);
+        let (shared, counts) = (flux(&two), light_pass(&two, 100_000, 2, ColorMap::Cie, &crate::progress::Silent).stats.emitted);
+        assert!((shared / by_power - 1.0).abs() < 0.01, "{shared} vs {by_power}");
+        assert_eq!(counts, 100_000);
         for bounces in [0u32, 4] {
             s.bounces = bounces;
             let pass = light_pass(&s, 200_000, 1, ColorMap::Cie, &crate::progress::Silent);

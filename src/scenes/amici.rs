@@ -75,7 +75,11 @@ pub fn build(o: &SceneOptions) -> Result<World> {
         bail!("--incidence: at {:.3} degrees the d line is totally reflected inside the prism", prism.incidence.to_degrees());
     }
     match o.kind {
-        SceneKind::AmiciScreen => add_screen(&mut scene, o, &prism, &design, &d_line)?,
+        SceneKind::AmiciScreen => add_screen(&mut scene, o, &prism, &design, &d_line, 2.0)?,
+        SceneKind::AmiciBench => {
+            add_screen(&mut scene, o, &prism, &design, &d_line, BENCH_SCREEN_DISTANCE)?;
+            add_bench(&mut scene, o)?;
+        }
         _ => add_lamp(&mut scene, o, &prism, &design, &d_line)?,
     }
     Ok(scene)
@@ -123,10 +127,9 @@ impl AmiciPrism {
     }
 }
 
-/// Picture 5: a matte screen 2 m past the prism, across the strip from 400
-/// to 700 nm, the camera 1 m before it, and the white slit beam.
-fn add_screen(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism, design: &World, d_line: &ProbeRay) -> Result<()> {
-    let dist = 2.0;
+/// Picture 5: a matte screen `dist` m past the prism, across the strip
+/// from 400 to 700 nm, the camera 1 m before it, and the white slit beam.
+fn add_screen(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism, design: &World, d_line: &ProbeRay, dist: f64) -> Result<()> {
     let land = |nm: f64| {
         let p = probe(design, nm);
         p.exit_point + p.exit_dir * ((d_line.exit_point.x + dist - p.exit_point.x) / p.exit_dir.x.max(1e-9))
@@ -155,6 +158,72 @@ fn add_screen(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism, design: &
         spectrum: light_spectrum(o, "D65")?,
         power: 1.0,
     });
+    Ok(())
+}
+
+/// How far the bench view's screen stands past the prism, m: near enough
+/// that prism and strip are both large in one view.
+const BENCH_SCREEN_DISTANCE: f64 = 0.8;
+
+/// Pictures 4-6 as a photograph of the bench would show them: a grey
+/// table strip under the prism (which stands on it), the beam's path and
+/// the screen, lit from above and behind by a broad, dim, collimated light
+/// (sunlight through a window: every photon lands where the camera looks),
+/// and the camera behind the prism and above the table, looking past the
+/// prism at the screen, so the prism (or its absence) and the strip (or
+/// the white patch) are both in view.
+fn add_bench(scene: &mut World, o: &SceneOptions) -> Result<()> {
+    let Some(&screen) = scene.maps.first() else { bail!("the bench view needs the screen") };
+    let (corner, eu, ev) = scene.faces[screen].frame.expect("the screen is a parallelogram");
+    let centre = corner + (eu + ev) / 2.0;
+    // The table: just under the prism's base (z = -0.015), from behind the
+    // prism to the screen's foot, normal +z.
+    let z = -0.0151;
+    let (x0, x1) = (-0.4, centre.x + 0.02);
+    let (y0, y1) = (centre.y - 0.35, centre.y + 0.35);
+    let map = scene.maps.len();
+    scene.faces.push(Face::rect(
+        "table",
+        DVec3::new(x0, y0, z),
+        DVec3::new(x1 - x0, 0.0, 0.0),
+        DVec3::new(0.0, y1 - y0, 0.0),
+        Surface::Diffuse { albedo: Albedo::new([0.5; 3]), map },
+    ));
+    scene.maps.push(scene.faces.len() - 1);
+    // The screen stands on the table: stretch it down to the table top.
+    let bottom = corner.z.min((corner + ev).z);
+    if bottom > z && ev.z > 0.0 {
+        let grow = ev.normalize() * (bottom - z);
+        scene.faces[screen] = Face::rect("screen", corner - grow, eu, ev + grow, scene.faces[screen].surface.clone());
+    }
+    // The window light: down onto the table, 20 degrees from behind the
+    // camera, so the screen's face is lit too. Its footprint covers the
+    // table; photons are shared half and half with the beam.
+    let dir = DVec3::new(20f64.to_radians().sin(), 0.0, -20f64.to_radians().cos());
+    let mid = DVec3::new((x0 + x1) / 2.0, (y0 + y1) / 2.0, z);
+    let v = DVec3::Y.cross(dir).normalize();
+    let half = DVec2::new((y1 - y0) / 2.0 + 0.02, (x1 - x0) / 2.0 * dir.z.abs() + 0.05);
+    scene.lights.push(Light {
+        name: "window light".into(),
+        emission: Emission::Beam { centre: mid - dir * 1.5, dir, u: DVec3::Y, v, half, disc: false },
+        spectrum: light_spectrum(o, "D65")?,
+        power: 45.0,
+    });
+    scene.photon_shares = Some(vec![0.5, 0.5]);
+    // Above and behind the prism, looking down the bench: the prism near
+    // (from above, its three glass parts and cemented faces show), the
+    // screen beyond; the view is framed on both, with a margin.
+    let cam = DVec3::new(-0.35, -0.12, 0.12);
+    let (to_prism, to_screen) = ((DVec3::ZERO - cam).normalize(), (centre - cam).normalize());
+    let fwd = (to_prism + to_screen).normalize();
+    let right = fwd.cross(DVec3::Z).normalize();
+    let up = right.cross(fwd);
+    let angle = |d: DVec3, axis: DVec3| (d.dot(axis) / d.dot(fwd)).atan();
+    let (h, v) = ((angle(to_prism, right) - angle(to_screen, right)).abs(), (angle(to_prism, up) - angle(to_screen, up)).abs());
+    let aspect = o.width as f64 / o.height as f64;
+    // Half the span plus room for the prism's and the screen's own size.
+    let half_v = (v / 2.0 + 0.12).max((h / 2.0 + 0.14) / aspect);
+    scene.camera = Camera::look_at(cam, cam + fwd, DVec3::Z, (2.0 * half_v).to_degrees(), o.width, o.height);
     Ok(())
 }
 

@@ -23,6 +23,8 @@ crate::named_enum! {
         AmiciScreen = "amici-screen",
         /// Report 000: a fluorescent tube seen through an Amici prism.
         AmiciLamp = "amici-lamp",
+        /// Report 000: the slit beam, the Amici prism and the screen on a lit table, seen from behind the prism.
+        AmiciBench = "amici-bench",
         /// The anchor: a 60 degree prism, a 2 cm beam, a screen 4 m behind.
         SinglePrism = "single-prism",
         /// Report 001: a glass sphere before a spherical black-body light, off centre.
@@ -106,7 +108,7 @@ pub fn build(o: &SceneOptions) -> Result<World> {
         bail!("--size: width and height must be at least 1");
     }
     let mut scene = match o.kind {
-        SceneKind::AmiciScreen | SceneKind::AmiciLamp => amici::build(o)?,
+        SceneKind::AmiciScreen | SceneKind::AmiciLamp | SceneKind::AmiciBench => amici::build(o)?,
         SceneKind::SinglePrism => single_prism::build(o)?,
         SceneKind::SphereArealight | SceneKind::SphereMetal | SceneKind::SpheresFinal => spheres::build(o)?,
         SceneKind::CornellPointlight | SceneKind::CornellMirrorTube | SceneKind::CornellLaser => cornell::build(o)?,

@@ -38,6 +38,11 @@ pub struct World {
     /// Diffuse bounces a photon may make after its first matte surface:
     /// 0 is report 000's map of where light lands; a room needs a few.
     pub bounces: u32,
+    /// How the light pass shares its photons among the lights: `None` in
+    /// proportion to their power; otherwise in these proportions (each
+    /// photon then carries its light's power over its own count), so a dim
+    /// lamp lighting a large area can have as many photons as a bright beam.
+    pub photon_shares: Option<Vec<f64>>,
 }
 
 /// Nearest face hit by a ray.
@@ -61,6 +66,7 @@ impl World {
             maps: Vec::new(),
             probe: (DVec3::ZERO, DVec3::X),
             bounces: 0,
+            photon_shares: None,
         }
     }
 
