@@ -170,3 +170,31 @@ fn a_glass_plate_keeps_the_colour_of_the_wall_behind_it() {
         }
     }
 }
+
+#[test]
+fn the_album_cover_is_level_with_the_beam_from_the_left_and_the_fan_to_the_right() {
+    let mut o = SceneOptions::new(SceneKind::DarkSide);
+    o.crown = refract::optics::glass::by_name("N-SF11").unwrap();
+    [o.width, o.height] = [480, 360];
+    let scene = build(&o).unwrap();
+    let cam = &scene.camera;
+    let project = |p: DVec3| cam.project(p).expect("in view");
+    // The glowing outline's three strips: the base (lowest in the picture)
+    // is level to a pixel, the apex above it.
+    let mut ends: Vec<(glam::DVec2, glam::DVec2)> =
+        scene.faces.iter().filter(|f| f.name.starts_with("outline")).map(|f| (project(f.verts[0]), project(f.verts[1]))).collect();
+    assert_eq!(ends.len(), 3, "three outline strips");
+    // Image y grows downward: the base has the largest y.
+    ends.sort_by(|a, b| (b.0.y + b.1.y).total_cmp(&(a.0.y + a.1.y)));
+    let base = ends[0];
+    assert!((base.0.y - base.1.y).abs() < 1.0, "the base is level: {base:?}");
+    assert!(ends[1].0.y.min(ends[1].1.y) < base.0.y - 50.0, "the apex stands above the base");
+    // The beam comes in from the left, rising; the fan leaves to the right.
+    let Some(beam) = scene.lights.iter().find(|l| l.name == "white beam") else { panic!("no beam") };
+    let refract::world::Emission::Beam { centre, dir, .. } = beam.emission else { panic!("the beam is a beam") };
+    let (from, to) = (project(centre), project(centre + dir * 0.5));
+    assert!(to.x > from.x && to.y < from.y, "the beam goes right and up the picture: {from:?} -> {to:?}");
+    let p = probe(&scene, 550.0);
+    let (a, b) = (project(p.exit_point.with_z(0.0)), project((p.exit_point + p.exit_dir * 0.3).with_z(0.0)));
+    assert!(b.x > a.x + 20.0 && b.y > a.y, "the fan goes right and down the picture: {a:?} -> {b:?}");
+}

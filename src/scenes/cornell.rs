@@ -5,7 +5,8 @@
 //!   rainbow), by the same light at the end of a mirror tube (brighter),
 //!   and by a laser (a bright fan).
 //! - `dark-side`: a white beam grazing a dark backdrop through a prism
-//!   standing on it, fanning into a spectrum (the album cover).
+//!   standing on it, fanning into a spectrum, seen from above: the album
+//!   cover, with the prism level and its top edges glowing white.
 
 use super::{glass_medium, light_spectrum, rotate_z, SceneKind, SceneOptions};
 use crate::spectrum::Spectrum;
@@ -145,30 +146,64 @@ pub fn build(o: &SceneOptions) -> Result<World> {
 pub fn dark_side(o: &SceneOptions) -> Result<World> {
     let glass = glass_medium(o.crown, o.ior, o.no_dispersion);
     let mut s = super::with_glass(o, glass);
-    // A dark backdrop the beam grazes, so its path shows (like a light sheet).
-    matte(&mut s, "backdrop", DVec3::new(-1.2, -0.9, 0.0), DVec3::new(2.4, 0.0, 0.0), DVec3::new(0.0, 1.8, 0.0), [0.35; 3]);
+    // A near-black backdrop the beam grazes, so its path shows (like a
+    // light sheet on black card).
+    matte(&mut s, "backdrop", DVec3::new(-1.2, -0.9, 0.0), DVec3::new(2.4, 0.0, 0.0), DVec3::new(0.0, 1.8, 0.0), [0.1; 3]);
     let n_d = o.crown.sellmeier(crate::optics::glass::lines::LD);
-    // As on the cover: the beam comes up from the left, the fan leaves down to the right.
-    let cross = prism_cross_section(DVec2::new(0.0, 0.0), 0.3, n_d, -20f64.to_radians());
+    // As on the cover: the prism level, apex up (+y, the top of the
+    // picture); the beam comes up from the left at minimum deviation and
+    // the fan leaves down to the right.
+    let (side, tall) = (0.3, 0.12);
+    let h = side * 3f64.sqrt() / 2.0;
+    let cross = [DVec2::new(-side / 2.0, -h / 3.0), DVec2::new(side / 2.0, -h / 3.0), DVec2::new(0.0, 2.0 * h / 3.0)];
     if !o.no_prism {
-        s.add_extruded("prism", &[(cross, 1)], 0.0, 0.12);
+        s.add_extruded("prism", &[(cross, 1)], 0.0, tall);
+        // The cover's white outline: the prism's top edges, ground and
+        // glowing (three thin emitting strips on the top face, 8 mm wide),
+        // lit from within as a chamfer catches scattered light.
+        let centroid = (cross[0] + cross[1] + cross[2]) / 3.0;
+        let width = 0.008;
+        for k in 0..3 {
+            let (a, b) = (cross[k], cross[(k + 1) % 3]);
+            let inward = (centroid - (a + b) / 2.0).normalize() * width;
+            let at = |p: DVec2| DVec3::new(p.x, p.y, tall + 1e-4);
+            // Normal +z (toward the camera above): eu x ev must point up.
+            let (eu, ev) = (at(b) - at(a), (inward).extend(0.0));
+            let (corner, eu, ev) = if eu.cross(ev).z > 0.0 { (at(a), eu, ev) } else { (at(a) + ev, eu, -ev) };
+            let light = s.lights.len();
+            s.faces.push(Face::rect(&format!("outline {k}"), corner, eu, ev, Surface::Emitter { light }));
+            s.lights.push(Light {
+                name: format!("outline {k}"),
+                emission: Emission::Area { face: s.faces.len() - 1 },
+                spectrum: Spectrum::light("d65")?,
+                power: 0.08 * eu.length(),
+            });
+        }
     }
     let incidence = o.incidence_deg.map_or((n_d * 0.5f64).asin(), f64::to_radians);
     let (aim, dir) = into_left_face(cross, incidence);
-    // The beam descends 2 degrees toward the backdrop: each ray paints a
-    // streak where it lands; the higher ones reach the prism first.
-    let tilt = 2f64.to_radians();
+    // The beam descends 3 degrees toward the backdrop, its rays starting
+    // between 0 and 8 cm high 1 m before the prism: each ray paints the
+    // backdrop where it lands, so the lower ones draw the incoming beam and
+    // the higher ones enter the prism and draw the fan beyond it.
+    let tilt = 3f64.to_radians();
     let dir3 = (dir * tilt.cos() - DVec3::Z * tilt.sin()).normalize();
-    let start = aim + DVec3::Z * 0.045 - dir * 0.9;
+    let start = aim + DVec3::Z * 0.04 - dir * 1.0;
     let u = DVec3::Z.cross(dir).normalize();
     let v = u.cross(dir3).normalize();
+    let beam = s.lights.len();
     s.lights.push(Light {
         name: "white beam".into(),
-        emission: Emission::Beam { centre: start, dir: dir3, u, v, half: DVec2::new(0.006, 0.02), disc: false },
-        spectrum: light_spectrum(o, "e")?,
+        emission: Emission::Beam { centre: start, dir: dir3, u, v, half: DVec2::new(0.006, 0.04), disc: false },
+        // D65: white on an sRGB display.
+        spectrum: light_spectrum(o, "d65")?,
         power: 1.0,
     });
+    // Every photon to the beam: the outline only glows toward the camera.
+    let mut shares = vec![1e-9; s.lights.len()];
+    shares[beam] = 1.0;
+    s.photon_shares = Some(shares);
     s.probe = (aim - dir * 0.5, dir);
-    s.camera = Camera::look_at(DVec3::new(0.05, -0.05, 2.6), DVec3::new(0.05, 0.0, 0.0), DVec3::Y, 36.0, o.width, o.height);
+    s.camera = Camera::look_at(DVec3::new(0.05, 0.02, 2.6), DVec3::new(0.05, 0.02, 0.0), DVec3::Y, 24.0, o.width, o.height);
     Ok(s)
 }
