@@ -73,3 +73,41 @@ fn render_overrides_parameters() {
     assert_clean_failure(&o, "--set: `colour` is not a prism parameter");
     assert!(!dir.path().join("x.png").exists());
 }
+
+/// The documented figures command, run twice into one folder, writes the
+/// same bytes the second time (machine-dependent timings go only to the
+/// ignored timings/ folders): following the README leaves `git status`
+/// clean. The second run keeps the complete sweeps instead of re-running them.
+#[test]
+fn figures_twice_write_the_same_bytes() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("quick");
+    let snapshot = |root: &std::path::Path| -> std::collections::BTreeMap<String, Vec<u8>> {
+        fn walk(p: &std::path::Path, root: &std::path::Path, m: &mut std::collections::BTreeMap<String, Vec<u8>>) {
+            for e in std::fs::read_dir(p).unwrap() {
+                let p = e.unwrap().path();
+                if p.file_name().is_some_and(|n| n == "timings") {
+                    continue;
+                }
+                if p.is_dir() {
+                    walk(&p, root, m);
+                } else {
+                    m.insert(p.strip_prefix(root).unwrap().display().to_string(), std::fs::read(&p).unwrap());
+                }
+            }
+        }
+        let mut m = Default::default();
+        walk(root, root, &mut m);
+        m
+    };
+    let mut runs = Vec::new();
+    for _ in 0..2 {
+        let o = run(&["figures", "--quick", "--out", out.to_str().unwrap()], "", &repo(""));
+        assert!(o.status.success(), "{}", stderr(&o));
+        runs.push(snapshot(&out));
+    }
+    assert!(runs[0].keys().any(|k| k.ends_with("runs.csv")) && runs[0].contains_key("index.html"));
+    assert_eq!(runs[0].keys().collect::<Vec<_>>(), runs[1].keys().collect::<Vec<_>>(), "the same files");
+    let changed: Vec<&String> = runs[0].iter().filter(|(k, v)| runs[1][*k] != **v).map(|(k, _)| k).collect();
+    assert!(changed.is_empty(), "changed on the second run: {changed:?}");
+}

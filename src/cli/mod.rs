@@ -27,7 +27,11 @@ pub struct Cli {
 #[derive(Subcommand, Debug)]
 pub enum Command {
     /// Every figure of the four reports as results/figures/<id>.png, the
-    /// shipped sweeps' plots, and results/index.html (the gallery).
+    /// shipped sweeps' plots, and results/index.html (the gallery). A sweep
+    /// whose runs.csv already holds every run is kept, not run again (its
+    /// timings are a record of the machine that made them): its plots are
+    /// redrawn from it. Delete results/<sweep>/ or run `refract sweep` to
+    /// measure again.
     Figures {
         /// Smaller images and fewer photons (about 35 s on 2 cores; the full set takes several minutes)
         #[arg(long)]

@@ -197,7 +197,10 @@ pub fn run(o: &FigureOptions) -> Result<Outcome> {
     }
     bar.finish_and_clear();
     if o.only.is_empty() {
-        let opts = super::sweep::SweepOptions { jobs: 1, ..Default::default() };
+        // Resumed: a complete sweep is a record and is kept (its runs.csv
+        // rewritten byte for byte, its plots redrawn), so running the
+        // figures again changes no committed file; missing runs are run.
+        let opts = super::sweep::SweepOptions { jobs: 1, resume: true, ..Default::default() };
         for (name, _) in SWEEPS {
             let e = super::spec::Experiment::load(&PathBuf::from("experiments").join(format!("{name}.toml")), o.quick)?;
             super::sweep::run(&e, &super::sweep::SweepOptions { out: Some(o.out.join(name)), ..opts.clone() })?;

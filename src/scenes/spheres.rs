@@ -2,8 +2,10 @@
 //! default in its figures) before black-body lights. Light travels along
 //! +x; z is up.
 //!
-//! - `sphere-arealight`: a glass sphere hanging before a spherical
-//!   black-body light slightly off centre: colour fringes at its edges.
+//! - `sphere-arealight`: a glass sphere hanging before a large spherical
+//!   black-body light well off centre: the sphere shows the light as an
+//!   off-centre disc with a colour fringe at its edge (a ball lens's
+//!   lateral colour, about 2 % of the image's radius for N-SF11).
 //! - `sphere-metal`: the sphere before a polished metal plate that reflects
 //!   a warm black-body light: a yellow-to-red fringe.
 //! - `spheres-final`: three flint spheres before two bright bar lights, where
@@ -42,8 +44,8 @@ pub fn build(o: &SceneOptions) -> Result<World> {
             if !o.no_prism {
                 glass_sphere(&mut s, "glass sphere", DVec3::new(3.0, 0.0, 0.0), 0.5);
             }
-            sphere_light(&mut s, o, DVec3::new(6.0, 0.35, 0.15), 0.9, "blackbody:6500")?;
-            s.camera = Camera::look_at(DVec3::ZERO, DVec3::new(3.0, 0.0, 0.0), DVec3::Z, 30.0, o.width, o.height);
+            sphere_light(&mut s, o, DVec3::new(6.0, 0.9, 0.3), 1.5, "blackbody:6500")?;
+            s.camera = Camera::look_at(DVec3::ZERO, DVec3::new(3.0, 0.0, 0.0), DVec3::Z, 23.0, o.width, o.height);
         }
         SceneKind::SphereMetal => {
             if !o.no_prism {

@@ -46,7 +46,7 @@ pub enum Surface {
     Mirror { reflectance: f64 },
 }
 
-/// A matte surface's reflectance: the linear sRGB it was given, and a
+/// A matte surface's reflectance (docs/physics.md §12): the linear sRGB it was given, and a
 /// smooth spectrum with that colour under D65 (Jakob & Hanika's sigmoid
 /// polynomial, `spectrum::rgb_fit`), which light of one wavelength meets.
 /// Grey is flat: the same at every wavelength.
