@@ -163,7 +163,10 @@ fn status_table(p: &PlotSpec, dir: &Path, header: &[String], rows: &[Vec<String>
     let (nan, ff, tir) = (col(header, "nan_count")?, col(header, "fireflies")?, col(header, "tir_fraction")?);
     let params: Vec<usize> = header.iter().enumerate().filter(|(_, h)| h.starts_with("param_")).map(|(i, _)| i).collect();
     let (w, line) = (1400u32, 26u32);
-    let h = 80 + line * rows.len() as u32;
+    // A failed run's error is written in full beneath its row, wrapped.
+    let wrap = |t: &str| -> Vec<String> { t.chars().collect::<Vec<_>>().chunks(150).map(|c| c.iter().collect()).collect() };
+    let extra: Vec<u32> = rows.iter().map(|r| if r[status] != "ok" { wrap(&format!("error: {}", r[error])).len() as u32 } else { 0 }).collect();
+    let h = 80 + line * (rows.len() as u32 + extra.iter().sum::<u32>());
     let mut buf = vec![255u8; (w * h * 3) as usize];
     {
         let root = BitMapBackend::with_buffer(&mut buf, (w, h)).into_drawing_area();
@@ -175,8 +178,9 @@ fn status_table(p: &PlotSpec, dir: &Path, header: &[String], rows: &[Vec<String>
         for (t, x) in heads.iter().zip(xs) {
             root.draw(&Text::new(t.to_string(), (x, 48), font.clone())).map_err(|e| anyhow!("{e}"))?;
         }
+        let mut y = 72 - line as i32;
         for (i, r) in rows.iter().enumerate() {
-            let y = 72 + line as i32 * i as i32;
+            y += line as i32 * (1 + if i > 0 { extra[i - 1] as i32 } else { 0 });
             let failed = r[status] != "ok";
             let bad = failed || r[nan].parse::<u64>().unwrap_or(0) > 0;
             let warn = r[ff].parse::<u64>().unwrap_or(0) > 0;
@@ -187,15 +191,21 @@ fn status_table(p: &PlotSpec, dir: &Path, header: &[String], rows: &[Vec<String>
             } else {
                 RGBColor(205, 240, 205)
             };
-            root.draw(&Rectangle::new([(5, y - 2), (w as i32 - 5, y + line as i32 - 4)], colour.filled())).map_err(|e| anyhow!("{e}"))?;
+            let tall = line as i32 * (1 + extra[i] as i32);
+            root.draw(&Rectangle::new([(5, y - 2), (w as i32 - 5, y + tall - 4)], colour.filled())).map_err(|e| anyhow!("{e}"))?;
             let label = std::iter::once(r[case].clone())
                 .chain(params.iter().filter(|&&c| !r[c].is_empty()).map(|&c| format!("{}={}", header[c].trim_start_matches("param_"), r[c])))
                 .collect::<Vec<_>>()
                 .join("  ");
-            let result = if failed { format!("error: {}", r[error]) } else { "ok".into() };
-            let cells = [label, result.chars().take(40).collect(), r[nan].clone(), r[ff].clone(), r[tir].chars().take(6).collect()];
+            let result = if failed { "error (below)".to_string() } else { "ok".into() };
+            let cells = [label, result, r[nan].clone(), r[ff].clone(), r[tir].chars().take(6).collect()];
             for (t, x) in cells.iter().zip(xs) {
                 root.draw(&Text::new(t.chars().take(100).collect::<String>(), (x, y + 2), font.clone())).map_err(|e| anyhow!("{e}"))?;
+            }
+            if failed {
+                for (k, part) in wrap(&format!("error: {}", r[error])).into_iter().enumerate() {
+                    root.draw(&Text::new(part, (30, y + 2 + line as i32 * (k as i32 + 1)), font.clone())).map_err(|e| anyhow!("{e}"))?;
+                }
             }
         }
         root.present().map_err(|e| anyhow!("{e}"))?;
