@@ -20,6 +20,36 @@ pub fn max_input_bytes() -> u64 {
     std::env::var("REFRACT_MAX_INPUT_BYTES").ok().and_then(|v| v.trim().parse().ok()).unwrap_or(2 << 30)
 }
 
+/// Memory the machine has free for a run, in bytes: Linux's MemAvailable,
+/// or what `REFRACT_AVAILABLE_MEMORY` says (to leave room for others on a
+/// shared machine); `None` where neither can be read, and then nothing is
+/// checked.
+pub fn available_memory() -> Option<u64> {
+    if let Some(v) = std::env::var("REFRACT_AVAILABLE_MEMORY").ok().and_then(|v| v.trim().parse().ok()) {
+        return Some(v);
+    }
+    let text = std::fs::read_to_string("/proc/meminfo").ok()?;
+    let kb: u64 = text.lines().find(|l| l.starts_with("MemAvailable:"))?.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kb * 1024)
+}
+
+/// Refuses, before any work, a run whose estimated `need` (bytes) is more
+/// than the machine has free; `what` says what takes the memory, as a
+/// flag would name it.
+pub fn check_memory(need: u64, what: &str) -> Result<(), String> {
+    check_memory_against(need, available_memory(), what)
+}
+
+fn check_memory_against(need: u64, free: Option<u64>, what: &str) -> Result<(), String> {
+    match free {
+        Some(free) if need > free => {
+            let gb = |b: u64| b as f64 / (1u64 << 30) as f64;
+            Err(format!("{what} need about {:.1} GiB of memory; this machine has {:.1} GiB free", gb(need), gb(free)))
+        }
+        _ => Ok(()),
+    }
+}
+
 /// Reads an input file (a mesh, a scene or an experiment): only a regular
 /// file, and no more than `max_input_bytes`, so a device or a FIFO named
 /// by mistake cannot be read until memory runs out.
@@ -89,5 +119,20 @@ mod tests {
         assert_eq!(Table::parse(GLASSES).rows.len(), 9);
         assert!(Table::parse(CFL_LINES).numbers("wavelength_nm").unwrap().iter().all(|v| (400.0..720.0).contains(v)));
         assert!(Table::parse(FRAUNHOFER).rows.len() > 20);
+    }
+}
+
+#[cfg(test)]
+mod memory_tests {
+    use super::*;
+
+    #[test]
+    fn a_run_bigger_than_free_memory_is_refused_by_name() {
+        assert_eq!(
+            check_memory_against(40 << 30, Some(20 << 30), "--photons 2000000000"),
+            Err("--photons 2000000000 need about 40.0 GiB of memory; this machine has 20.0 GiB free".into())
+        );
+        assert!(check_memory_against(1 << 30, Some(20 << 30), "x").is_ok());
+        assert!(check_memory_against(u64::MAX, None, "x").is_ok());
     }
 }

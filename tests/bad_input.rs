@@ -199,3 +199,27 @@ fn inputs_are_bounded() {
     let o = run(&["interior"], &"7".repeat(100_000), d);
     assert_clean_failure(&o, "the answer to \"Maximum ray trace count\" is longer than 4096 bytes");
 }
+
+/// A run that would need more memory than the machine has free is refused
+/// by name before any photon is traced, and writes nothing (the free
+/// memory pretended by REFRACT_AVAILABLE_MEMORY: 1 GiB).
+#[test]
+fn a_run_bigger_than_memory_is_refused_before_work() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = bin()
+        .args(["prism", "--photons", "200000000", "--size", "64,24", "--out", "m.png"])
+        .current_dir(dir.path())
+        .env("REFRACT_AVAILABLE_MEMORY", (1u64 << 30).to_string())
+        .output()
+        .unwrap();
+    assert_clean_failure(&o, "--photons 200000000 and --size 64x24 need about 7.5 GiB of memory; this machine has 1.0 GiB free");
+    assert!(!dir.path().join("m.png").exists());
+    // A run that fits goes ahead.
+    let o = bin()
+        .args(["prism", "--photons", "2000", "--size", "64,24", "--out", "m.png"])
+        .current_dir(dir.path())
+        .env("REFRACT_AVAILABLE_MEMORY", (1u64 << 30).to_string())
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", stderr(&o));
+}

@@ -231,6 +231,19 @@ mod cli {
     }
 
     #[test]
+    fn a_black_render_says_why_and_what_to_do() {
+        let dir = tempfile::tempdir().unwrap();
+        let o = run(&["prism", "--photons", "5000", "--size", "160,60", "--radius", "0.000001", "--out", "r.png"], "", dir.path());
+        assert!(o.status.success(), "{}", stderr(&o));
+        let err = stderr(&o);
+        assert!(err.contains("warning: --radius 1.000e-6 m is below the photons' spacing"), "{err}");
+        assert!(err.contains("warning: the image is black: photons landed, but none within the gather radius"), "{err}");
+        // With the default radius: no warning.
+        let o = run(&["prism", "--photons", "5000", "--size", "160,60", "--out", "r.png"], "", dir.path());
+        assert!(o.status.success() && !stderr(&o).contains("warning"), "{}", stderr(&o));
+    }
+
+    #[test]
     fn renders_write_images_and_timing_rows() {
         let dir = tempfile::tempdir().unwrap();
         for (args, out) in [

@@ -507,6 +507,9 @@ fn run_prism(args: PrismArgs) -> Result<()> {
         crate::timing::check_header::<crate::spectral::TimingRow>(path).context("--timing-csv")?;
     }
     let report = crate::spectral::run(&cfg, &crate::terminal::Bars::new())?;
+    for n in &report.notes {
+        eprintln!("warning: {n}");
+    }
     if let Some(path) = &args.timing_csv {
         crate::timing::append(path, &crate::spectral::TimingRow::new(&cfg, &report))?;
     }

@@ -87,6 +87,8 @@ impl SpectralConfig {
 /// Everything a run measured.
 pub struct SpectralReport {
     pub render: SpectralRender,
+    /// What the user should know about the result (a black image and why).
+    pub notes: Vec<String>,
     pub exposure: f64,
     pub radius: f64,
     pub threads: usize,
@@ -105,6 +107,16 @@ pub fn run(cfg: &SpectralConfig, progress: &dyn Progress) -> Result<SpectralRepo
 pub fn render_config(cfg: &SpectralConfig, progress: &dyn Progress) -> Result<SpectralReport> {
     cfg.validate()?;
     let scene = crate::scenes::build(&cfg.scene)?;
+    // Before any tracing: the photons (stored once per surface they land
+    // on, up to 1 + bounces times, 20 B each, and the map built from them)
+    // and the image (XYZ in f64, then 8-bit sRGB) must fit in memory.
+    let photon_bytes = cfg.photons.saturating_mul(1 + scene.bounces as u64).saturating_mul(2 * std::mem::size_of::<crate::photon::map::Photon>() as u64);
+    let image_bytes = (cfg.scene.width as u64 * cfg.scene.height as u64).saturating_mul(24 + 3);
+    crate::data::check_memory(
+        photon_bytes.saturating_add(image_bytes),
+        &format!("--photons {} and --size {}x{}", cfg.photons, cfg.scene.width, cfg.scene.height),
+    )
+    .map_err(anyhow::Error::msg)?;
     let radius = cfg.radius.unwrap_or_else(|| default_radius(&scene));
     let lookup = match cfg.k {
         Some(k) => Lookup::Nearest(k),
@@ -124,7 +136,37 @@ pub fn render_config(cfg: &SpectralConfig, progress: &dyn Progress) -> Result<Sp
     let pool = rayon::ThreadPoolBuilder::new().num_threads(cfg.threads).build()?;
     let render = pool.install(|| render::render(&scene, &opts, progress));
     let exposure = cfg.exposure.unwrap_or_else(|| render.image.auto_exposure() * cfg.exposure_gain);
-    Ok(SpectralReport { render, exposure, radius: lookup.radius(), threads: pool.current_num_threads(), peak_mem_mb: peak_memory_mb() })
+    let notes = notes(&scene, &render, lookup);
+    Ok(SpectralReport { render, notes, exposure, radius: lookup.radius(), threads: pool.current_num_threads(), peak_mem_mb: peak_memory_mb() })
+}
+
+/// Warnings with a reason and a remedy: the gather disc holds less than
+/// one photon on average (the radius is below the photons' spacing), or
+/// the image is black.
+fn notes(scene: &crate::world::World, r: &SpectralRender, lookup: Lookup) -> Vec<String> {
+    let mut notes = Vec::new();
+    let area: f64 = scene.maps.iter().map(|&f| scene.faces[f].area()).sum();
+    if let (Lookup::Radius(radius), true) = (lookup, r.stats.stored > 0 && area > 0.0) {
+        // Photons per gather disc if they lay evenly on the matte surfaces
+        // (where light gathers, as on a strip, there are more).
+        let per_disc = r.stats.stored as f64 / area * std::f64::consts::PI * radius * radius;
+        if per_disc < 1.0 {
+            let spacing = (area / r.stats.stored as f64).sqrt();
+            notes.push(format!(
+                "--radius {radius:.3e} m is below the photons' spacing (about {spacing:.1e} m over the matte surfaces; {per_disc:.2} photons per gather disc): the image comes out speckled or black; raise --radius, --photons, or use --k"
+            ));
+        }
+    }
+    if r.image.xyz.iter().all(|v| v.y <= 0.0) {
+        notes.push(if r.stats.stored == 0 && !scene.maps.is_empty() {
+            format!("the image is black: no photon reached a matte surface of the {} scene (check --incidence, --obj or the light)", scene.name)
+        } else if r.stats.stored > 0 {
+            "the image is black: photons landed, but none within the gather radius of what the camera sees; raise --radius or --photons".to_string()
+        } else {
+            "the image is black: no light reaches the camera".to_string()
+        });
+    }
+    notes
 }
 
 /// Two pixels' footprint on the first matte surface (1 mm without one).
