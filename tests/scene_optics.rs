@@ -198,3 +198,49 @@ fn the_album_cover_is_level_with_the_beam_from_the_left_and_the_fan_to_the_right
     let (a, b) = (project(p.exit_point.with_z(0.0)), project((p.exit_point + p.exit_dir * 0.3).with_z(0.0)));
     assert!(b.x > a.x + 20.0 && b.y > a.y, "the fan goes right and down the picture: {a:?} -> {b:?}");
 }
+
+#[test]
+fn direct_lighting_by_shadow_rays_matches_the_photon_map() {
+    // Report 003's Cornell box lit by its point light: the eye pass's
+    // shadow rays (direct light) plus the maps' caustic and bounced light
+    // against the maps alone, which hold it all. The same brightness per
+    // wall, to within the photon noise.
+    for kind in [SceneKind::CornellPointlight, SceneKind::CornellLaser] {
+        same_light_both_ways(kind);
+    }
+}
+
+/// (The laser's box is lit by a ceiling lamp: an area light.)
+fn same_light_both_ways(kind: SceneKind) {
+    use refract::photon::gather::{Filter, Lookup};
+    use refract::spectral::options::{EyeMode, RenderOptions};
+    let mut o = SceneOptions::new(kind);
+    [o.width, o.height] = [64, 48];
+    let with = build(&o).unwrap();
+    assert!(with.direct_lighting, "the Cornell scenes light directly");
+    let mut without = with.clone();
+    without.direct_lighting = false;
+    let opts = RenderOptions {
+        photons: 2_000_000,
+        map: refract::photon::map::MapKind::Kdtree,
+        filter: Filter::Cone,
+        lookup: Lookup::Radius(0.06),
+        spp: 4,
+        seed: 5,
+        eye: EyeMode::Hero,
+        split: 8,
+        colours: ColorMap::Cie,
+    };
+    let render = |w: &World| refract::spectral::render::render(w, &opts, &refract::progress::Silent).image;
+    let (a, b) = (render(&with), render(&without));
+    // Column bands: left (red) wall, back wall, right (green) wall.
+    let band = |img: &refract::spectral::film::XyzImage, x0: usize, x1: usize| -> DVec3 {
+        (8..40).flat_map(|y| (x0..x1).map(move |x| (x, y))).map(|(x, y)| img.xyz[y * img.width + x]).sum::<DVec3>()
+    };
+    for (x0, x1) in [(2, 8), (20, 44), (56, 62)] {
+        let (p, q) = (band(&a, x0, x1), band(&b, x0, x1));
+        for c in 0..3 {
+            assert!((p[c] / q[c] - 1.0).abs() < 0.05, "{kind:?}, columns {x0}-{x1}, XYZ[{c}]: {:.4} with shadow rays, {:.4} from the maps", p[c], q[c]);
+        }
+    }
+}

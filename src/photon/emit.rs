@@ -207,6 +207,9 @@ fn trace_photon(
     let mut xyz = white * power;
     let mut skip = None;
     let mut bounces = 0;
+    // Whether the photon has crossed glass or met a mirror (then it is not
+    // direct light, whatever the scene computes directly).
+    let mut specular = false;
     for _ in 0..MAX_BOUNCES {
         let Some(hit) = scene.intersect(o, d, skip) else { return };
         let p = o + hit.t * d;
@@ -227,6 +230,7 @@ fn trace_photon(
                 if c.refracted.is_none() {
                     stats.tir += 1;
                 }
+                specular = true;
                 d = match c.refracted {
                     Some(t) if rng.f64() >= c.reflectance(pol) => t,
                     _ => c.reflected,
@@ -238,6 +242,7 @@ fn trace_photon(
                     return;
                 }
                 d = crate::optics::snell::reflect_f64(d, scene.normal(hit.face, p));
+                specular = true;
             }
             Surface::Diffuse { map, albedo } => {
                 let face = &scene.faces[hit.face];
@@ -245,7 +250,9 @@ fn trace_photon(
                     return;
                 }
                 let (_, eu, ev) = face.frame.expect("matte surfaces are parallelograms");
-                if let Some(uv) = face.uv(p) {
+                // Direct light is the eye pass's where the scene says so.
+                let direct = scene.direct_lighting && bounces == 0 && !specular;
+                if let (Some(uv), false) = (face.uv(p), direct) {
                     let pos = [(uv.x * eu.length()) as f32, (uv.y * ev.length()) as f32];
                     // Stored as the flux the surface reflects: at the
                     // photon's wavelength, or over its light's whole spectrum.
@@ -255,10 +262,10 @@ fn trace_photon(
                     };
                     maps[map].push(Photon { pos, xyz: [out.x as f32, out.y as f32, out.z as f32] });
                     stats.stored += 1;
-                    if bounces == 0 {
-                        // Counted once, at the first matte surface it reaches.
-                        stats.stored_power += power;
-                    }
+                }
+                if bounces == 0 {
+                    // Counted once, at the first matte surface it reaches.
+                    stats.stored_power += power;
                 }
                 // Diffuse inter-reflection, where the scene allows it. A
                 // photon that still carries its light's whole spectrum takes

@@ -61,6 +61,7 @@ pub fn build(o: &SceneOptions) -> Result<World> {
     let mut s = super::with_glass(o, glass);
     cornell_box(&mut s);
     s.bounces = 4;
+    s.direct_lighting = true;
     let n_d = o.crown.sellmeier(crate::optics::glass::lines::LD);
     let min_deviation = (n_d * 0.5f64).asin();
     // The spectrum fans toward the back wall, a little to the right. The
@@ -199,6 +200,7 @@ pub fn dark_side(o: &SceneOptions) -> Result<World> {
         spectrum: light_spectrum(o, "d65")?,
         power: 1.0,
     });
+    s.direct_lighting = true;
     // Every photon to the beam: the outline only glows toward the camera.
     let mut shares = vec![1e-9; s.lights.len()];
     shares[beam] = 1.0;

@@ -14,7 +14,7 @@ use crate::photon::map::SurfaceMap;
 use crate::sampling::Rng;
 use crate::spectrum::sampler::WavelengthSampler;
 use crate::world::interface::{cross, Polarisation};
-use crate::world::{Surface, World};
+use crate::world::{Emission, Surface, World};
 use glam::{DVec2, DVec3};
 
 const MAX_DEPTH: usize = 64;
@@ -36,6 +36,9 @@ pub(super) struct Eye<'a> {
     /// Per light seen directly: its radiance per watt-spectrum unit, its
     /// sampler, and the colour of its whole spectrum (for white paths).
     pub lights: Vec<(f64, WavelengthSampler, DVec3)>,
+    /// Per light, per photon map: the XYZ one watt of the light's spectrum
+    /// leaves that map's surface with (for direct lighting).
+    pub direct: Vec<Vec<DVec3>>,
 }
 
 /// One eye path: where it is, where it goes, its wavelength once it has
@@ -106,7 +109,7 @@ impl Eye<'_> {
                 p.d = crate::optics::snell::reflect_f64(p.d, normal);
                 Step::Continue
             }
-            Surface::Diffuse { map, .. } => Step::End(if p.d.dot(normal) < 0.0 { self.matte(p, id, x, map) } else { DVec3::ZERO }),
+            Surface::Diffuse { map, .. } => Step::End(if p.d.dot(normal) < 0.0 { self.matte(p, id, x, map, rng) } else { DVec3::ZERO }),
             Surface::Emitter { light } => Step::End(if p.d.dot(normal) < 0.0 { self.emitted(p, light) } else { DVec3::ZERO }),
         }
     }
@@ -186,11 +189,15 @@ impl Eye<'_> {
     /// Radiance leaving a matte surface toward the path: the photon map's
     /// reflected flux density over pi (the map stores what the surface
     /// reflects, spectrally for light of one wavelength).
-    fn matte(&self, p: &Path, id: usize, x: DVec3, map: usize) -> DVec3 {
+    fn matte(&self, p: &Path, id: usize, x: DVec3, map: usize, rng: &mut Rng) -> DVec3 {
         let face = &self.scene.faces[id];
         let (Some(uv), Some((_, eu, ev))) = (face.uv(x), face.frame) else { return DVec3::ZERO };
         let pos = DVec2::new(uv.x * eu.length(), uv.y * ev.length());
-        let l = self.maps[map].irradiance(pos, self.opts.filter, self.opts.lookup) / std::f64::consts::PI;
+        let mut e = self.maps[map].irradiance(pos, self.opts.filter, self.opts.lookup);
+        if self.scene.direct_lighting {
+            e += self.direct_light(id, x, map, rng);
+        }
+        let l = e / std::f64::consts::PI;
         match p.nm {
             None => l * p.weight,
             // Seen through a dispersive face at wavelength nm, drawn with
@@ -203,6 +210,92 @@ impl Eye<'_> {
             // spectra), though the lights' edges do.
             Some(nm) => l * (p.weight * self.sampler.pdf(nm)),
         }
+    }
+
+    /// Reflected flux density (XYZ per m^2) at `x` on matte face `id` from
+    /// light that comes straight from each light through air: shadow rays
+    /// to a point light, four stratified samples of an area or spherical
+    /// light, and for a beam whether `x` lies in it, unshadowed
+    /// (docs/physics.md §13).
+    fn direct_light(&self, id: usize, x: DVec3, map: usize, rng: &mut Rng) -> DVec3 {
+        use std::f64::consts::PI;
+        let n = self.scene.faces[id].normal;
+        // Whether the segment from x along unit w reaches distance `dist`
+        // (or the face `target`) unblocked; glass blocks: light through it
+        // is in the photon maps.
+        let clear = |w: DVec3, dist: f64, target: Option<usize>| match self.scene.intersect(x, w, Some(id)) {
+            None => true,
+            Some(h) => h.t >= dist * (1.0 - 1e-9) || Some(h.face) == target,
+        };
+        let mut sum = DVec3::ZERO;
+        for (k, light) in self.scene.lights.iter().enumerate() {
+            let e = match light.emission {
+                Emission::Point { pos } => {
+                    let d = pos - x;
+                    let r = d.length();
+                    let c = n.dot(d / r);
+                    if c > 0.0 && clear(d / r, r, None) {
+                        light.power * c / (4.0 * PI * r * r)
+                    } else {
+                        0.0
+                    }
+                }
+                Emission::Area { face } => {
+                    let f = &self.scene.faces[face];
+                    let Some((c0, eu, ev)) = f.frame else { continue };
+                    let area = f.area();
+                    let radiance = light.power / (PI * area);
+                    let mut e = 0.0;
+                    for (i, j) in [(0, 0), (0, 1), (1, 0), (1, 1)] {
+                        let q = c0 + eu * ((i as f64 + rng.f64()) / 2.0) + ev * ((j as f64 + rng.f64()) / 2.0);
+                        let d = q - x;
+                        let r = d.length();
+                        let w = d / r;
+                        let (cx, cl) = (n.dot(w), -f.normal.dot(w));
+                        if cx > 0.0 && cl > 0.0 && clear(w, r, Some(face)) {
+                            e += radiance * cx * cl / (r * r) * area / 4.0;
+                        }
+                    }
+                    e
+                }
+                Emission::Sphere { sphere } => {
+                    let sp = &self.scene.spheres[sphere];
+                    let area = 4.0 * PI * sp.radius * sp.radius;
+                    let radiance = light.power / (PI * area);
+                    let mut e = 0.0;
+                    for _ in 0..4 {
+                        let z = 1.0 - 2.0 * rng.f64();
+                        let phi = 2.0 * PI * rng.f64();
+                        let s = DVec3::new((1.0 - z * z).max(0.0).sqrt() * phi.cos(), (1.0 - z * z).max(0.0).sqrt() * phi.sin(), z);
+                        let d = sp.centre + s * sp.radius - x;
+                        let r = d.length();
+                        let w = d / r;
+                        let (cx, cl) = (n.dot(w), -s.dot(w));
+                        if cx > 0.0 && cl > 0.0 && clear(w, r, Some(self.scene.faces.len() + sphere)) {
+                            e += radiance * cx * cl / (r * r) * area / 4.0;
+                        }
+                    }
+                    e
+                }
+                Emission::Beam { centre, dir, u, v, half, disc } => {
+                    // Back along the beam to its aperture (the plane of u, v).
+                    let m = u.cross(v);
+                    let t = (x - centre).dot(m) / dir.dot(m);
+                    let q = x - dir * t - centre;
+                    let (a, b) = (q.dot(u) / half.x, q.dot(v) / half.y);
+                    let inside = if disc { a * a + b * b <= 1.0 } else { a.abs() <= 1.0 && b.abs() <= 1.0 };
+                    let c = -n.dot(dir);
+                    let aperture = if disc { PI * half.x * half.y } else { 4.0 * half.x * half.y };
+                    if t > 0.0 && inside && c > 0.0 && clear(-dir, t, None) {
+                        light.power / aperture * c
+                    } else {
+                        0.0
+                    }
+                }
+            };
+            sum += self.direct[k][map] * e;
+        }
+        sum
     }
 
     /// Radiance of an emitter seen directly.

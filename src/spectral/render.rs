@@ -71,7 +71,23 @@ pub fn render(scene: &World, opts: &RenderOptions, progress: &dyn Progress) -> S
         .collect();
     let sampler = WavelengthSampler::new(&eye_spectrum);
     let components = if opts.eye == EyeMode::Lines { mixture(&eye_spectrum, sampler.integral()) } else { Vec::new() };
-    let eye = Eye { scene, maps, opts, sampler, components, lights };
+    // What one watt of each light leaves each matte surface with.
+    let direct = scene
+        .lights
+        .iter()
+        .map(|l| {
+            let sampler = WavelengthSampler::new(&l.spectrum);
+            scene
+                .maps
+                .iter()
+                .map(|&f| match &scene.faces[f].surface {
+                    crate::world::Surface::Diffuse { albedo, .. } => sampler.mean_weight_times(opts.colours, |nm| albedo.at(nm)),
+                    _ => DVec3::ZERO,
+                })
+                .collect()
+        })
+        .collect();
+    let eye = Eye { scene, maps, opts, sampler, components, lights, direct };
 
     let cam = &scene.camera;
     progress.start("eye", cam.height as u64);

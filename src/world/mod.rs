@@ -43,6 +43,13 @@ pub struct World {
     /// photon then carries its light's power over its own count), so a dim
     /// lamp lighting a large area can have as many photons as a bright beam.
     pub photon_shares: Option<Vec<f64>>,
+    /// Light that reaches a matte surface straight from a light (through
+    /// air only) is computed by the eye pass with shadow rays, and the
+    /// photon maps keep only light that crossed glass, met a mirror or
+    /// bounced (Jensen's split of direct light from caustics and indirect
+    /// light; docs/physics.md §13). `false`: the maps hold everything, as
+    /// report 000's method does.
+    pub direct_lighting: bool,
 }
 
 /// Nearest face hit by a ray.
@@ -67,6 +74,7 @@ impl World {
             probe: (DVec3::ZERO, DVec3::X),
             bounces: 0,
             photon_shares: None,
+            direct_lighting: false,
         }
     }
 
