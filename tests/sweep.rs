@@ -11,9 +11,21 @@ fn rows(dir: &Path) -> (Vec<String>, Vec<Vec<String>>) {
 }
 
 /// The rows without the columns that measure time (they differ run to run).
+/// The rows without what depends on the machine and the moment: timings
+/// and where the run ran.
 fn stable(dir: &Path) -> Vec<Vec<String>> {
+    stable_without(dir, &[])
+}
+
+fn stable_without(dir: &Path, also: &[&str]) -> Vec<Vec<String>> {
     let (h, rows) = rows(dir);
-    let keep: Vec<usize> = h.iter().enumerate().filter(|(_, c)| !c.ends_with("_s") && !c.ends_with("per_s")).map(|(i, _)| i).collect();
+    let machine = ["host", "cpu", "cores", "load_1min"];
+    let keep: Vec<usize> = h
+        .iter()
+        .enumerate()
+        .filter(|(_, c)| !c.ends_with("_s") && !c.ends_with("per_s") && !machine.contains(&c.as_str()) && !also.contains(&c.as_str()))
+        .map(|(i, _)| i)
+        .collect();
     rows.iter().map(|r| keep.iter().map(|&i| r[i].clone()).collect()).collect()
 }
 
@@ -85,19 +97,35 @@ fn shards_merged_equal_the_unsharded_run() {
     assert!(o.status.success(), "{}", stderr(&o));
     // changed_px needs the previous trace's image, which another shard made:
     // compare everything else.
-    let strip = |dir: &str| {
-        let (h, _) = rows(Path::new(dir));
-        let c = h.iter().position(|x| x == "changed_px").unwrap();
-        stable(Path::new(dir))
-            .into_iter()
-            .map(|mut r| {
-                r.remove(c - h.iter().take(c).filter(|x| x.ends_with("_s")).count());
-                r
-            })
-            .collect::<Vec<_>>()
-    };
+    let strip = |dir: &str| stable_without(Path::new(dir), &["changed_px"]);
     assert_eq!(strip(&d("merged")), strip(&d("all")));
     assert!(Path::new(&d("merged")).join("time-vs-trace.png").exists());
+    // Every row says where it ran.
+    let (h, r) = rows(Path::new(&d("merged")));
+    let host = h.iter().position(|c| c == "host").unwrap();
+    assert!(r.iter().all(|r| !r[host].is_empty() && !r[h.iter().position(|c| c == "cores").unwrap()].is_empty()));
+
+    // Merge checks what it joins. A run in two shards:
+    let o = sweep(&["merge", &d("shard0"), &d("shard0"), "--out", &d("twice")], &repo(""));
+    assert_clean_failure(&o, &format!("run 0 is in both {} and {}; each run belongs to one shard", d("shard0"), d("shard0")));
+    // A shard missing:
+    let o = sweep(&["merge", &d("shard0"), "--out", &d("half"), "--experiment", &tiny()], &repo(""));
+    assert_clean_failure(
+        &o,
+        "runs 1, 3, 5 are in no shard (3 of 6); run them into a shard's folder with `refract sweep FILE --resume --out DIR`, then merge again",
+    );
+    // A shard of another version of the experiment file:
+    let other = dir.path().join("tiny2.toml");
+    std::fs::write(&other, std::fs::read_to_string(tiny()).unwrap() + "\n# edited\n").unwrap();
+    let o = sweep(&[other.to_str().unwrap(), "--out", &d("other"), "--shard", "1/2"], &repo(""));
+    assert!(o.status.success(), "{}", stderr(&o));
+    let o = sweep(&["merge", &d("shard0"), &d("other"), "--out", &d("mixed")], &repo(""));
+    let first = stderr(&o);
+    assert_clean_failure(&o, &format!("{}/runs.csv: run 1 is from experiment tiny@", d("other")));
+    assert!(first.contains("(another experiment, or another version of its file); merge only shards of one run"), "{first}");
+    for out in ["twice", "half", "mixed"] {
+        assert!(!Path::new(&d(out)).join("runs.csv").exists(), "{out}: nothing written");
+    }
 }
 
 #[test]
@@ -212,4 +240,24 @@ fn sweeps_lock_their_folder_and_resume_drops_garbage() {
     let (_, r) = rows(&out);
     assert_eq!(r.len(), 4, "only the experiment's 4 quick runs remain");
     assert!(stderr(&o).contains("4 of 4 runs"), "{}", stderr(&o));
+}
+
+/// `--resume` keeps only rows of this version of the experiment file: after
+/// an edit, every run is run again.
+#[test]
+fn resume_reruns_what_an_edited_experiment_file_made() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("o");
+    assert!(sweep(&[&tiny(), "--out", out.to_str().unwrap()], &repo("")).status.success());
+    let (h, r) = rows(&out);
+    let c = h.iter().position(|x| x == "experiment").unwrap();
+    let before = r[0][c].clone();
+    let edited = dir.path().join("tiny.toml");
+    std::fs::write(&edited, std::fs::read_to_string(tiny()).unwrap() + "\n# edited\n").unwrap();
+    let o = sweep(&[edited.to_str().unwrap(), "--out", out.to_str().unwrap(), "--resume"], &repo(""));
+    assert!(o.status.success(), "{}", stderr(&o));
+    let (_, r) = rows(&out);
+    let fingerprints: std::collections::BTreeSet<&str> = r.iter().map(|r| r[c].as_str()).collect();
+    assert_eq!((r.len(), fingerprints.len()), (6, 1), "{fingerprints:?}");
+    assert!(!fingerprints.contains(before.as_str()), "every row is of the edited file: {fingerprints:?}");
 }

@@ -203,7 +203,14 @@ pub fn run(o: &FigureOptions) -> Result<Outcome> {
         let opts = super::sweep::SweepOptions { jobs: 1, resume: true, ..Default::default() };
         for (name, _) in SWEEPS {
             let e = super::spec::Experiment::load(&PathBuf::from("experiments").join(format!("{name}.toml")), o.quick)?;
-            super::sweep::run(&e, &super::sweep::SweepOptions { out: Some(o.out.join(name)), ..opts.clone() })?;
+            let dir = o.out.join(name);
+            // A runs.csv written by another version of refract (other
+            // columns) cannot be resumed: the sweep runs afresh.
+            let resume = super::sweep::resumable(&e, &dir);
+            if !resume {
+                eprintln!("note: {}/runs.csv has other columns than this version writes; running the {name} sweep afresh", dir.display());
+            }
+            super::sweep::run(&e, &super::sweep::SweepOptions { out: Some(dir), resume, ..opts.clone() })?;
         }
         super::spectral::write_report(&o.out.join("spectral"), crate::optics::glass::by_name("N-BK7")?)?;
     }

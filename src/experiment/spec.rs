@@ -83,6 +83,15 @@ pub struct Experiment {
     pub plots: Vec<PlotSpec>,
     /// Read with its [quick] settings: small runs whose times are noise.
     pub quick: bool,
+    /// What each row records of the file it came from: its name, and a
+    /// fingerprint of its text and quick flag (FNV-1a, 64 bits), so merge
+    /// can refuse shards of another experiment or another version of it.
+    pub fingerprint: String,
+}
+
+/// FNV-1a over bytes: a stable 64-bit fingerprint (not a secure hash).
+pub fn fnv1a(bytes: &[u8]) -> u64 {
+    bytes.iter().fold(0xcbf2_9ce4_8422_2325u64, |h, &b| (h ^ b as u64).wrapping_mul(0x0000_0100_0000_01b3))
 }
 
 /// The line of `key` inside `[section]` (the `nth` such section for arrays
@@ -137,6 +146,7 @@ impl Experiment {
             Some(Value::Boolean(b)) => *b,
             Some(_) => return Err(p.err("outputs", 0, "images", "must be true or false".into())),
         };
+        let fingerprint = format!("{name}@{:016x}{}", fnv1a(text.as_bytes()), if quick { "-quick" } else { "" });
         Ok(Experiment {
             name,
             mode,
@@ -154,6 +164,7 @@ impl Experiment {
             images,
             plots: p.plots(&outputs)?,
             quick,
+            fingerprint,
         })
     }
 }

@@ -83,7 +83,12 @@ pub fn param_names(e: &Experiment) -> Vec<String> {
     names
 }
 
-pub const METRICS: [&str; 24] = [
+pub const METRICS: [&str; 29] = [
+    "experiment",
+    "host",
+    "cpu",
+    "cores",
+    "load_1min",
     "status",
     "error",
     "failed",
@@ -220,6 +225,12 @@ fn run_one(mode: Mode, params: &[(String, Value)], meshes: &MeshCache) -> Outcom
 }
 
 /// Complete rows of an existing runs.csv (a torn last line is dropped).
+/// Whether `dir` holds no runs.csv, or one with this experiment's columns
+/// (so `--resume` can go on from it).
+pub fn resumable(e: &Experiment, dir: &Path) -> bool {
+    read_rows(&dir.join("runs.csv"), &header(e)).is_ok()
+}
+
 fn read_rows(path: &Path, header: &[String]) -> Result<Vec<Vec<String>>> {
     let text = match std::fs::read_to_string(path) {
         Ok(t) => t,
@@ -315,7 +326,9 @@ pub fn run(e: &Experiment, opts: &SweepOptions) -> Result<(PathBuf, String)> {
     // Only rows of this experiment's runs, each once: a garbage or foreign
     // row is dropped, not counted forever.
     let mut seen = HashSet::new();
-    existing.retain(|r| r[0].parse::<usize>().is_ok_and(|id| id < all.len() && seen.insert(id)));
+    // Rows of another version of the experiment file are stale: run again.
+    let fp = header.iter().position(|h| h == "experiment");
+    existing.retain(|r| fp.is_none_or(|c| r[c] == e.fingerprint) && r[0].parse::<usize>().is_ok_and(|id| id < all.len() && seen.insert(id)));
     // Start the file afresh with the complete rows only.
     write_rows(&csv_path, &header, &existing)?;
     let done: HashSet<usize> = existing.iter().filter_map(|r| r[0].parse().ok()).collect();
@@ -439,6 +452,10 @@ impl Sweep<'_> {
     fn run_row(&self, r: &RunSpec) {
         let o = run_one(r.mode, &r.params, &self.meshes);
         let mut cells: HashMap<&str, String> = o.cells.into_iter().collect();
+        cells.insert("experiment", self.e.fingerprint.clone());
+        for (k, v) in machine() {
+            cells.insert(k, v);
+        }
         cells.entry("status").or_insert_with(|| "ok".into());
         cells.entry("failed").or_insert_with(|| "0".into());
         if let Some(f) = &o.frame {
@@ -482,6 +499,19 @@ impl Sweep<'_> {
     }
 }
 
+/// Where a run ran, for comparing timings from several machines: host
+/// name, CPU model, logical cores, and the 1-minute load average when the
+/// run started (Linux's /proc; empty cells elsewhere).
+fn machine() -> [(&'static str, String); 4] {
+    let read = |p: &str| std::fs::read_to_string(p).unwrap_or_default();
+    let host = read("/proc/sys/kernel/hostname").trim().to_string();
+    let cpu =
+        read("/proc/cpuinfo").lines().find(|l| l.starts_with("model name")).and_then(|l| l.split(':').nth(1)).map(|m| m.trim().to_string()).unwrap_or_default();
+    let cores = std::thread::available_parallelism().map_or(String::new(), |n| n.get().to_string());
+    let load = read("/proc/loadavg").split_whitespace().next().unwrap_or_default().to_string();
+    [("host", host), ("cpu", cpu), ("cores", cores), ("load_1min", load)]
+}
+
 fn load_frame(path: &Path) -> Option<Frame> {
     let img = image::open(path).ok()?.to_rgb8();
     let (w, h) = img.dimensions();
@@ -490,11 +520,15 @@ fn load_frame(path: &Path) -> Option<Frame> {
     Some(Frame { width: w as usize, height: h as usize, display, luminance })
 }
 
-/// Joins the runs.csv of several shard folders into `out`/runs.csv.
+/// Joins the runs.csv of several shard folders into `out`/runs.csv. It
+/// refuses rows of another experiment (or another version of its file, by
+/// the `experiment` fingerprint; with `experiment` given, it must be that
+/// file's), a run that two shards both hold, and, with `experiment` given,
+/// runs that no shard holds (naming them, and how to run them).
 pub fn merge(dirs: &[PathBuf], out: &Path, experiment: Option<&Experiment>) -> Result<String> {
     let mut header: Option<Vec<String>> = None;
-    let mut rows: Vec<Vec<String>> = Vec::new();
-    for d in dirs {
+    let mut rows: Vec<(Vec<String>, usize)> = Vec::new();
+    for (k, d) in dirs.iter().enumerate() {
         let p = d.join("runs.csv");
         let text = std::fs::read_to_string(&p).with_context(|| format!("cannot read {}", p.display()))?;
         let mut r = csv::Reader::from_reader(text.as_bytes());
@@ -503,11 +537,43 @@ pub fn merge(dirs: &[PathBuf], out: &Path, experiment: Option<&Experiment>) -> R
             Some(x) if *x != h => bail!("{}: its columns differ from {}", p.display(), dirs[0].join("runs.csv").display()),
             _ => header = Some(h.clone()),
         }
-        rows.extend(r.records().filter_map(|x| x.ok()).map(|x| x.iter().map(str::to_string).collect::<Vec<_>>()).filter(|x| x.len() == h.len()));
+        rows.extend(
+            r.records().filter_map(|x| x.ok()).map(|x| x.iter().map(str::to_string).collect::<Vec<_>>()).filter(|x| x.len() == h.len()).map(|x| (x, k)),
+        );
     }
     let header = header.ok_or_else(|| anyhow::anyhow!("no folders to merge"))?;
-    rows.sort_by_key(|r| r[0].parse::<usize>().unwrap_or(usize::MAX));
-    rows.dedup_by(|a, b| a[0] == b[0]);
+    if let Some(col) = header.iter().position(|h| h == "experiment") {
+        let want = match experiment {
+            Some(e) => e.fingerprint.clone(),
+            None => rows.first().map(|(r, _)| r[col].clone()).unwrap_or_default(),
+        };
+        if let Some((r, k)) = rows.iter().find(|(r, _)| r[col] != want) {
+            bail!(
+                "{}: run {} is from experiment {}, not {} (another experiment, or another version of its file); merge only shards of one run",
+                dirs[*k].join("runs.csv").display(),
+                r[0],
+                r[col],
+                want
+            );
+        }
+    }
+    rows.sort_by_key(|(r, _)| r[0].parse::<usize>().unwrap_or(usize::MAX));
+    if let Some(w) = rows.windows(2).find(|w| w[0].0[0] == w[1].0[0]) {
+        bail!("run {} is in both {} and {}; each run belongs to one shard", w[0].0[0], dirs[w[0].1].display(), dirs[w[1].1].display());
+    }
+    if let Some(e) = experiment {
+        let have: HashSet<usize> = rows.iter().filter_map(|(r, _)| r[0].parse().ok()).collect();
+        let missing: Vec<String> = (0..expand(e).len()).filter(|id| !have.contains(id)).map(|id| id.to_string()).collect();
+        if !missing.is_empty() {
+            bail!(
+                "runs {} are in no shard ({} of {}); run them into a shard's folder with `refract sweep FILE --resume --out DIR`, then merge again",
+                missing.join(", "),
+                missing.len(),
+                expand(e).len()
+            );
+        }
+    }
+    let rows: Vec<Vec<String>> = rows.into_iter().map(|(r, _)| r).collect();
     std::fs::create_dir_all(out)?;
     write_rows(&out.join("runs.csv"), &header, &rows)?;
     if let Some(e) = experiment {
