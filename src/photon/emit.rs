@@ -79,14 +79,7 @@ pub fn light_pass(scene: &World, total: u64, seed: u64, colours: ColorMap, progr
         let white = sampler.mean_weight(colours);
         // What one watt of this light's whole spectrum leaves as from each
         // matte surface: its spectrum times the surface's reflectance.
-        let reflected: Vec<DVec3> = scene
-            .maps
-            .iter()
-            .map(|&f| match &scene.faces[f].surface {
-                Surface::Diffuse { albedo, .. } => sampler.mean_weight_times(colours, |nm| albedo.at(nm)),
-                _ => DVec3::ZERO,
-            })
-            .collect();
+        let reflected = scene.reflected_per_map(&sampler, colours);
         let source = Emitted { power: 0.0, white, reflected: &reflected, sampler: &sampler };
         let per_photon = light.power / n as f64;
         let mut key = Rng::new(seed, li as u64, 0xfeed);

@@ -54,7 +54,7 @@ pub fn render(scene: &World, opts: &RenderOptions, progress: &dyn Progress) -> S
 
     // Eye wavelengths follow the lights' spectra.
     let eye_spectrum = Spectrum::Sum(scene.lights.iter().map(|l| l.spectrum.clone()).collect());
-    let lights = scene
+    let lights: Vec<(f64, WavelengthSampler, DVec3)> = scene
         .lights
         .iter()
         .map(|l| {
@@ -72,21 +72,7 @@ pub fn render(scene: &World, opts: &RenderOptions, progress: &dyn Progress) -> S
     let sampler = WavelengthSampler::new(&eye_spectrum);
     let components = if opts.eye == EyeMode::Lines { mixture(&eye_spectrum, sampler.integral()) } else { Vec::new() };
     // What one watt of each light leaves each matte surface with.
-    let direct = scene
-        .lights
-        .iter()
-        .map(|l| {
-            let sampler = WavelengthSampler::new(&l.spectrum);
-            scene
-                .maps
-                .iter()
-                .map(|&f| match &scene.faces[f].surface {
-                    crate::world::Surface::Diffuse { albedo, .. } => sampler.mean_weight_times(opts.colours, |nm| albedo.at(nm)),
-                    _ => DVec3::ZERO,
-                })
-                .collect()
-        })
-        .collect();
+    let direct = lights.iter().map(|(_, sampler, _)| scene.reflected_per_map(sampler, opts.colours)).collect();
     let eye = Eye { scene, maps, opts, sampler, components, lights, direct };
 
     let cam = &scene.camera;

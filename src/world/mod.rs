@@ -102,6 +102,19 @@ impl World {
         best
     }
 
+    /// What one watt of a light (its spectrum's `sampler`) leaves each
+    /// matte surface with, in photon-map order: the XYZ of its spectrum
+    /// times the surface's reflectance (docs/physics.md §12).
+    pub fn reflected_per_map(&self, sampler: &crate::spectrum::sampler::WavelengthSampler, colours: crate::spectrum::colormap::ColorMap) -> Vec<DVec3> {
+        self.maps
+            .iter()
+            .map(|&f| match &self.faces[f].surface {
+                Surface::Diffuse { albedo, .. } => sampler.mean_weight_times(colours, |nm| albedo.at(nm)),
+                _ => DVec3::ZERO,
+            })
+            .collect()
+    }
+
     /// What happens at surface `id` (a face or a sphere).
     pub fn surface(&self, id: usize) -> &Surface {
         match self.faces.get(id) {
