@@ -231,6 +231,29 @@ mod cli {
     }
 
     #[test]
+    fn the_light_is_named_for_what_it_is_and_the_old_flag_still_works() {
+        let dir = tempfile::tempdir().unwrap();
+        let cube = repo("off/cube.off").display().to_string();
+        let runs: [(&[&str], &str); 4] = [
+            (&["prism", "--photons", "2000", "--size", "32,12", "--light-spectrum", "e", "--out", "a.png"], "a.png"),
+            (&["prism", "--photons", "2000", "--size", "32,12", "--light", "e", "--out", "b.png"], "b.png"),
+            (&["interior", "--off", &cube, "--size", "32,32", "--light-pos", "0,0,0.3", "--out", "c.png"], "c.png"),
+            (&["interior", "--off", &cube, "--size", "32,32", "--light", "0,0,0.3", "--out", "d.png"], "d.png"),
+        ];
+        for (args, _) in runs {
+            let o = run(args, "", dir.path());
+            assert!(o.status.success(), "{args:?}: {}", stderr(&o));
+        }
+        let read = |f: &str| std::fs::read(dir.path().join(f)).unwrap();
+        assert_eq!(read("a.png"), read("b.png"), "--light is --light-spectrum in the prism mode");
+        assert_eq!(read("c.png"), read("d.png"), "--light is --light-pos in the interior mode");
+        // The interior default (the mesh's centre) differs from 0,0,0.3: the flag does something.
+        let o = run(&["interior", "--off", &cube, "--size", "32,32", "--out", "e.png"], "", dir.path());
+        assert!(o.status.success());
+        assert_ne!(read("c.png"), read("e.png"));
+    }
+
+    #[test]
     fn a_black_render_says_why_and_what_to_do() {
         let dir = tempfile::tempdir().unwrap();
         let o = run(&["prism", "--photons", "5000", "--size", "160,60", "--radius", "0.000001", "--out", "r.png"], "", dir.path());

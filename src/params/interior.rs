@@ -143,8 +143,8 @@ pub static PARAMS: &[Param<InteriorConfig>] = &[
         set: |c, v| c.atten = v.real() as f32,
     },
     Param {
-        key: "light",
-        aliases: &[],
+        key: "light_pos",
+        aliases: &["light"],
         section: PHONG,
         help: "Light position",
         unit: "scene units",

@@ -102,8 +102,8 @@ pub static PARAMS: &[Param<SpectralConfig>] = &[
         set: |c, v| c.scene.ior = v.choice(),
     },
     Param {
-        key: "light",
-        aliases: &[],
+        key: "light_spectrum",
+        aliases: &["light"],
         section: SCENE,
         help: "Light spectrum: d65, e, fl1..fl12, fl3.1..fl3.15, cfl-lines, blackbody:K, laser:NM",
         unit: "",
@@ -331,5 +331,5 @@ pub fn defaults() -> SpectralConfig {
 
 /// The keys that shape the scene (all `refract prism trace` takes).
 pub fn is_scene(p: &Param<SpectralConfig>) -> bool {
-    p.section == SCENE && p.key != "size" && p.key != "light"
+    p.section == SCENE && p.key != "size" && p.key != "light_spectrum"
 }
