@@ -254,6 +254,17 @@ mod cli {
     }
 
     #[test]
+    fn quick_prism_runs_are_smaller_unless_told() {
+        let dir = tempfile::tempdir().unwrap();
+        let o = run(&["prism", "--quick", "--out", "q.png"], "", dir.path());
+        assert!(o.status.success(), "{}", stderr(&o));
+        // The default 640x240 and 1 000 000 photons, quick: half the size, a tenth of the photons.
+        assert!(stderr(&o).contains("(320x120): 100000 photons"), "{}", stderr(&o));
+        let o = run(&["prism", "--quick", "--size", "64,24", "--photons", "3000", "--out", "q.png"], "", dir.path());
+        assert!(stderr(&o).contains("(64x24): 3000 photons"), "{}", stderr(&o));
+    }
+
+    #[test]
     fn a_black_render_says_why_and_what_to_do() {
         let dir = tempfile::tempdir().unwrap();
         let o = run(&["prism", "--photons", "5000", "--size", "160,60", "--radius", "0.000001", "--out", "r.png"], "", dir.path());

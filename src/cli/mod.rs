@@ -142,6 +142,10 @@ pub struct PrismArgs {
     /// Append one timing row to this CSV
     #[arg(long, value_name = "FILE", help_heading = "Output")]
     pub timing_csv: Option<PathBuf>,
+    /// A quick look: unless given, a tenth of the photons, 1 sample per
+    /// pixel and half the size (not for measurements)
+    #[arg(long, help_heading = "Output")]
+    pub quick: bool,
 }
 
 #[derive(Subcommand, Debug)]
@@ -495,6 +499,19 @@ fn run_prism(args: PrismArgs) -> Result<()> {
     }
     let mut cfg = args.params.config();
     cfg.out = args.out.clone();
+    if args.quick {
+        let given = |k: &str| args.params.has(k);
+        if !given("photons") {
+            cfg.photons = (cfg.photons / 10).max(1);
+        }
+        if !given("spp") {
+            cfg.spp = 1;
+        }
+        if !given("size") {
+            cfg.scene.width = (cfg.scene.width / 2).max(1);
+            cfg.scene.height = (cfg.scene.height / 2).max(1);
+        }
+    }
     cfg.validate()?;
     crate::params::check_threads(cfg.threads).map_err(anyhow::Error::msg)?;
     // The default folder, results/, is made; any other must exist.
