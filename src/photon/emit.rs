@@ -127,12 +127,7 @@ fn emit(scene: &World, e: &Emission, a: f64, b: f64, rng: &mut Rng) -> (DVec3, D
             let p = if *disc { concentric_disc(a, b) } else { DVec2::new(2.0 * a - 1.0, 2.0 * b - 1.0) };
             (*centre + *u * (p.x * half.x) + *v * (p.y * half.y), *dir)
         }
-        Emission::Point { pos } => {
-            let z = 1.0 - 2.0 * a;
-            let r = (1.0 - z * z).max(0.0).sqrt();
-            let phi = 2.0 * std::f64::consts::PI * b;
-            (*pos, DVec3::new(r * phi.cos(), r * phi.sin(), z))
-        }
+        Emission::Point { pos } => (*pos, uniform_sphere(a, b)),
         Emission::Area { face } => {
             let f = &scene.faces[*face];
             let (c, eu, ev) = f.frame.expect("area lights are parallelograms");
@@ -140,10 +135,7 @@ fn emit(scene: &World, e: &Emission, a: f64, b: f64, rng: &mut Rng) -> (DVec3, D
         }
         Emission::Sphere { sphere } => {
             let s = &scene.spheres[*sphere];
-            let z = 1.0 - 2.0 * a;
-            let r = (1.0 - z * z).max(0.0).sqrt();
-            let phi = 2.0 * std::f64::consts::PI * b;
-            let n = DVec3::new(r * phi.cos(), r * phi.sin(), z);
+            let n = uniform_sphere(a, b);
             (s.centre + n * (s.radius * (1.0 + 1e-9)), cosine_direction(n, rng))
         }
     }
@@ -156,6 +148,15 @@ fn cosine_direction(n: DVec3, rng: &mut Rng) -> DVec3 {
     let t = n.any_orthonormal_vector();
     let s = n.cross(t);
     t * d.x + s * d.y + n * z
+}
+
+/// A unit direction, uniform over the sphere, from two numbers in [0, 1)
+/// (z = 1 - 2a, azimuth 2 pi b: Archimedes' hat-box theorem).
+pub fn uniform_sphere(a: f64, b: f64) -> DVec3 {
+    let z = 1.0 - 2.0 * a;
+    let r = (1.0 - z * z).max(0.0).sqrt();
+    let phi = 2.0 * std::f64::consts::PI * b;
+    DVec3::new(r * phi.cos(), r * phi.sin(), z)
 }
 
 /// Shirley and Chiu's concentric map of the square onto the unit disc.

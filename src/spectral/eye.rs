@@ -264,9 +264,8 @@ impl Eye<'_> {
                     let radiance = light.power / (PI * area);
                     let mut e = 0.0;
                     for _ in 0..4 {
-                        let z = 1.0 - 2.0 * rng.f64();
-                        let phi = 2.0 * PI * rng.f64();
-                        let s = DVec3::new((1.0 - z * z).max(0.0).sqrt() * phi.cos(), (1.0 - z * z).max(0.0).sqrt() * phi.sin(), z);
+                        let (a, b) = (rng.f64(), rng.f64());
+                        let s = crate::photon::emit::uniform_sphere(a, b);
                         let d = sp.centre + s * sp.radius - x;
                         let r = d.length();
                         let w = d / r;
