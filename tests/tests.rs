@@ -28,6 +28,8 @@ mod figure_content;
 mod prism_render;
 // The experiment runner: rows, plots, resume, shards, failures as rows.
 mod sweep;
+// Sweeps through GNU parallel and Slurm (ignored unless the engines are there).
+mod scale_out;
 // The figures of the four reports and their gallery; scene files.
 mod figures;
 // The modules import only downward (docs/architecture.md).

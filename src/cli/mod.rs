@@ -3,6 +3,7 @@
 
 pub mod param_args;
 
+use crate::experiment::plan::Engine;
 use crate::optics::glass;
 use crate::optics::ior::{IorKind, IorModel};
 use crate::spectrum::cie::{cmf, srgb_encode_odd, Xyz};
@@ -209,10 +210,50 @@ pub enum SweepCommand {
         /// Folder for the joined runs.csv
         #[arg(long)]
         out: PathBuf,
-        /// Draw the experiment's plots from the joined rows
+        /// The experiment file: check the shards hold all its runs, and draw its plots
         #[arg(long)]
         experiment: Option<PathBuf>,
+        /// The experiment file's [quick] settings (as the shards ran)
+        #[arg(long, requires = "experiment")]
+        quick: bool,
+        /// Run here the runs no shard holds, instead of refusing
+        #[arg(long, requires = "experiment")]
+        resume: bool,
     },
+    /// Write a script that runs the sweep's shards on GNU parallel or as a
+    /// Slurm job array, then merges them into the folder an unsharded
+    /// `refract sweep FILE` would fill.
+    Plan(PlanArgs),
+}
+
+#[derive(Args, Debug)]
+pub struct PlanArgs {
+    /// The experiment file
+    pub file: PathBuf,
+    /// What runs the shards
+    #[arg(long, value_parser = param_args::named::<Engine>(), ignore_case = true)]
+    pub engine: Engine,
+    /// Number of shards (balanced by estimated cost; each holds whole chains along the first sweep axis)
+    #[arg(long, default_value_t = 4)]
+    pub shards: usize,
+    /// Folder for the plan, the shards (in shards/I) and the merged results [default: results/NAME]
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+    /// The file's [quick] settings
+    #[arg(long)]
+    pub quick: bool,
+    /// Slurm partition [default: the cluster's default]
+    #[arg(long, help_heading = "Slurm")]
+    pub partition: Option<String>,
+    /// Slurm time limit per shard, as sbatch takes it (e.g. 1:00:00) [default: 4x the estimate, at least 10 min]
+    #[arg(long, help_heading = "Slurm")]
+    pub time: Option<String>,
+    /// CPUs per shard
+    #[arg(long, default_value_t = 1, help_heading = "Slurm")]
+    pub cpus_per_task: usize,
+    /// Memory per shard, as sbatch takes it (e.g. 2G) [default: from the estimate]
+    #[arg(long, help_heading = "Slurm")]
+    pub mem: Option<String>,
 }
 
 fn parse_shard(s: &str) -> Result<(usize, usize), String> {
@@ -548,10 +589,31 @@ fn run_prism(args: PrismArgs) -> Result<()> {
 
 fn run_sweep(args: SweepArgs) -> Result<()> {
     use crate::experiment::{spec::Experiment, sweep};
-    if let Some(SweepCommand::Merge { dirs, out, experiment }) = args.merge {
-        let e = experiment.map(|p| Experiment::load(&p, false)).transpose()?;
-        eprintln!("{}", sweep::merge(&dirs, &out, e.as_ref())?);
-        return Ok(());
+    match args.merge {
+        Some(SweepCommand::Merge { dirs, out, experiment, quick, resume }) => {
+            let e = experiment.map(|p| Experiment::load(&p, quick)).transpose()?;
+            eprintln!("{}", sweep::merge(&dirs, &out, e.as_ref(), resume)?);
+            return Ok(());
+        }
+        Some(SweepCommand::Plan(p)) => {
+            let e = Experiment::load(&p.file, p.quick)?;
+            let refract = std::env::current_exe().context("cannot find the refract binary's path")?;
+            let opts = crate::experiment::plan::PlanOptions {
+                file: p.file,
+                engine: p.engine,
+                shards: p.shards,
+                out: p.out,
+                quick: p.quick,
+                partition: p.partition,
+                time: p.time,
+                cpus_per_task: p.cpus_per_task,
+                mem: p.mem,
+                refract,
+            };
+            println!("{}", crate::experiment::plan::write(&e, &opts)?);
+            return Ok(());
+        }
+        None => {}
     }
     let file = args.file.context("an experiment file is required")?;
     let e = Experiment::load(&file, args.quick)?;

@@ -2,8 +2,10 @@
 
 pub mod charts;
 pub mod figures;
+pub mod grid;
 pub mod metrics;
 pub mod params;
+pub mod plan;
 pub mod plot;
 pub mod scene_file;
 pub mod spec;

@@ -1,11 +1,13 @@
 //! `refract sweep`: runs an experiment file's grid of runs, one CSV row per
 //! run, flushed as each finishes; `--resume` runs only what is missing,
-//! `--shard I/N` every N-th run (from I), `refract sweep merge` joins shards.
+//! `--shard I/N` the I-th of N cost-balanced shards (`plan::assign`),
+//! `refract sweep merge` joins shards.
 //! A run that fails is a row with its error, never a crashed sweep.
 
+pub use super::grid::{expand, param_names, RunSpec};
 use super::metrics::{self, Frame};
-use super::params::{cell, interior_config, known, prism_config, Mode};
-use super::spec::{Case, Experiment};
+use super::params::{cell, interior_config, prism_config, Mode};
+use super::spec::Experiment;
 use crate::image_io::{atomic_write, write_rgb8};
 use crate::mesh::source::MeshSource;
 use crate::mesh::Mesh;
@@ -16,72 +18,6 @@ use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 use std::time::Instant;
 use toml::Value;
-
-/// One run of the grid.
-#[derive(Clone, Debug)]
-pub struct RunSpec {
-    pub id: usize,
-    pub mode: Mode,
-    pub case: String,
-    pub repeat: u32,
-    /// Effective parameters: fixed, then the case's, then the swept ones.
-    pub params: Vec<(String, Value)>,
-    /// Index along each sweep axis.
-    pub at: Vec<usize>,
-}
-
-/// Every run of an experiment, in a fixed order (case, then the sweep axes
-/// with the first outermost, then repeats).
-pub fn expand(e: &Experiment) -> Vec<RunSpec> {
-    let cases = if e.cases.is_empty() { vec![Case { name: String::new(), mode: e.mode, params: Vec::new() }] } else { e.cases.clone() };
-    let mut runs = Vec::new();
-    for Case { name: case, mode, params: case_params } in &cases {
-        // A case may narrow an axis by listing its own values for it.
-        let axes: Vec<(String, Vec<Value>)> = e
-            .sweep
-            .iter()
-            .map(|(k, vals)| match case_params.iter().find(|(c, _)| c == k) {
-                Some((_, Value::Array(own))) => (k.clone(), own.clone()),
-                _ => (k.clone(), vals.clone()),
-            })
-            .collect();
-        let overrides: Vec<(String, Value)> = case_params.iter().filter(|(k, _)| !axes.iter().any(|(a, _)| a == k)).cloned().collect();
-        let lens: Vec<usize> = axes.iter().map(|s| s.1.len()).collect();
-        let total: usize = lens.iter().product();
-        for flat in 0..total {
-            // Decode the flat index, last axis fastest.
-            let mut at = vec![0; lens.len()];
-            let mut rest = flat;
-            for k in (0..lens.len()).rev() {
-                at[k] = rest % lens[k];
-                rest /= lens[k];
-            }
-            // Fixed parameters of the file's mode that a case of the other
-            // mode does not have are left out for it.
-            let mut params: Vec<(String, Value)> = e.fixed.iter().filter(|(k, _)| known(*mode, k)).cloned().collect();
-            let swept = axes.iter().zip(&at).map(|((k, vals), &i)| (k.clone(), vals[i].clone()));
-            for (k, v) in overrides.iter().cloned().chain(swept) {
-                params.retain(|(p, _)| *p != k);
-                params.push((k, v));
-            }
-            for repeat in 0..e.repeats {
-                runs.push(RunSpec { id: runs.len(), mode: *mode, case: case.clone(), repeat, params: params.clone(), at: at.clone() });
-            }
-        }
-    }
-    runs
-}
-
-/// Parameter columns: the sweep axes, then case keys, then fixed keys.
-pub fn param_names(e: &Experiment) -> Vec<String> {
-    let mut names: Vec<String> = Vec::new();
-    for k in e.sweep.iter().map(|s| &s.0).chain(e.cases.iter().flat_map(|c| c.params.iter().map(|p| &p.0))).chain(e.fixed.iter().map(|p| &p.0)) {
-        if !names.contains(k) {
-            names.push(k.clone());
-        }
-    }
-    names
-}
 
 pub const METRICS: [&str; 29] = [
     "experiment",
@@ -127,7 +63,7 @@ pub struct SweepOptions {
     pub resume: bool,
     pub jobs: usize,
     pub out: Option<PathBuf>,
-    /// (I, N): run only ids with id % N == I.
+    /// (I, N): run only the runs `plan::assign` gives shard I of N.
     pub shard: Option<(usize, usize)>,
     /// Stop after this many runs (to test interruption).
     pub max_runs: Option<usize>,
@@ -349,15 +285,15 @@ pub fn run(e: &Experiment, opts: &SweepOptions) -> Result<(PathBuf, String)> {
         header,
         dir,
     };
-    let mine: Vec<&RunSpec> = sweep
-        .all
-        .iter()
-        .filter(|r| opts.shard.is_none_or(|(i, n)| r.id % n == i))
-        .filter(|r| !done.contains(&r.id))
-        .take(opts.max_runs.unwrap_or(usize::MAX))
-        .collect();
+    let shard_of = opts.shard.map(|(_, n)| super::plan::assign(&sweep.all, n));
+    let ours = |r: &&RunSpec| match (opts.shard, &shard_of) {
+        (Some((i, _)), Some(s)) => s[r.id] == i,
+        _ => true,
+    };
+    let wanted = sweep.all.iter().filter(ours).count();
+    let mine: Vec<&RunSpec> = sweep.all.iter().filter(ours).filter(|r| !done.contains(&r.id)).take(opts.max_runs.unwrap_or(usize::MAX)).collect();
     sweep.run_all(&mine, opts.jobs)?;
-    sweep.finish(&csv_path, opts.shard.is_some())
+    sweep.finish(&csv_path, opts.shard, wanted)
 }
 
 /// The reference run's frame (the fixed parameters with the reference's
@@ -476,24 +412,29 @@ impl Sweep<'_> {
     }
 
     /// Sorts the rows by run id, draws the plots, and sums up.
-    fn finish(&self, csv_path: &Path, sharded: bool) -> Result<(PathBuf, String)> {
+    /// `wanted`: how many runs this sweep (or shard) holds when complete.
+    fn finish(&self, csv_path: &Path, shard: Option<(usize, usize)>, wanted: usize) -> Result<(PathBuf, String)> {
         let mut rows = read_rows(csv_path, &self.header)?;
         rows.sort_by_key(|r| r[0].parse::<usize>().unwrap_or(usize::MAX));
         rows.dedup_by(|a, b| a[0] == b[0]);
         write_rows(csv_path, &self.header, &rows)?;
-        let complete = rows.len() == self.all.len();
-        if complete || sharded {
+        let complete = rows.len() >= wanted;
+        if complete || shard.is_some() {
             super::charts::draw_all(self.e, &self.dir, &self.header, &rows)?;
         }
         let failed = rows.iter().filter(|r| r[self.header.iter().position(|h| h == "failed").unwrap_or(0)] == "1").count();
+        let (what, again) = match shard {
+            Some((i, n)) => (format!(" of shard {i}/{n}"), "; run this shard again with --resume to finish it"),
+            None => (String::new(), "; run again with --resume to finish"),
+        };
         let summary = format!(
-            "{}: {} of {} runs in {} ({} failed){}",
+            "{}: {} of {} runs{what} in {} ({} failed){}",
             self.e.name,
             rows.len(),
-            self.all.len(),
+            wanted,
             csv_path.display(),
             failed,
-            if complete { "" } else { "; run again with --resume to finish" }
+            if complete { "" } else { again }
         );
         Ok((self.dir.clone(), summary))
     }
@@ -520,17 +461,19 @@ fn load_frame(path: &Path) -> Option<Frame> {
     Some(Frame { width: w as usize, height: h as usize, display, luminance })
 }
 
-/// Joins the runs.csv of several shard folders into `out`/runs.csv. It
-/// refuses rows of another experiment (or another version of its file, by
-/// the `experiment` fingerprint; with `experiment` given, it must be that
-/// file's), a run that two shards both hold, and, with `experiment` given,
-/// runs that no shard holds (naming them, and how to run them).
-pub fn merge(dirs: &[PathBuf], out: &Path, experiment: Option<&Experiment>) -> Result<String> {
+/// Joins the runs.csv of several shard folders into `out`/runs.csv, with
+/// their run images and reference image. It refuses rows of another
+/// experiment (or another version of its file, by the `experiment`
+/// fingerprint; with `experiment` given, it must be that file's), a run
+/// that two shards both hold, and, with `experiment` given, runs that no
+/// shard holds (naming them, and how to run them) unless `resume`, which
+/// runs them here.
+pub fn merge(dirs: &[PathBuf], out: &Path, experiment: Option<&Experiment>, resume: bool) -> Result<String> {
     let mut header: Option<Vec<String>> = None;
     let mut rows: Vec<(Vec<String>, usize)> = Vec::new();
     for (k, d) in dirs.iter().enumerate() {
         let p = d.join("runs.csv");
-        let text = std::fs::read_to_string(&p).with_context(|| format!("cannot read {}", p.display()))?;
+        let text = crate::data::read_input_text(&p).with_context(|| format!("cannot read {}", p.display()))?;
         let mut r = csv::Reader::from_reader(text.as_bytes());
         let h: Vec<String> = r.headers()?.iter().map(str::to_string).collect();
         match &header {
@@ -561,23 +504,55 @@ pub fn merge(dirs: &[PathBuf], out: &Path, experiment: Option<&Experiment>) -> R
     if let Some(w) = rows.windows(2).find(|w| w[0].0[0] == w[1].0[0]) {
         bail!("run {} is in both {} and {}; each run belongs to one shard", w[0].0[0], dirs[w[0].1].display(), dirs[w[1].1].display());
     }
+    let mut missing = Vec::new();
     if let Some(e) = experiment {
         let have: HashSet<usize> = rows.iter().filter_map(|(r, _)| r[0].parse().ok()).collect();
-        let missing: Vec<String> = (0..expand(e).len()).filter(|id| !have.contains(id)).map(|id| id.to_string()).collect();
-        if !missing.is_empty() {
+        let total = expand(e).len();
+        missing = (0..total).filter(|id| !have.contains(id)).map(|id| id.to_string()).collect();
+        if !missing.is_empty() && !resume {
             bail!(
-                "runs {} are in no shard ({} of {}); run them into a shard's folder with `refract sweep FILE --resume --out DIR`, then merge again",
+                "runs {} are in no shard ({} of {}); run them into a shard's folder with `refract sweep FILE --resume --out DIR`, or merge with --resume to run them here, then merge again",
                 missing.join(", "),
                 missing.len(),
-                expand(e).len()
+                total
             );
         }
     }
-    let rows: Vec<Vec<String>> = rows.into_iter().map(|(r, _)| r).collect();
-    std::fs::create_dir_all(out)?;
-    write_rows(&out.join("runs.csv"), &header, &rows)?;
-    if let Some(e) = experiment {
-        super::charts::draw_all(e, out, &header, &rows)?;
+    std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
+    {
+        let _lock = FolderLock::take(out)?;
+        // The run images and the reference image travel with their rows.
+        for (r, k) in &rows {
+            let from = dirs[*k].join("images").join(format!("{}.png", r[0]));
+            if from.is_file() {
+                std::fs::create_dir_all(out.join("images"))?;
+                copy_into_place(&from, &out.join("images").join(format!("{}.png", r[0])))?;
+            }
+        }
+        if let Some(reference) = dirs.iter().map(|d| d.join("reference.png")).find(|p| p.is_file()) {
+            copy_into_place(&reference, &out.join("reference.png"))?;
+        }
+        let rows: Vec<Vec<String>> = rows.iter().map(|(r, _)| r.clone()).collect();
+        write_rows(&out.join("runs.csv"), &header, &rows)?;
+        if let (Some(e), true) = (experiment, missing.is_empty()) {
+            super::charts::draw_all(e, out, &header, &rows)?;
+        }
     }
-    Ok(format!("merged {} rows from {} folders into {}", rows.len(), dirs.len(), out.join("runs.csv").display()))
+    let merged = format!("merged {} rows from {} folders into {}", rows.len(), dirs.len(), out.join("runs.csv").display());
+    match experiment {
+        Some(e) if !missing.is_empty() => {
+            let (_, summary) = run(e, &SweepOptions { resume: true, jobs: 1, out: Some(out.to_path_buf()), shard: None, max_runs: None })?;
+            Ok(format!("{merged}; ran the {} missing here: {summary}", missing.len()))
+        }
+        _ => Ok(merged),
+    }
+}
+
+/// Copies a file to a temporary sibling of `to`, then renames it there.
+fn copy_into_place(from: &Path, to: &Path) -> Result<()> {
+    let bytes = std::fs::read(from).with_context(|| format!("cannot read {}", from.display()))?;
+    atomic_write(to, |f| {
+        f.write_all(&bytes)?;
+        Ok(())
+    })
 }
