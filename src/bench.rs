@@ -156,11 +156,10 @@ pub fn time_to_error(runs: &[(f64, f64)], target: f64) -> Option<f64> {
 }
 
 /// Prism mode: photon throughput per thread, memory per photon, and the
-/// rainbow strip's error against time for every photon map and filter on
-/// the single-prism anchor scene (320x240, 60 degree N-BK7 prism, 2 cm
-/// white beam at 49.4 degrees, screen 4 m behind). The reference is the
-/// kd-tree with 100x the photons of the middle run and half the radius,
-/// so the error includes each filter's blur as well as its noise.
+/// rainbow strip's error against time for every method on the
+/// single-prism anchor scene (320x240, 60 degree N-BK7 prism, 2 cm white
+/// beam at 49.4 degrees, screen 4 m behind), against the exact image
+/// (`spectral::exact`), so blur counts as error as much as noise does.
 pub fn prism(quick: bool, out_dir: &std::path::Path) -> Result<String> {
     let mut so = SceneOptions::new(SceneKind::SinglePrism);
     (so.width, so.height, so.incidence_deg) = (320, 240, Some(49.4));
@@ -172,9 +171,9 @@ pub fn prism(quick: bool, out_dir: &std::path::Path) -> Result<String> {
     let (csv, series) = prism_error_vs_time(&scene, radius, quick, &mut out)?;
     prism_strip_hue(quick, &mut out)?;
     std::fs::create_dir_all(out_dir)?;
-    crate::image_io::write_text(&out_dir.join("prism_error_vs_time.csv"), &csv)?;
-    crate::experiment::plot::render(&out_dir.join("prism_error_vs_time.png"), &error_chart(&series))?;
-    writeln!(out, "wrote {}/prism_error_vs_time.{{csv,png}}", out_dir.display())?;
+    crate::image_io::write_text(&out_dir.join("prism-error-vs-time.csv"), &csv)?;
+    crate::experiment::plot::render(&out_dir.join("prism-error-vs-time.png"), &error_chart(&series))?;
+    writeln!(out, "wrote {}/prism-error-vs-time.{{csv,png}}", out_dir.display())?;
     Ok(out)
 }
 
@@ -205,36 +204,91 @@ fn prism_throughput(scene: &crate::world::World, quick: bool, out: &mut String) 
 /// (time, relative error) of one method at several photon counts.
 type Runs = Vec<(f64, f64)>;
 
-/// Every map and filter at increasing photon counts against the
-/// reference: the CSV rows and each method's runs.
+/// Mitsuba 3.9's particle tracer on the same scene against the same kind
+/// of analytic reference (the anchor): time in seconds to each error.
+const MITSUBA: [(f64, f64); 4] = [(0.20, 0.10), (1.09, 0.05), (4.97, 0.02), (11.4, 0.013)];
+
+/// The errors the table reports times for.
+const TARGETS: [f64; 4] = [0.10, 0.05, 0.02, 0.01];
+
+/// Every fixed-radius map and filter at increasing photon counts, and
+/// progressive photon mapping pass by pass, against the exact image: the
+/// CSV rows (method, photons, seconds, rel_error) and each method's runs.
 fn prism_error_vs_time(scene: &crate::world::World, radius: f64, quick: bool, out: &mut String) -> Result<(String, Vec<(String, Runs)>)> {
-    let counts: Vec<u64> = if quick { vec![20_000, 80_000] } else { vec![25_000, 50_000, 100_000, 200_000, 400_000, 800_000, 1_600_000] };
-    let mid = counts[counts.len() / 2];
+    use crate::spectral::exact::{relative_error, ExactOptions};
     let t = Instant::now();
-    let reference = render(scene, &prism_opts(mid * 100, MapKind::Kdtree, Filter::Box, radius / 2.0), &crate::progress::Silent);
-    writeln!(out, "reference: {} photons, kd-tree, box, radius {:.2} mm ({:.1} s)", mid * 100, radius * 0.5e3, t.elapsed().as_secs_f64())?;
-    let mut csv = String::from("map,filter,photons,time_s,rel_rmse\n");
-    let mut series = Vec::new();
-    writeln!(out, "{:>7} {:>9} {:>14} {:>14} {:>16} {:>16}", "map", "filter", "t(0.039) s", "t(0.022) s", "x Mitsuba@0.039", "x Mitsuba@0.022")?;
+    let reference = crate::spectral::exact::render(scene, &ExactOptions::default())?;
+    writeln!(out, "reference: the exact image (2048 wavelengths, 8x8 subsamples at footprint edges), {:.2} s", t.elapsed().as_secs_f64())?;
+    let counts: Vec<u64> =
+        if quick { vec![25_000, 100_000] } else { vec![25_000, 50_000, 100_000, 200_000, 400_000, 800_000, 1_600_000, 3_200_000, 6_400_000] };
+    let mut csv = String::from("method,photons,seconds,rel_error\n");
+    let mut series: Vec<(String, Runs)> = Vec::new();
+    let row = |csv: &mut String, method: &str, photons: u64, secs: f64, err: f64| {
+        writeln!(csv, "{method},{photons},{},{}", crate::timing::cell(secs), crate::timing::cell(err))
+    };
     for map in [MapKind::Buffer, MapKind::Kdtree] {
         for filter in [Filter::Box, Filter::Cone, Filter::Gaussian] {
+            let name = format!("{} {}", map.name(), filter.name());
             let mut runs = Vec::new();
             for &c in &counts {
                 let r = render(scene, &prism_opts(c, map, filter, radius), &crate::progress::Silent);
                 let time = r.trace_s + r.build_s + r.render_s;
-                let err = relative_rmse(&r.image, &reference.image);
-                writeln!(csv, "{},{},{c},{},{}", map.name(), filter.name(), crate::timing::cell(time), crate::timing::cell(err))?;
+                let err = relative_error(&r.image, &reference);
+                row(&mut csv, &name, c, time, err)?;
                 runs.push((time, err));
             }
-            let (a, b) = (time_to_error(&runs, 0.039), time_to_error(&runs, 0.022));
-            let fmt = |t: Option<f64>| t.map_or("-".to_string(), |t| format!("{t:.3}"));
-            let ratio = |t: Option<f64>, m: f64| t.map_or("-".to_string(), |t| format!("{:.1}", m / t));
-            writeln!(out, "{:>7} {:>9} {:>14} {:>14} {:>16} {:>16}", map.name(), filter.name(), fmt(a), fmt(b), ratio(a, 1.3), ratio(b, 4.4))?;
-            series.push((format!("{} {}", map.name(), filter.name()), runs));
+            series.push((name, runs));
         }
     }
-    writeln!(out, "Mitsuba 3 particle tracer (anchor): 0.039 in 1.3 s, 0.022 in 4.4 s; LuxCore light tracer: 0.057 in 4.2 s, 0.026 in 15 s")?;
+    // Progressive: the running mean after each pass, recorded at powers of
+    // two and every 64 passes.
+    let passes = if quick { 16 } else { 512 };
+    for (map, per) in [(MapKind::Kdtree, 25_000u64), (MapKind::Buffer, 100_000)] {
+        let name = format!("progressive {} box {}k/pass", map.name(), per / 1000);
+        let mut runs = Vec::new();
+        let mut rows = Vec::new();
+        crate::spectral::progressive::render(scene, &prism_opts(per, map, Filter::Box, radius), passes, &crate::progress::Silent, |p| {
+            if p.passes.is_power_of_two() || p.passes % 64 == 0 {
+                let err = relative_error(p.image, &reference);
+                runs.push((p.seconds, err));
+                rows.push((p.photons, p.seconds, err));
+            }
+        });
+        for (photons, secs, err) in rows {
+            row(&mut csv, &name, photons, secs, err)?;
+        }
+        series.push((name, runs));
+    }
+    let fmt = |t: Option<f64>| t.map_or("-".to_string(), |t| format!("{t:.3}"));
+    write!(out, "{:>34}", "method")?;
+    for e in TARGETS {
+        write!(out, " {:>8} {:>6}", format!("t({e})"), "xMi")?;
+    }
+    writeln!(out, " {:>12}", "floor")?;
+    for (name, runs) in &series {
+        write!(out, "{name:>34}")?;
+        for (k, e) in TARGETS.into_iter().enumerate() {
+            let t = time_to_error(runs, e);
+            let ratio = match (t, MITSUBA.get(k).filter(|m| m.1 == e)) {
+                (Some(t), Some(m)) => format!("{:.1}", m.0 / t),
+                _ => "-".into(),
+            };
+            write!(out, " {:>8} {:>6}", fmt(t), ratio)?;
+        }
+        writeln!(out, " {:>12}", floor(runs).map_or("still falls".to_string(), |f| format!("{f:.4}")))?;
+    }
+    writeln!(out, "t(e): seconds to reach relative error e (log-log interpolation); xMi: Mitsuba 3.9's time to e over ours (it reaches 0.10 in 0.20 s, 0.05 in 1.09 s, 0.02 in 4.97 s; 0.01: not measured)")?;
+    writeln!(out, "floor: the error where a method stops improving (its last doubling of time gains under 5 %), or 'still falls'")?;
     Ok((csv, series))
+}
+
+/// Where a method stops improving: its best error, if its last run is
+/// within 5 % of the run at half its time or less (a doubling of time that
+/// buys nothing).
+fn floor(runs: &[(f64, f64)]) -> Option<f64> {
+    let (t, e) = *runs.last()?;
+    let (_, half) = runs.iter().rev().find(|r| r.0 <= t / 2.0)?;
+    (e > 0.95 * half).then(|| runs.iter().map(|r| r.1).fold(f64::INFINITY, f64::min))
 }
 
 /// Hue along the strip against the CIE locus, for both gamut maps and for
@@ -266,23 +320,25 @@ fn prism_strip_hue(quick: bool, out: &mut String) -> Result<()> {
     Ok(())
 }
 
-/// Error against time, every method beside the anchors' points.
+/// Error against time, every method beside Mitsuba's anchor points.
 fn error_chart(series: &[(String, Runs)]) -> crate::experiment::plot::LineChart {
     use crate::experiment::plot::{LineChart, Series, PALETTE};
-    let anchors = [("Mitsuba 3 (anchor)", [(1.3f64, 0.039f64), (4.4, 0.022)]), ("LuxCore (anchor)", [(4.2, 0.057), (15.0, 0.026)])];
-    let anchor_colours = [plotters::style::RGBColor(0, 0, 0), plotters::style::RGBColor(160, 160, 160)];
     LineChart {
         title: "single-prism strip: error against time".into(),
-        subtitle: "320x240, 60 degree N-BK7 prism, D65 beam; error against a kd-tree render with 100x the photons".into(),
+        subtitle: "320x240, 60 degree N-BK7 prism, D65 beam, 2 threads; error against the exact image".into(),
         x_label: "time (s)".into(),
-        y_label: "relative RMSE".into(),
+        y_label: "relative error (least-squares scaled RMSE / RMS)".into(),
         log_x: true,
         log_y: true,
         series: series
             .iter()
-            .zip(PALETTE)
-            .map(|((name, runs), color)| Series { name: name.clone(), points: runs.clone(), color })
-            .chain(anchors.into_iter().zip(anchor_colours).map(|((name, pts), color)| Series { name: name.into(), points: pts.to_vec(), color }))
+            .zip(PALETTE.iter().cycle())
+            .map(|((name, runs), color)| Series { name: name.clone(), points: runs.clone(), color: *color })
+            .chain(std::iter::once(Series {
+                name: "Mitsuba 3.9 particle tracer (anchor)".into(),
+                points: MITSUBA.to_vec(),
+                color: plotters::style::RGBColor(0, 0, 0),
+            }))
             .collect(),
     }
 }

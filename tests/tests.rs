@@ -26,6 +26,8 @@ mod scene_optics;
 mod figure_content;
 // Whole prism renders: energy, landing points, chroma, the CFL's line images.
 mod prism_render;
+// The exact reference of beam-and-screen scenes; progressive photon mapping.
+mod exact_reference;
 // The experiment runner: rows, plots, resume, shards, failures as rows.
 mod sweep;
 // Sweeps through GNU parallel and Slurm (ignored unless the engines are there).

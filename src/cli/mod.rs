@@ -572,6 +572,18 @@ fn run_prism(args: PrismArgs) -> Result<()> {
         crate::timing::append(path, &crate::spectral::TimingRow::new(&cfg, &report))?;
     }
     let s = &report.render.stats;
+    if cfg.exact {
+        eprintln!(
+            "wrote {} ({}x{}): the exact image, {} wavelengths, {:.2} s, exposure {:.3e}",
+            cfg.out.display(),
+            cfg.scene.width,
+            cfg.scene.height,
+            cfg.exact_wavelengths,
+            report.render.render_s,
+            report.exposure
+        );
+        return Ok(());
+    }
     eprintln!(
         "wrote {} ({}x{}): {} photons, {} stored, {:.2} s light pass ({:.2} M photons/s), {:.2} s eye pass, exposure {:.3e}",
         cfg.out.display(),

@@ -40,7 +40,8 @@ pub struct LightStats {
 }
 
 impl LightStats {
-    fn add(&mut self, o: &LightStats) {
+    /// Adds another pass's counts.
+    pub fn add(&mut self, o: &LightStats) {
         self.emitted += o.emitted;
         self.stored += o.stored;
         self.dispersed += o.dispersed;
@@ -62,6 +63,14 @@ const CHUNK: u64 = 8192;
 /// Traces `total` photons, shared among the lights by power. The result
 /// depends only on the scene, `total` and `seed`, not on thread count.
 pub fn light_pass(scene: &World, total: u64, seed: u64, colours: ColorMap, progress: &dyn Progress) -> LightPass {
+    light_pass_from(scene, total, seed, 0, colours, progress)
+}
+
+/// The `pass`-th batch of `total` photons of one low-discrepancy sequence
+/// (photon indices pass n .. (pass + 1) n for each light's n): successive
+/// passes of progressive photon mapping continue the sequence, so their
+/// union is as evenly spread as one pass with all the photons.
+pub fn light_pass_from(scene: &World, total: u64, seed: u64, pass: u64, colours: ColorMap, progress: &dyn Progress) -> LightPass {
     let mut out = LightPass { photons: vec![Vec::new(); scene.maps.len()], stats: LightStats::default() };
     let power: f64 = scene.lights.iter().map(|l| l.power).sum();
     if scene.maps.is_empty() || power <= 0.0 {
@@ -90,7 +99,7 @@ pub fn light_pass(scene: &World, total: u64, seed: u64, colours: ColorMap, progr
             .map(|&(a, b)| {
                 let mut maps = vec![Vec::new(); scene.maps.len()];
                 let mut stats = LightStats::default();
-                for i in a..b {
+                for i in (a + pass * n)..(b + pass * n) {
                     let u = [rotate(radical_inverse(i, 3), offsets[0]), rotate(radical_inverse(i, 5), offsets[1]), rotate(radical_inverse(i, 2), offsets[2])];
                     let mut rng = Rng::new(seed, i, 1 + li as u64);
                     // Beams take stratified positions; lights that emit in all

@@ -6,9 +6,11 @@
 //! this module turns a run's configuration (a scene to build, the passes'
 //! settings, the display transform) into an image.
 
+pub mod exact;
 pub mod eye;
 pub mod film;
 pub mod options;
+pub mod progressive;
 pub mod render;
 pub mod strip;
 
@@ -29,6 +31,13 @@ use std::path::PathBuf;
 pub struct SpectralConfig {
     pub scene: SceneOptions,
     pub photons: u64,
+    /// Progressive passes (1: one pass, the report's method).
+    pub passes: u32,
+    /// The exact image (`exact`) instead of photon mapping, with its
+    /// wavelength count and subsamples per pixel side.
+    pub exact: bool,
+    pub exact_wavelengths: usize,
+    pub exact_subsamples: usize,
     pub map: MapKind,
     pub filter: Filter,
     /// Gather radius in metres; `None` = two pixels' footprint on the screen.
@@ -56,6 +65,10 @@ impl SpectralConfig {
         SpectralConfig {
             scene,
             photons: 1_000_000,
+            passes: 1,
+            exact: false,
+            exact_wavelengths: exact::ExactOptions::default().wavelengths,
+            exact_subsamples: exact::ExactOptions::default().subsamples,
             map: MapKind::Kdtree,
             filter: Filter::Cone,
             radius: None,
@@ -76,6 +89,9 @@ impl SpectralConfig {
     /// Rejects impossible combinations, naming the flags. (Each value's
     /// own range is checked where it is parsed, by `params::prism`.)
     pub fn validate(&self) -> Result<()> {
+        if self.passes > 1 && self.k.is_some() {
+            bail!("--passes needs a gather radius: progressive photon mapping shrinks it, and --k has none");
+        }
         match self.k {
             Some(_) if self.map == MapKind::Buffer => bail!("--k needs --map kdtree: the buffer holds texels, not photons"),
             Some(_) if self.radius.is_some() => bail!("--k and --radius exclude each other"),
@@ -134,9 +150,23 @@ pub fn render_config(cfg: &SpectralConfig, progress: &dyn Progress) -> Result<Sp
         colours: cfg.colours,
     };
     let pool = rayon::ThreadPoolBuilder::new().num_threads(cfg.threads).build()?;
-    let render = pool.install(|| render::render(&scene, &opts, progress));
+    let render = if cfg.exact {
+        let o = exact::ExactOptions { wavelengths: cfg.exact_wavelengths, subsamples: cfg.exact_subsamples, colours: cfg.colours };
+        let t = std::time::Instant::now();
+        let image = pool.install(|| exact::render(&scene, &o))?;
+        SpectralRender { image, stats: Default::default(), trace_s: 0.0, build_s: 0.0, render_s: t.elapsed().as_secs_f64(), map_bytes: 0, eye_rays: 0 }
+    } else {
+        pool.install(|| match cfg.passes {
+            0 | 1 => render::render(&scene, &opts, progress),
+            n => progressive::render(&scene, &opts, n as usize, progress, |_| {}),
+        })
+    };
     let exposure = cfg.exposure.unwrap_or_else(|| render.image.auto_exposure() * cfg.exposure_gain);
-    let notes = notes(&scene, &render, lookup);
+    let notes = match cfg.exact {
+        true if render.image.xyz.iter().all(|v| v.y <= 0.0) => vec!["the image is black: the beam reaches no part of the screen the camera sees".to_string()],
+        true => Vec::new(),
+        false => notes(&scene, &render, lookup),
+    };
     Ok(SpectralReport { render, notes, exposure, radius: lookup.radius(), threads: pool.current_num_threads(), peak_mem_mb: peak_memory_mb() })
 }
 

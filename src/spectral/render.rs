@@ -5,7 +5,7 @@
 use super::eye::Eye;
 use super::film::XyzImage;
 use super::options::{EyeMode, RenderOptions};
-use crate::photon::emit::{light_pass, LightStats};
+use crate::photon::emit::{light_pass_from, LightStats};
 use crate::photon::map::SurfaceMap;
 use crate::progress::Progress;
 use crate::sampling::{multi_jittered, Rng};
@@ -30,11 +30,29 @@ pub struct SpectralRender {
 
 /// Runs the light pass and the eye pass.
 pub fn render(scene: &World, opts: &RenderOptions, progress: &dyn Progress) -> SpectralRender {
+    render_offset(scene, opts, None, progress)
+}
+
+/// Where a progressive pass stands: the sample position in every pixel
+/// with one sample per pixel (in [0, 1)^2, instead of the centre), the
+/// seed of its pixel patterns with more, and the pass's batch of the
+/// photons' sequence.
+#[derive(Clone, Copy, Debug)]
+pub struct PassPlace {
+    pub offset: DVec2,
+    pub eye_seed: u64,
+    pub index: u64,
+}
+
+/// `render`, as pass `place` of a progressive render.
+pub fn render_offset(scene: &World, opts: &RenderOptions, place: Option<PassPlace>, progress: &dyn Progress) -> SpectralRender {
+    let offset = place.map(|p| p.offset);
+    let eye_seed = place.map_or(opts.seed, |p| p.eye_seed);
     let t = Instant::now();
     let pass = if scene.maps.is_empty() {
         crate::photon::emit::LightPass { photons: Vec::new(), stats: LightStats::default() }
     } else {
-        light_pass(scene, opts.photons, opts.seed, opts.colours, progress)
+        light_pass_from(scene, opts.photons, opts.seed, place.map_or(0, |p| p.index), opts.colours, progress)
     };
     let trace_s = t.elapsed().as_secs_f64();
 
@@ -89,10 +107,14 @@ pub fn render(scene: &World, opts: &RenderOptions, progress: &dyn Progress) -> S
                 let pixel = (y * cam.width + x) as u64;
                 // Positions and wavelengths stratified over the pixel's
                 // samples; one sample looks through the pixel's centre.
-                let pattern = multi_jittered(opts.spp as usize, &mut Rng::new(opts.seed, pixel, 0x0fff));
+                let pattern = multi_jittered(opts.spp as usize, &mut Rng::new(eye_seed, pixel, 0x0fff));
                 for (s, &[jx, jy, u_lambda]) in pattern.iter().enumerate() {
-                    let mut rng = Rng::new(opts.seed, pixel, 0x1000 + s as u64);
-                    let (jx, jy) = if opts.spp == 1 { (0.5, 0.5) } else { (jx, jy) };
+                    let mut rng = Rng::new(eye_seed, pixel, 0x1000 + s as u64);
+                    let (jx, jy) = match (opts.spp, offset) {
+                        (1, Some(o)) => (o.x, o.y),
+                        (1, None) => (0.5, 0.5),
+                        _ => (jx, jy),
+                    };
                     let d = cam.ray(x as f64 + jx, y as f64 + jy);
                     sum += eye.radiance(cam.pos, d, u_lambda, s, &mut rng, &mut rays);
                 }

@@ -82,6 +82,12 @@ impl Face {
         self.edges.iter().all(|&(m, c, tol)| p.dot(m) - c >= -tol).then_some(t)
     }
 
+    /// Whether a point of the face's plane lies inside its polygon.
+    #[inline]
+    pub fn contains(&self, p: DVec3) -> bool {
+        self.edges.iter().all(|&(m, c, tol)| p.dot(m) - c >= -tol)
+    }
+
     /// (u, v) in [0, 1]^2 of a point on a parallelogram face.
     pub fn uv(&self, p: DVec3) -> Option<DVec2> {
         let (c, eu, ev) = self.frame?;
