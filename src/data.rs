@@ -44,7 +44,7 @@ fn check_memory_against(need: u64, free: Option<u64>, what: &str) -> Result<(), 
     match free {
         Some(free) if need > free => {
             let gb = |b: u64| b as f64 / (1u64 << 30) as f64;
-            Err(format!("{what} need about {:.1} GiB of memory; this machine has {:.1} GiB free", gb(need), gb(free)))
+            Err(format!("{what} would need about {:.1} GiB of memory; this machine has {:.1} GiB free", gb(need), gb(free)))
         }
         _ => Ok(()),
     }
@@ -130,7 +130,7 @@ mod memory_tests {
     fn a_run_bigger_than_free_memory_is_refused_by_name() {
         assert_eq!(
             check_memory_against(40 << 30, Some(20 << 30), "--photons 2000000000"),
-            Err("--photons 2000000000 need about 40.0 GiB of memory; this machine has 20.0 GiB free".into())
+            Err("--photons 2000000000 would need about 40.0 GiB of memory; this machine has 20.0 GiB free".into())
         );
         assert!(check_memory_against(1 << 30, Some(20 << 30), "x").is_ok());
         assert!(check_memory_against(u64::MAX, None, "x").is_ok());

@@ -212,7 +212,7 @@ fn a_run_bigger_than_memory_is_refused_before_work() {
         .env("REFRACT_AVAILABLE_MEMORY", (1u64 << 30).to_string())
         .output()
         .unwrap();
-    assert_clean_failure(&o, "--photons 200000000 and --size 64x24 need about 7.5 GiB of memory; this machine has 1.0 GiB free");
+    assert_clean_failure(&o, "--photons 200000000 and --size 64x24 would need about 7.5 GiB of memory; this machine has 1.0 GiB free");
     assert!(!dir.path().join("m.png").exists());
     // A run that fits goes ahead.
     let o = bin()
@@ -222,4 +222,13 @@ fn a_run_bigger_than_memory_is_refused_before_work() {
         .output()
         .unwrap();
     assert!(o.status.success(), "{}", stderr(&o));
+    // The interior mode checks its image before reading the mesh.
+    let o = bin()
+        .args(["interior", "--off", "/nonexistent.off", "--size", "16000,16000", "--out", "i.png"])
+        .current_dir(dir.path())
+        .env("REFRACT_AVAILABLE_MEMORY", (1u64 << 30).to_string())
+        .output()
+        .unwrap();
+    assert_clean_failure(&o, "--size 16000x16000 would need about 3.6 GiB of memory; this machine has 1.0 GiB free");
+    assert!(!dir.path().join("i.png").exists());
 }

@@ -171,12 +171,24 @@ fn shipped_experiments_parse_and_stability_records_failures_as_rows() {
         let p = entry.unwrap().path();
         if p.extension().is_some_and(|e| e == "toml") {
             for quick in [false, true] {
-                refract::experiment::spec::Experiment::load(&p, quick).unwrap_or_else(|e| panic!("{e:#}"));
+                let e = refract::experiment::spec::Experiment::load(&p, quick).unwrap_or_else(|e| panic!("{e:#}"));
+                // The count checked before the grid is built is the grid's size.
+                assert_eq!(e.run_count(), refract::experiment::grid::expand(&e).len() as u128, "{}", p.display());
             }
             n += 1;
         }
     }
     assert!(n >= 7, "{n} experiment files");
+    // A grid too large to build is refused before it is built.
+    let dir = tempfile::tempdir().unwrap();
+    let big = dir.path().join("big.toml");
+    std::fs::write(
+        &big,
+        "name = \"big\"\nmode = \"interior\"\n[fixed]\noff = \"off/cube.off\"\n[sweep]\nior = { from = 1.0, to = 3.0, step = 0.0001 }\ntrace = { from = 0, to = 100, step = 1 }\n",
+    )
+    .unwrap();
+    let o = sweep(&[big.to_str().unwrap(), "--out", dir.path().join("o").to_str().unwrap()], &repo(""));
+    assert_clean_failure(&o, "big.toml:5: `sweep`: the experiment has 2020101 runs (cases x sweep values x repeats); at most 100000");
     let dir = tempfile::tempdir().unwrap();
     let o = sweep(&[repo("experiments/stability.toml").to_str().unwrap(), "--quick", "--out", dir.path().to_str().unwrap()], &repo(""));
     assert!(o.status.success(), "{}", stderr(&o));
@@ -269,4 +281,30 @@ fn resume_reruns_what_an_edited_experiment_file_made() {
     let fingerprints: std::collections::BTreeSet<&str> = r.iter().map(|r| r[c].as_str()).collect();
     assert_eq!((r.len(), fingerprints.len()), (6, 1), "{fingerprints:?}");
     assert!(!fingerprints.contains(before.as_str()), "every row is of the edited file: {fingerprints:?}");
+}
+
+/// Temporary files a killed run left (`.NAME.PID.tmp`, its process gone)
+/// are removed by the next run into the folder; a live process's are kept.
+#[test]
+fn the_next_run_removes_stale_temporary_files() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    std::fs::create_dir_all(out.join("images")).unwrap();
+    let stale = [out.join(".runs.csv.999999999.tmp"), out.join("images").join(".3.png.999999998.tmp")];
+    let live = out.join(format!(".runs.csv.{}.tmp", std::process::id()));
+    for p in stale.iter().chain([&live]) {
+        std::fs::write(p, b"partial").unwrap();
+    }
+    let o = sweep(&[&tiny(), "--out", out.to_str().unwrap()], &repo(""));
+    assert!(o.status.success(), "{}", stderr(&o));
+    for p in &stale {
+        assert!(!p.exists(), "{} left", p.display());
+    }
+    assert!(live.exists(), "a live process's temporary file must stay");
+    // A single render does the same beside its output.
+    let img = dir.path().join(".one.png.999999997.tmp");
+    std::fs::write(&img, b"partial").unwrap();
+    let o = run(&["interior", "--off", "off/cube.off", "--size", "16,16", "--out", dir.path().join("one.png").to_str().unwrap()], "", &repo(""));
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(!img.exists());
 }

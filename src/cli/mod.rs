@@ -381,6 +381,7 @@ pub fn run(cli: Cli) -> Result<()> {
                 crate::experiment::params::Mode::Interior => &[ImageFormat::Png, ImageFormat::Ppm],
             };
             crate::image_io::check_output(&out, formats).map_err(|e| anyhow::anyhow!("--out: {e}"))?;
+            crate::image_io::remove_stale_temps(out.parent().unwrap_or(std::path::Path::new("")));
             let secs = scene.render(&out, &crate::terminal::Bars::new())?;
             eprintln!("wrote {} ({secs:.2} s)", out.display());
             Ok(())
@@ -408,6 +409,7 @@ fn run_interior(args: InteriorArgs) -> Result<()> {
         let mut out = std::io::stdout();
         crate::params::prompts::ask_all(&mut input, &mut out, args.params.config())?
     };
+    crate::image_io::remove_stale_temps(cfg.out.parent().unwrap_or(std::path::Path::new("")));
     let report = crate::interior::run(&cfg)?;
     for n in &report.notes {
         eprintln!("note: {n}");
@@ -561,6 +563,7 @@ fn run_prism(args: PrismArgs) -> Result<()> {
     }
     use crate::image_io::ImageFormat;
     crate::image_io::check_output(&cfg.out, &[ImageFormat::Png, ImageFormat::Ppm, ImageFormat::Pfm]).map_err(|e| anyhow::anyhow!("--out: {e}"))?;
+    crate::image_io::remove_stale_temps(cfg.out.parent().unwrap_or(std::path::Path::new("")));
     if let Some(path) = &args.timing_csv {
         crate::timing::check_header::<crate::spectral::TimingRow>(path).context("--timing-csv")?;
     }

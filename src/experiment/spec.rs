@@ -147,7 +147,7 @@ impl Experiment {
             Some(_) => return Err(p.err("outputs", 0, "images", "must be true or false".into())),
         };
         let fingerprint = format!("{name}@{:016x}{}", fnv1a(text.as_bytes()), if quick { "-quick" } else { "" });
-        Ok(Experiment {
+        let e = Experiment {
             name,
             mode,
             description: p.root.get("description").and_then(Value::as_str).unwrap_or_default().to_string(),
@@ -165,9 +165,41 @@ impl Experiment {
             plots: p.plots(&outputs)?,
             quick,
             fingerprint,
-        })
+        };
+        let runs = e.run_count();
+        if runs > MAX_RUNS as u128 {
+            return Err(p.err(
+                "",
+                0,
+                "sweep",
+                format!("the experiment has {runs} runs (cases x sweep values x repeats); at most {MAX_RUNS}: split it into several files or narrow an axis"),
+            ));
+        }
+        Ok(e)
+    }
+
+    /// How many runs the grid holds (each case times the product of its
+    /// axes' lengths, narrowed where the case lists its own values, times
+    /// the repeats), without building it.
+    pub fn run_count(&self) -> u128 {
+        let per_case = |case_params: &[(String, Value)]| -> u128 {
+            self.sweep
+                .iter()
+                .map(|(k, vals)| match case_params.iter().find(|(c, _)| c == k) {
+                    Some((_, Value::Array(own))) => own.len() as u128,
+                    _ => vals.len() as u128,
+                })
+                .fold(1u128, |a, n| a.saturating_mul(n))
+        };
+        let cases: u128 =
+            if self.cases.is_empty() { per_case(&[]) } else { self.cases.iter().map(|c| per_case(&c.params)).fold(0u128, |a, n| a.saturating_add(n)) };
+        cases.saturating_mul(self.repeats as u128)
     }
 }
+
+/// The most runs one experiment file may hold (its grid is built in memory,
+/// about 0.5 kB a run).
+pub const MAX_RUNS: usize = 100_000;
 
 const TOP_KEYS: [&str; 11] = ["name", "mode", "description", "figures", "repeats", "fixed", "sweep", "case", "reference", "quick", "outputs"];
 const PLOT_KEYS: [&str; 9] = ["x", "y", "series", "log_x", "log_y", "fit", "title", "file", "kind"];

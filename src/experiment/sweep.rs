@@ -204,6 +204,8 @@ struct Sweep<'a> {
     header: Vec<String>,
     names: Vec<String>,
     all: Vec<RunSpec>,
+    /// Run ids by (case, repeat, place on the axes), for predecessors.
+    by_place: HashMap<(String, u32, Vec<usize>), usize>,
     meshes: MeshCache,
     reference: Option<Frame>,
     /// Frames of finished runs, for the next run's `changed_px`.
@@ -255,6 +257,9 @@ pub fn run(e: &Experiment, opts: &SweepOptions) -> Result<(PathBuf, String)> {
     let dir = opts.out.clone().unwrap_or_else(|| PathBuf::from("results").join(&e.name));
     std::fs::create_dir_all(&dir).with_context(|| format!("cannot create {}", dir.display()))?;
     let _lock = FolderLock::take(&dir)?;
+    // What a sweep killed while writing left behind.
+    crate::image_io::remove_stale_temps(&dir);
+    crate::image_io::remove_stale_temps(&dir.join("images"));
     let header = header(e);
     let csv_path = dir.join("runs.csv");
     let all = expand(e);
@@ -273,9 +278,11 @@ pub fn run(e: &Experiment, opts: &SweepOptions) -> Result<(PathBuf, String)> {
     if e.images {
         std::fs::create_dir_all(dir.join("images"))?;
     }
+    let by_place = all.iter().map(|r| ((r.case.clone(), r.repeat, r.at.clone()), r.id)).collect();
     let sweep = Sweep {
         e,
         names: param_names(e),
+        by_place,
         all,
         meshes,
         reference,
@@ -329,6 +336,10 @@ impl Sweep<'_> {
         };
         for wave in waves.values() {
             use rayon::prelude::*;
+            // Only this wave's predecessors are needed from here on: a
+            // sweep holds at most two waves of frames, not every run's.
+            let keep: HashSet<usize> = wave.iter().filter_map(|r| self.predecessor(r)).collect();
+            self.frames.lock().unwrap().retain(|id, _| keep.contains(id));
             if jobs <= 1 {
                 // One at a time, in order. (Not through a 1-thread pool: a
                 // worker waiting on a render's own pool steals the next run,
@@ -352,7 +363,7 @@ impl Sweep<'_> {
         }
         let mut at = r.at.clone();
         at[0] -= 1;
-        self.all.iter().find(|q| q.case == r.case && q.repeat == r.repeat && q.at == at).map(|q| q.id)
+        self.by_place.get(&(r.case.clone(), r.repeat, at)).copied()
     }
 
     /// The image metrics of a run's frame (against the reference and its
