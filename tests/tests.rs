@@ -28,6 +28,8 @@ mod figure_content;
 mod prism_render;
 // The exact reference of beam-and-screen scenes; progressive photon mapping.
 mod exact_reference;
+// Every real flag with arbitrary f64 bit patterns: a finite image or a clear error.
+mod float_flags;
 // The experiment runner: rows, plots, resume, shards, failures as rows.
 mod sweep;
 // Sweeps through GNU parallel and Slurm (ignored unless the engines are there).

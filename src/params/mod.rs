@@ -26,6 +26,23 @@ pub enum End {
     None,
 }
 
+/// An end's bound written out (`short_real`), for messages.
+enum EndText {
+    Closed(String),
+    Open(String),
+    None,
+}
+
+impl End {
+    fn map(self, f: impl Fn(f64) -> String) -> EndText {
+        match self {
+            End::Closed(a) => EndText::Closed(f(a)),
+            End::Open(a) => EndText::Open(f(a)),
+            End::None => EndText::None,
+        }
+    }
+}
+
 /// What values a parameter takes.
 #[derive(Copy, Clone)]
 pub enum Kind {
@@ -206,17 +223,28 @@ impl<C> Param<C> {
     }
 }
 
+/// A real as people write it: plain where that is short, else in
+/// scientific notation (1e-155, not 155 zeros).
+pub fn short_real(x: f64) -> String {
+    let a = x.abs();
+    if a != 0.0 && !(1e-4..1e7).contains(&a) {
+        format!("{x:e}")
+    } else {
+        format!("{x}")
+    }
+}
+
 fn range_text(lo: End, hi: End) -> String {
-    match (lo, hi) {
-        (End::Closed(a), End::Closed(b)) => format!("between {a} and {b}"),
-        (End::Open(a), End::Open(b)) => format!("strictly between {a} and {b}"),
-        (End::Open(a), End::Closed(b)) => format!("greater than {a} and at most {b}"),
-        (End::Closed(a), End::Open(b)) => format!("at least {a} and less than {b}"),
-        (End::Closed(a), End::None) => format!("at least {a}"),
-        (End::Open(a), End::None) => format!("greater than {a}"),
-        (End::None, End::Closed(b)) => format!("at most {b}"),
-        (End::None, End::Open(b)) => format!("less than {b}"),
-        (End::None, End::None) => "finite".into(),
+    match (lo.map(short_real), hi.map(short_real)) {
+        (EndText::Closed(a), EndText::Closed(b)) => format!("between {a} and {b}"),
+        (EndText::Open(a), EndText::Open(b)) => format!("strictly between {a} and {b}"),
+        (EndText::Open(a), EndText::Closed(b)) => format!("greater than {a} and at most {b}"),
+        (EndText::Closed(a), EndText::Open(b)) => format!("at least {a} and less than {b}"),
+        (EndText::Closed(a), EndText::None) => format!("at least {a}"),
+        (EndText::Open(a), EndText::None) => format!("greater than {a}"),
+        (EndText::None, EndText::Closed(b)) => format!("at most {b}"),
+        (EndText::None, EndText::Open(b)) => format!("less than {b}"),
+        (EndText::None, EndText::None) => "finite".into(),
     }
 }
 
@@ -330,7 +358,7 @@ impl Kind {
         if v.is_finite() && ok_lo && ok_hi {
             Ok(v)
         } else {
-            Err(format!("{v} is not {}", range_text(lo, hi)))
+            Err(format!("{} is not {}", short_real(v), range_text(lo, hi)))
         }
     }
 

@@ -131,6 +131,7 @@ pub fn build(o: &SceneOptions) -> Result<World> {
         scene.faces.retain(|f| !matches!(f.surface, Surface::Interface { .. }));
         reindex(&mut scene);
     }
+    scene.build_accel();
     Ok(scene)
 }
 

@@ -76,3 +76,25 @@ impl XyzImage {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A NaN or infinite pixel is never written as black: the writer
+    /// refuses, naming the count, and leaves nothing at the path.
+    #[test]
+    fn non_finite_pixels_are_refused_not_hidden() {
+        let dir = tempfile::tempdir().unwrap();
+        for bad in [f64::NAN, f64::INFINITY] {
+            let mut img = XyzImage { width: 2, height: 2, xyz: vec![DVec3::splat(0.5); 4] };
+            img.xyz[3].y = bad;
+            for name in ["a.png", "a.pfm"] {
+                let p = dir.path().join(name);
+                let e = img.write(&p, 1.0, GamutMap::Clip).unwrap_err().to_string();
+                assert!(e.contains("1 of 4 pixels came out NaN or infinite"), "{e}");
+                assert!(!p.exists());
+            }
+        }
+    }
+}

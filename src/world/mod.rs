@@ -7,6 +7,7 @@
 //! `interface` is what a ray does at a smooth boundary (Snell, Fresnel,
 //! total internal reflection); `probe` follows one ray per wavelength.
 
+pub mod bvh;
 pub mod camera;
 pub mod interface;
 pub mod light;
@@ -50,6 +51,9 @@ pub struct World {
     /// light; docs/physics.md §13). `false`: the maps hold everything, as
     /// report 000's method does.
     pub direct_lighting: bool,
+    /// A BVH over the faces, for worlds of many (`build_accel`); `None`
+    /// (or out of date) means a linear scan.
+    pub accel: Option<bvh::FaceBvh>,
 }
 
 /// Nearest face hit by a ray.
@@ -75,7 +79,14 @@ impl World {
             bounces: 0,
             photon_shares: None,
             direct_lighting: false,
+            accel: None,
         }
+    }
+
+    /// Builds the BVH over the faces when there are enough of them for it
+    /// to pay (a mesh prism); call once the faces are final.
+    pub fn build_accel(&mut self) {
+        self.accel = (self.faces.len() > 32).then(|| bvh::FaceBvh::build(&self.faces));
     }
 
     /// Nearest hit along `o + t d`. `skip` is the surface the ray leaves: a
@@ -83,12 +94,19 @@ impl World {
     /// only loses the root at the start.
     pub fn intersect(&self, o: DVec3, d: DVec3, skip: Option<usize>) -> Option<FaceHit> {
         let mut best: Option<FaceHit> = None;
-        for (i, f) in self.faces.iter().enumerate() {
-            if Some(i) == skip {
-                continue;
+        match &self.accel {
+            Some(bvh) if bvh.faces == self.faces.len() => {
+                best = bvh.intersect(&self.faces, o, d, skip).map(|(t, face)| FaceHit { t, face });
             }
-            if let Some(t) = f.intersect_before(o, d, best.map_or(f64::INFINITY, |b| b.t)) {
-                best = Some(FaceHit { t, face: i });
+            _ => {
+                for (i, f) in self.faces.iter().enumerate() {
+                    if Some(i) == skip {
+                        continue;
+                    }
+                    if let Some(t) = f.intersect_before(o, d, best.map_or(f64::INFINITY, |b| b.t)) {
+                        best = Some(FaceHit { t, face: i });
+                    }
+                }
             }
         }
         let n = self.faces.len();
