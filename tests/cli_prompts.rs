@@ -98,19 +98,53 @@ fn prompts_with_rotation_colour_and_png_equal_flags() {
     assert_eq!(a, b);
 }
 
+/// Answers from a pipe: the first bad one stops the run before any work,
+/// naming its line, the question and the answer (at a terminal it would be
+/// asked again: the unit tests of `params::prompts`); a file that is not a
+/// mesh is caught at the mesh's own question; input that ends early names
+/// the question left.
 #[test]
-fn bad_answers_are_asked_again_and_early_end_fails() {
+fn piped_answers_stop_at_the_first_bad_one() {
     let dir = tempfile::tempdir().unwrap();
     let cube = repo("off/cube.off");
-    let answers = format!("many\n0\n25\n255\n255\n255\nout.ppm\nmissing.off\n{}\n0\n1\n0\n0\n0\n-1\n1.4\n", cube.display());
-    let o = run(&["interior", "--size", "16,16"], &answers, dir.path());
+    let good = |trace: &str, mesh: &str| format!("{trace}\n25\n255\n255\n255\nout.ppm\n{mesh}\n0\n1\n0\n0\n0\n1.4\n");
+    let o = run(&["interior", "--size", "16,16"], &good("0", &cube.display().to_string()), dir.path());
     assert!(o.status.success(), "{}", stderr(&o));
-    let shown = String::from_utf8_lossy(&o.stdout);
-    assert!(shown.contains("`many` is not a whole number"), "{shown}");
-    assert!(shown.contains("missing.off: no such file"), "{shown}");
-    assert!(shown.contains("-1 is not greater than 0 and at most 100"), "{shown}");
     assert!(dir.path().join("out.ppm").exists());
+    std::fs::remove_file(dir.path().join("out.ppm")).unwrap();
+
+    let o = run(&["interior", "--size", "16,16"], &good("many", &cube.display().to_string()), dir.path());
+    assert_clean_failure(&o, "line 1 of standard input: `many` is no answer to \"Maximum ray trace count\": `many` is not a whole number");
+    let o = run(&["interior", "--size", "16,16"], &good("0", "missing.off"), dir.path());
+    assert_clean_failure(&o, "line 7 of standard input: `missing.off` is no answer to \"File name of .off file\": missing.off: no such file");
+    let readme = repo("README.md").display().to_string();
+    let o = run(&["interior", "--size", "16,16"], &good("0", &readme), dir.path());
+    assert_clean_failure(&o, &format!("line 7 of standard input: `{readme}` is no answer to \"File name of .off file\": {readme}:3: expected the keyword OFF"));
+    assert!(!dir.path().join("out.ppm").exists(), "nothing written");
 
     let o = run(&["interior"], "0\n25\n255\n", dir.path());
     assert_clean_failure(&o, "input ended before an answer to \"G\"");
+}
+
+/// Renamed flags keep their old spellings as hidden aliases, with the same
+/// result: `--colours` is `--colour-map`, `--color` is `--object-colour`.
+#[test]
+fn old_spellings_still_work() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let pair = |a: &[&str], b: &[&str], what: &str| {
+        let (x, y) = (d.join(format!("{what}-a.png")), d.join(format!("{what}-b.png")));
+        for (args, out) in [(a, &x), (b, &y)] {
+            let mut full: Vec<&str> = args.to_vec();
+            full.extend(["--out", out.to_str().unwrap()]);
+            let o = run(&full, "", d);
+            assert!(o.status.success(), "{full:?}: {}", stderr(&o));
+        }
+        assert_eq!(std::fs::read(&x).unwrap(), std::fs::read(&y).unwrap(), "{what}");
+    };
+    let base = ["prism", "--size", "32,16", "--photons", "2000", "--spp", "1"];
+    pair(&[&base[..], &["--colours", "gradient"]].concat(), &[&base[..], &["--colour-map", "gradient"]].concat(), "colour map");
+    let cube = repo("off/cube.off").display().to_string();
+    let ib = ["interior", "--size", "16,16", "--off", cube.as_str()];
+    pair(&[&ib[..], &["--color", "0,0,255"]].concat(), &[&ib[..], &["--object-colour", "0,0,255"]].concat(), "object colour");
 }

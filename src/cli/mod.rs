@@ -44,7 +44,7 @@ pub enum Command {
         #[arg(long)]
         out: Option<PathBuf>,
         /// Folder of the scene files and FIGURES.md
-        #[arg(long, default_value = "scenes")]
+        #[arg(long = "scene-dir", alias = "scenes", value_name = "DIR", default_value = "scenes")]
         scenes: PathBuf,
     },
     /// Render a scene file (see scenes/*.toml) to results/<id>.png or --out.
@@ -125,7 +125,7 @@ pub enum BenchCommand {
         #[arg(long, value_delimiter = ',')]
         only: Vec<String>,
         /// Folder of the scene files
-        #[arg(long, default_value = "scenes")]
+        #[arg(long = "scene-dir", alias = "scenes", value_name = "DIR", default_value = "scenes")]
         scenes: PathBuf,
     },
 }
@@ -404,10 +404,12 @@ fn run_interior(args: InteriorArgs) -> Result<()> {
     let cfg = if args.flag_mode() {
         args.flag_config()?
     } else {
+        use std::io::IsTerminal;
         let stdin = std::io::stdin();
+        let interactive = stdin.is_terminal();
         let mut input = stdin.lock();
         let mut out = std::io::stdout();
-        crate::params::prompts::ask_all(&mut input, &mut out, args.params.config())?
+        crate::params::prompts::ask_all(&mut crate::params::prompts::Prompter::new(&mut input, &mut out, interactive), args.params.config())?
     };
     crate::image_io::remove_stale_temps(cfg.out.parent().unwrap_or(std::path::Path::new("")));
     let report = crate::interior::run(&cfg)?;

@@ -88,6 +88,10 @@ fn range(values: impl Iterator<Item = f64>, log: bool) -> (f64, f64) {
     if !lo.is_finite() {
         return if log { (1.0, 10.0) } else { (0.0, 1.0) };
     }
+    // Ranges a plot can draw: within 1e-300..1e300 on a log axis (whole
+    // decades of f64), +-1e300 on a linear one (a span that overflows
+    // would leave the plotting library looping forever).
+    let (lo, hi) = if log { (lo.clamp(1e-300, 1e300), hi.clamp(1e-300, 1e300)) } else { (lo.clamp(-1e300, 1e300), hi.clamp(-1e300, 1e300)) };
     if log {
         // Whole decades, so the axis is ticked at 1, 2, 5 ... of each.
         let (a, b) = (lo.log10().floor(), hi.log10().ceil());
@@ -96,6 +100,48 @@ fn range(values: impl Iterator<Item = f64>, log: bool) -> (f64, f64) {
         let hi = if hi > lo { hi } else { lo + 1.0 };
         let pad = (hi - lo) * 0.05;
         (lo - pad, hi + pad)
+    }
+}
+
+#[cfg(test)]
+mod range_tests {
+    use super::*;
+
+    /// Ranges as wide as f64 allows come out finite and drawable.
+    #[test]
+    fn axis_ranges_are_finite_whatever_the_data() {
+        for log in [false, true] {
+            for data in [vec![-1.7e308, 1.7e308], vec![5e-324, 1.7e308], vec![f64::MIN_POSITIVE], vec![f64::NAN, f64::INFINITY], vec![]] {
+                let (lo, hi) = range(data.iter().copied(), log);
+                assert!(lo.is_finite() && hi.is_finite() && hi > lo && (hi - lo).is_finite(), "{data:?} log {log}: {lo} {hi}");
+                assert!(!log || lo > 0.0);
+            }
+        }
+    }
+
+    /// A chart of data as wide as f64 is drawn, and soon (it once looped
+    /// forever inside the plotting library).
+    #[test]
+    fn the_widest_data_draws_in_time() {
+        let dir = tempfile::tempdir().unwrap();
+        for (log, pts) in [(false, vec![(-1.7e308, 1.0), (1.7e308, 2.0)]), (true, vec![(5e-324, 1.0), (1.7e308, 1e300)])] {
+            let path = dir.path().join(format!("wide-{log}.png"));
+            let chart = LineChart {
+                title: "wide".into(),
+                subtitle: String::new(),
+                x_label: "x".into(),
+                y_label: "y".into(),
+                log_x: log,
+                log_y: log,
+                series: vec![Series { name: "s".into(), points: pts, color: PALETTE[0] }],
+            };
+            let (tx, rx) = std::sync::mpsc::channel();
+            let p = path.clone();
+            std::thread::spawn(move || tx.send(render(&p, &chart).map_err(|e| e.to_string())));
+            let r = rx.recv_timeout(std::time::Duration::from_secs(30)).expect("the plot hangs");
+            assert!(r.is_ok(), "{r:?}");
+            assert!(path.is_file());
+        }
     }
 }
 

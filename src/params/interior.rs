@@ -51,10 +51,10 @@ pub static PARAMS: &[Param<InteriorConfig>] = &[
         set: |c, v| c.opacity = v.real() as f32,
     },
     Param {
-        key: "color",
-        aliases: &[],
+        key: "object_colour",
+        aliases: &["color"],
         section: PROMPTS,
-        help: "Object colour",
+        help: "Object colour (the report's \"RGB color of object\")",
         unit: "0-255",
         kind: Kind::Rgb,
         auto: "",

@@ -333,8 +333,8 @@ pub static PARAMS: &[Param<SpectralConfig>] = &[
         set: |c, v| c.gamut = v.choice(),
     },
     Param {
-        key: "colours",
-        aliases: &[],
+        key: "colour_map",
+        aliases: &["colours"],
         section: DISPLAY,
         help: "Wavelength to colour: CIE (physical) or one of reports 001/003's maps",
         unit: "",

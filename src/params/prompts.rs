@@ -1,6 +1,10 @@
 //! Report 004's input format: thirteen answers on standard input, asked in
-//! the report's order. A bad answer is asked again with a one-line reason;
-//! input that ends early is an error naming the unanswered prompt. Each
+//! the report's order. At a terminal a bad answer is asked again with a
+//! one-line reason; from a pipe or file the first bad answer stops the run,
+//! naming its line, the question and the answer (a later answer would
+//! otherwise land on the wrong question). The mesh is read when it is
+//! named, so a file that is not a mesh is caught there. Input that ends
+//! early is an error naming the unanswered prompt. Each
 //! answer is checked by its parameter's row in `interior::PARAMS`, so a
 //! prompt accepts exactly what the flag and the scene files accept.
 
@@ -16,31 +20,56 @@ pub enum PromptError {
     EndOfInput(String),
     #[error("the answer to \"{0}\" is longer than 4096 bytes")]
     TooLong(String),
+    #[error("line {line} of standard input: `{answer}` is no answer to \"{prompt}\": {reason}")]
+    BadAnswer { line: usize, prompt: String, answer: String, reason: String },
     #[error("reading standard input: {0}")]
     Io(#[from] std::io::Error),
+}
+
+/// Where the answers come from: the input, where the questions go, the
+/// line being read, and whether a person is answering (then a bad answer
+/// is asked again).
+pub struct Prompter<'a> {
+    pub input: &'a mut dyn BufRead,
+    pub out: &'a mut dyn Write,
+    pub interactive: bool,
+    line: usize,
+}
+
+impl<'a> Prompter<'a> {
+    pub fn new(input: &'a mut dyn BufRead, out: &'a mut dyn Write, interactive: bool) -> Self {
+        Prompter { input, out, interactive, line: 0 }
+    }
 }
 
 /// The longest answer read from one line.
 const MAX_ANSWER: u64 = 4096;
 
-/// Asks one prompt until `parse` accepts the answer.
-fn ask<T>(input: &mut dyn BufRead, out: &mut dyn Write, prompt: &str, parse: impl Fn(&str) -> Result<T, String>) -> Result<T, PromptError> {
+/// Asks one prompt until `parse` accepts the answer (at a terminal), or
+/// once (from a pipe or file).
+fn ask<T>(p: &mut Prompter, prompt: &str, parse: impl Fn(&str) -> Result<T, String>) -> Result<T, PromptError> {
     loop {
-        write!(out, "{prompt}: ")?;
-        out.flush()?;
+        write!(p.out, "{prompt}: ")?;
+        p.out.flush()?;
         let mut line = String::new();
         // At most MAX_ANSWER bytes of a line: endless input is not an answer.
-        let n = std::io::Read::take(&mut *input, MAX_ANSWER).read_line(&mut line)?;
+        let n = std::io::Read::take(&mut *p.input, MAX_ANSWER).read_line(&mut line)?;
         if n as u64 == MAX_ANSWER && !line.ends_with('\n') {
             return Err(PromptError::TooLong(prompt.to_string()));
         }
         if n == 0 {
-            writeln!(out)?;
+            writeln!(p.out)?;
             return Err(PromptError::EndOfInput(prompt.to_string()));
         }
-        match parse(line.trim_end_matches(['\n', '\r'])) {
+        p.line += 1;
+        let answer = line.trim_end_matches(['\n', '\r']);
+        match parse(answer) {
             Ok(v) => return Ok(v),
-            Err(reason) => writeln!(out, "\n{prompt}: {reason}; please answer again")?,
+            Err(reason) if p.interactive => writeln!(p.out, "\n{prompt}: {reason}; please answer again")?,
+            Err(reason) => {
+                writeln!(p.out)?;
+                return Err(PromptError::BadAnswer { line: p.line, prompt: prompt.to_string(), answer: answer.to_string(), reason });
+            }
         }
     }
 }
@@ -50,11 +79,19 @@ fn row(key: &str) -> &'static Param<InteriorConfig> {
 }
 
 /// Asks for the value of parameter `key` and sets it on `c`.
-fn ask_param(input: &mut dyn BufRead, out: &mut dyn Write, prompt: &str, key: &str, c: &mut InteriorConfig) -> Result<(), PromptError> {
-    let p = row(key);
-    let v = ask(input, out, prompt, |s| p.kind.parse_text(s))?;
-    (p.set)(c, &v);
+fn ask_param(p: &mut Prompter, prompt: &str, key: &str, c: &mut InteriorConfig) -> Result<(), PromptError> {
+    let r = row(key);
+    let v = ask(p, prompt, |s| r.kind.parse_text(s))?;
+    (r.set)(c, &v);
     Ok(())
+}
+
+/// A mesh file that exists and reads as a mesh (read here, when it is
+/// named, so a wrong file is caught at its own question).
+fn mesh(s: &str) -> Result<MeshSource, String> {
+    let source = super::in_path(s).map(MeshSource::File)?;
+    source.load().map_err(|e| format!("{e:#}"))?;
+    Ok(source)
 }
 
 /// The report's "0 = No, 1 = Yes".
@@ -68,24 +105,24 @@ fn yes_no(s: &str) -> Result<bool, String> {
 
 /// Fills the report's thirteen fields of `base` from the answers; the other
 /// settings (shininess, size, ...) stay as `base` has them.
-pub fn ask_all(input: &mut dyn BufRead, out: &mut dyn Write, base: InteriorConfig) -> Result<InteriorConfig, PromptError> {
+pub fn ask_all(p: &mut Prompter, base: InteriorConfig) -> Result<InteriorConfig, PromptError> {
     let mut c = base;
-    ask_param(input, out, "Maximum ray trace count", "trace", &mut c)?;
-    ask_param(input, out, "Opacity of object (0-100)", "opacity", &mut c)?;
-    writeln!(out, "RGB color of object, int in [0,255]")?;
-    let r = ask(input, out, "R", channel)?;
-    let g = ask(input, out, "G", channel)?;
-    let b = ask(input, out, "B", channel)?;
+    ask_param(p, "Maximum ray trace count", "trace", &mut c)?;
+    ask_param(p, "Opacity of object (0-100)", "opacity", &mut c)?;
+    writeln!(p.out, "RGB color of object, int in [0,255]")?;
+    let r = ask(p, "R", channel)?;
+    let g = ask(p, "G", channel)?;
+    let b = ask(p, "B", channel)?;
     c.color = [r, g, b];
-    c.out = ask(input, out, "File name of output file", super::out_path)?;
-    c.off = ask(input, out, "File name of .off file", |s| super::in_path(s).map(MeshSource::File))?;
-    c.coff = ask(input, out, "Is entered .off file in color off format? (0 = No, 1 = Yes)", yes_no)?;
-    ask_param(input, out, "Scale Factor", "scale", &mut c)?;
-    let x = ask(input, out, "X rotation (degrees)", parse_real)?;
-    let y = ask(input, out, "Y rotation (degrees)", parse_real)?;
-    let z = ask(input, out, "Z rotation (degrees)", parse_real)?;
+    c.out = ask(p, "File name of output file", super::out_path)?;
+    c.off = ask(p, "File name of .off file", mesh)?;
+    c.coff = ask(p, "Is entered .off file in color off format? (0 = No, 1 = Yes)", yes_no)?;
+    ask_param(p, "Scale Factor", "scale", &mut c)?;
+    let x = ask(p, "X rotation (degrees)", parse_real)?;
+    let y = ask(p, "Y rotation (degrees)", parse_real)?;
+    let z = ask(p, "Z rotation (degrees)", parse_real)?;
     c.rot = glam::DVec3::new(x, y, z).as_vec3();
-    ask_param(input, out, "Refractive Index", "ior", &mut c)?;
+    ask_param(p, "Refractive Index", "ior", &mut c)?;
     Ok(c)
 }
 
@@ -102,7 +139,7 @@ mod tests {
         let off = concat!(env!("CARGO_MANIFEST_DIR"), "/off/cube.off");
         let text = format!("x\n-2\n3\n150\n25\n255\n999\n0\n0\nout.ppm\n/no/such.off\n{off}\n2\n1\n0\n1.5\n10\n20\n-30\nzero\n1.4\n");
         let mut out = Vec::new();
-        let c = ask_all(&mut text.as_bytes(), &mut out, base()).unwrap();
+        let c = ask_all(&mut Prompter::new(&mut text.as_bytes(), &mut out, true), base()).unwrap();
         assert_eq!((c.max_trace, c.opacity, c.color, c.coff), (3, 25.0, [255, 0, 0], true));
         assert_eq!((c.scale, c.rot, c.ior), (1.5, glam::Vec3::new(10.0, 20.0, -30.0), 1.4));
         let shown = String::from_utf8(out).unwrap();
@@ -117,7 +154,20 @@ mod tests {
         ] {
             assert!(shown.contains(reason), "missing `{reason}` in:\n{shown}");
         }
-        let e = ask_all(&mut "0\n25\n".as_bytes(), &mut Vec::new(), base()).unwrap_err();
+        let e = ask_all(&mut Prompter::new(&mut "0\n25\n".as_bytes(), &mut Vec::new(), true), base()).unwrap_err();
         assert_eq!(e.to_string(), "input ended before an answer to \"R\"");
+    }
+
+    /// From a pipe, the first bad answer stops the run, naming its line,
+    /// the question and the answer; a file that is not a mesh is caught at
+    /// the mesh's own question.
+    #[test]
+    fn piped_answers_stop_at_the_first_bad_one() {
+        let e = ask_all(&mut Prompter::new(&mut "0\n25\n255\n999\n0\n".as_bytes(), &mut Vec::new(), false), base()).unwrap_err();
+        assert_eq!(e.to_string(), "line 4 of standard input: `999` is no answer to \"G\": 999 is outside 0-255");
+        let readme = concat!(env!("CARGO_MANIFEST_DIR"), "/README.md");
+        let text = format!("0\n25\n255\n255\n255\nout.png\n{readme}\n0\n1\n0\n0\n0\n1.4\n");
+        let e = ask_all(&mut Prompter::new(&mut text.as_bytes(), &mut Vec::new(), false), base()).unwrap_err().to_string();
+        assert!(e.starts_with(&format!("line 7 of standard input: `{readme}` is no answer to \"File name of .off file\": {readme}:")), "{e}");
     }
 }

@@ -118,6 +118,9 @@ pub fn build(o: &SceneOptions) -> Result<World> {
         // The user's mesh replaces the prism; beam, screen and camera stay
         // where the built-in prism put them.
         let mesh = crate::mesh::obj::read_obj(path)?;
+        if mesh.triangles.is_empty() {
+            bail!("--obj {}: no usable faces to make a prism of", path.display());
+        }
         let keep: Vec<Face> = scene.faces.drain(..).filter(|f| !matches!(f.surface, Surface::Interface { .. })).collect();
         for (i, t) in mesh.triangles.iter().enumerate() {
             let v: Vec<DVec3> = t.iter().map(|&k| mesh.positions[k as usize].as_dvec3()).collect();
