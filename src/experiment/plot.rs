@@ -47,7 +47,8 @@ pub struct LineChart {
 }
 
 /// A tick label in real units: whole numbers without a decimal point,
-/// others with as few digits as tell them apart.
+/// others to four significant digits, trailing zeros dropped (so ticks
+/// 0.0045 and 0.005 never both read 0.005).
 pub fn tick(v: &f64) -> String {
     let v = *v;
     if !v.is_finite() {
@@ -60,7 +61,8 @@ pub fn tick(v: &f64) -> String {
     if !(1e-3..1e6).contains(&a) {
         return format!("{v:.0e}");
     }
-    let s = format!("{v:.3}");
+    let decimals = (3 - a.log10().floor() as i32).max(0) as usize;
+    let s = format!("{v:.decimals$}");
     s.trim_end_matches('0').trim_end_matches('.').to_string()
 }
 
@@ -311,6 +313,9 @@ mod tests {
         assert_eq!(tick(&180000.0), "180000");
         assert_eq!(tick(&0.25), "0.25");
         assert_eq!(tick(&0.1), "0.1");
+        assert_eq!(tick(&0.0045), "0.0045");
+        assert_eq!(tick(&0.00425), "0.00425");
+        assert_eq!(tick(&123.456), "123.5");
         assert_eq!(tick(&2e-5), "2e-5");
         let t = decade_ticks((0.01, 1.0));
         assert_eq!(t.len(), 7);

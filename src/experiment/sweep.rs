@@ -255,6 +255,9 @@ impl Drop for FolderLock {
 /// Runs the experiment; returns the output folder and a summary line.
 pub fn run(e: &Experiment, opts: &SweepOptions) -> Result<(PathBuf, String)> {
     let dir = opts.out.clone().unwrap_or_else(|| PathBuf::from("results").join(&e.name));
+    if dir.exists() && !dir.is_dir() {
+        bail!("--out: {} is not a folder; a sweep writes a folder of results", dir.display());
+    }
     std::fs::create_dir_all(&dir).with_context(|| format!("cannot create {}", dir.display()))?;
     let _lock = FolderLock::take(&dir)?;
     // What a sweep killed while writing left behind.
