@@ -49,3 +49,45 @@ fn timing_csv_gets_one_flushed_row_per_run() {
     assert_clean_failure(&o, "are not this mode's");
     assert!(!dir.path().join("y.png").exists(), "checked before rendering: no image");
 }
+
+/// The prism mode too, for both photon maps: the buffer map sums photons
+/// straight into its texels as they land (fixed-point, so the order they
+/// arrive in does not matter) and the kd-tree keeps them in chunk order.
+/// A Cornell box (bounces, several lights) and the anchor scene.
+#[test]
+fn prism_renders_are_the_same_on_any_thread_count() {
+    let dir = tempfile::tempdir().unwrap();
+    for scene in ["cornell-pointlight", "single-prism"] {
+        for map in ["buffer", "kdtree"] {
+            let mut images = Vec::new();
+            for threads in ["1", "2", "5"] {
+                let out = dir.path().join(format!("{scene}-{map}-{threads}.pfm"));
+                let o = run(
+                    &[
+                        "prism",
+                        "--scene",
+                        scene,
+                        "--map",
+                        map,
+                        "--photons",
+                        "60000",
+                        "--size",
+                        "48,32",
+                        "--spp",
+                        "2",
+                        "--threads",
+                        threads,
+                        "--out",
+                        out.to_str().unwrap(),
+                    ],
+                    "",
+                    dir.path(),
+                );
+                assert!(o.status.success(), "{}", stderr(&o));
+                images.push(std::fs::read(&out).unwrap());
+            }
+            assert!(images[0] == images[1] && images[0] == images[2], "{scene} {map}");
+            assert!(images[0].len() > 48 * 32 * 12);
+        }
+    }
+}

@@ -51,6 +51,77 @@ impl LightStats {
     }
 }
 
+/// Where the light pass puts the photons it stores: kept one by one (for a
+/// kd-tree), or added straight into the buffer map's texels (`Grids`), so
+/// memory does not grow with the photon count.
+pub trait Deposit {
+    fn deposit(&mut self, map: usize, p: Photon);
+}
+
+impl Deposit for Vec<Vec<Photon>> {
+    fn deposit(&mut self, map: usize, p: Photon) {
+        self[map].push(p);
+    }
+}
+
+/// The buffer map's texels of every matte surface, filled by the light
+/// pass as photons land. Sums are fixed-point integers (atomic adds), so
+/// the result is the same whatever the order photons arrive in, and so
+/// the same bytes on any thread count.
+pub struct Grids {
+    pub grids: Vec<Grid>,
+    scale: f64,
+}
+
+/// One surface's texels: `nu` x `nv` over `size` metres, XYZ flux as
+/// integers in units of 1 / scale.
+pub struct Grid {
+    pub size: DVec2,
+    pub nu: usize,
+    pub nv: usize,
+    cells: Vec<[std::sync::atomic::AtomicI64; 3]>,
+}
+
+impl Grids {
+    /// Texels `texel` metres wide (at most 4096 a side) on every matte
+    /// surface of the scene, for at most `max_flux` of XYZ flux in all.
+    pub fn new(scene: &World, texel: f64, max_flux: f64) -> Grids {
+        let grids = scene
+            .maps
+            .iter()
+            .map(|&f| {
+                let (_, eu, ev) = scene.faces[f].frame.expect("matte surfaces are parallelograms");
+                let size = DVec2::new(eu.length(), ev.length());
+                let nu = ((size.x / texel).ceil() as usize).clamp(1, 4096);
+                let nv = ((size.y / texel).ceil() as usize).clamp(1, 4096);
+                Grid { size, nu, nv, cells: (0..nu * nv).map(|_| Default::default()).collect() }
+            })
+            .collect();
+        // 2^61 units for the most flux there can be: no sum overflows, and
+        // a photon of 1e-10 of it still has about 2e8 units.
+        let scale = if max_flux > 0.0 && max_flux.is_finite() { (1u64 << 61) as f64 / max_flux } else { 1.0 };
+        Grids { grids, scale }
+    }
+
+    /// The XYZ flux of each texel of surface `map`, row by row.
+    pub fn flux(&self, map: usize) -> Vec<[f32; 3]> {
+        use std::sync::atomic::Ordering::Relaxed;
+        self.grids[map].cells.iter().map(|c| [0, 1, 2].map(|k| (c[k].load(Relaxed) as f64 / self.scale) as f32)).collect()
+    }
+}
+
+impl Deposit for &Grids {
+    fn deposit(&mut self, map: usize, p: Photon) {
+        use std::sync::atomic::Ordering::Relaxed;
+        let g = &self.grids[map];
+        let iu = ((p.pos[0] as f64 / g.size.x * g.nu as f64) as usize).min(g.nu - 1);
+        let iv = ((p.pos[1] as f64 / g.size.y * g.nv as f64) as usize).min(g.nv - 1);
+        for (cell, x) in g.cells[iv * g.nu + iu].iter().zip(p.xyz) {
+            cell.fetch_add((x as f64 * self.scale).round() as i64, Relaxed);
+        }
+    }
+}
+
 /// Photons per matte surface (in `scene.maps` order) and the counts.
 pub struct LightPass {
     pub photons: Vec<Vec<Photon>>,
@@ -72,6 +143,39 @@ pub fn light_pass(scene: &World, total: u64, seed: u64, colours: ColorMap, progr
 /// union is as evenly spread as one pass with all the photons.
 pub fn light_pass_from(scene: &World, total: u64, seed: u64, pass: u64, colours: ColorMap, progress: &dyn Progress) -> LightPass {
     let mut out = LightPass { photons: vec![Vec::new(); scene.maps.len()], stats: LightStats::default() };
+    let results = trace_lights(scene, total, seed, pass, colours, progress, || vec![Vec::new(); scene.maps.len()]);
+    for (maps, stats) in results {
+        for (dst, src) in out.photons.iter_mut().zip(maps) {
+            dst.extend(src);
+        }
+        out.stats.add(&stats);
+    }
+    out
+}
+
+/// The light pass straight into the buffer map's texels (`grids`): no
+/// photon is kept, so memory does not grow with `total`. Otherwise as
+/// `light_pass_from`.
+pub fn light_pass_into(scene: &World, total: u64, seed: u64, pass: u64, colours: ColorMap, grids: &Grids, progress: &dyn Progress) -> LightStats {
+    let mut stats = LightStats::default();
+    for (_, s) in trace_lights(scene, total, seed, pass, colours, progress, || grids) {
+        stats.add(&s);
+    }
+    stats
+}
+
+/// Traces the photons in fixed chunks (in parallel), each chunk into the
+/// sink `sink()` makes; returns each chunk's sink and counts, in order.
+fn trace_lights<D: Deposit + Send>(
+    scene: &World,
+    total: u64,
+    seed: u64,
+    pass: u64,
+    colours: ColorMap,
+    progress: &dyn Progress,
+    sink: impl Fn() -> D + Sync,
+) -> Vec<(D, LightStats)> {
+    let mut out = Vec::new();
     let power: f64 = scene.lights.iter().map(|l| l.power).sum();
     if scene.maps.is_empty() || power <= 0.0 {
         return out;
@@ -94,10 +198,10 @@ pub fn light_pass_from(scene: &World, total: u64, seed: u64, pass: u64, colours:
         let mut key = Rng::new(seed, li as u64, 0xfeed);
         let offsets = [key.f64(), key.f64(), key.f64()];
         let chunks: Vec<(u64, u64)> = (0..n.div_ceil(CHUNK)).map(|c| (c * CHUNK, ((c + 1) * CHUNK).min(n))).collect();
-        let results: Vec<(Vec<Vec<Photon>>, LightStats)> = chunks
+        let results: Vec<(D, LightStats)> = chunks
             .par_iter()
             .map(|&(a, b)| {
-                let mut maps = vec![Vec::new(); scene.maps.len()];
+                let mut maps = sink();
                 let mut stats = LightStats::default();
                 for i in (a + pass * n)..(b + pass * n) {
                     let u = [rotate(radical_inverse(i, 3), offsets[0]), rotate(radical_inverse(i, 5), offsets[1]), rotate(radical_inverse(i, 2), offsets[2])];
@@ -117,12 +221,7 @@ pub fn light_pass_from(scene: &World, total: u64, seed: u64, pass: u64, colours:
                 (maps, stats)
             })
             .collect();
-        for (maps, stats) in results {
-            for (dst, src) in out.photons.iter_mut().zip(maps) {
-                dst.extend(src);
-            }
-            out.stats.add(&stats);
-        }
+        out.extend(results);
     }
     progress.finish("light");
     out
@@ -199,7 +298,7 @@ fn trace_photon(
     colours: ColorMap,
     u_lambda: f64,
     rng: &mut Rng,
-    maps: &mut [Vec<Photon>],
+    maps: &mut impl Deposit,
     stats: &mut LightStats,
 ) {
     let Emitted { power, white, reflected, sampler } = *light;
@@ -263,7 +362,7 @@ fn trace_photon(
                         Some(l) => xyz * albedo.at(l),
                         None => reflected[map] * power,
                     };
-                    maps[map].push(Photon { pos, xyz: [out.x as f32, out.y as f32, out.z as f32] });
+                    maps.deposit(map, Photon { pos, xyz: [out.x as f32, out.y as f32, out.z as f32] });
                     stats.stored += 1;
                 }
                 if bounces == 0 {

@@ -123,10 +123,23 @@ pub fn run(cfg: &SpectralConfig, progress: &dyn Progress) -> Result<SpectralRepo
 pub fn render_config(cfg: &SpectralConfig, progress: &dyn Progress) -> Result<SpectralReport> {
     cfg.validate()?;
     let scene = crate::scenes::build(&cfg.scene)?;
-    // Before any tracing: the photons (stored once per surface they land
-    // on, up to 1 + bounces times, 20 B each, and the map built from them)
-    // and the image (XYZ in f64, then 8-bit sRGB) must fit in memory.
-    let photon_bytes = cfg.photons.saturating_mul(1 + scene.bounces as u64).saturating_mul(2 * std::mem::size_of::<crate::photon::map::Photon>() as u64);
+    // Before any tracing: the photons (for the kd-tree: stored once per
+    // surface they land on, up to 1 + bounces times, 20 B each, and the map
+    // built from them) and the image (XYZ in f64, then 8-bit sRGB) must fit
+    // in memory.
+    // The buffer map keeps no photons, only its texels (24 bytes each).
+    let photon_bytes = match cfg.map {
+        MapKind::Buffer => {
+            let texel = (cfg.radius.unwrap_or_else(|| default_radius(&scene)) / 2.0).max(1e-5);
+            scene
+                .maps
+                .iter()
+                .filter_map(|&f| scene.faces[f].frame)
+                .map(|(_, eu, ev)| ((eu.length() / texel).ceil().clamp(1.0, 4096.0) * (ev.length() / texel).ceil().clamp(1.0, 4096.0)) as u64 * 24)
+                .sum()
+        }
+        MapKind::Kdtree => cfg.photons.saturating_mul(1 + scene.bounces as u64).saturating_mul(2 * std::mem::size_of::<crate::photon::map::Photon>() as u64),
+    };
     let image_bytes = (cfg.scene.width as u64 * cfg.scene.height as u64).saturating_mul(24 + 3);
     crate::data::check_memory(
         photon_bytes.saturating_add(image_bytes),

@@ -5,7 +5,8 @@
 use super::eye::Eye;
 use super::film::XyzImage;
 use super::options::{EyeMode, RenderOptions};
-use crate::photon::emit::{light_pass_from, LightStats};
+use crate::photon::emit::{light_pass_from, light_pass_into, Grids, LightStats};
+use crate::photon::map::MapKind;
 use crate::photon::map::SurfaceMap;
 use crate::progress::Progress;
 use crate::sampling::{multi_jittered, Rng};
@@ -49,25 +50,30 @@ pub fn render_offset(scene: &World, opts: &RenderOptions, place: Option<PassPlac
     let offset = place.map(|p| p.offset);
     let eye_seed = place.map_or(opts.seed, |p| p.eye_seed);
     let t = Instant::now();
-    let pass = if scene.maps.is_empty() {
-        crate::photon::emit::LightPass { photons: Vec::new(), stats: LightStats::default() }
-    } else {
-        light_pass_from(scene, opts.photons, opts.seed, place.map_or(0, |p| p.index), opts.colours, progress)
-    };
-    let trace_s = t.elapsed().as_secs_f64();
-
-    let t = Instant::now();
     let texel = (opts.lookup.radius() / 2.0).max(1e-5);
-    let maps: Vec<SurfaceMap> = scene
-        .maps
-        .iter()
-        .zip(pass.photons)
-        .map(|(&f, photons)| {
-            let (_, eu, ev) = scene.faces[f].frame.expect("matte surfaces are parallelograms");
-            SurfaceMap::build(opts.map, DVec2::new(eu.length(), ev.length()), photons, texel)
-        })
-        .collect();
-    let build_s = t.elapsed().as_secs_f64();
+    let index = place.map_or(0, |p| p.index);
+    let size = |f: usize| {
+        let (_, eu, ev) = scene.faces[f].frame.expect("matte surfaces are parallelograms");
+        DVec2::new(eu.length(), ev.length())
+    };
+    // The buffer map is filled as photons land (no photon is kept); the
+    // kd-tree keeps every photon and is built from them.
+    let (stats, maps, trace_s, build_s): (LightStats, Vec<SurfaceMap>, f64, f64) = if scene.maps.is_empty() {
+        (LightStats::default(), Vec::new(), 0.0, 0.0)
+    } else if opts.map == MapKind::Buffer {
+        let grids = Grids::new(scene, texel, max_flux(scene, opts.colours));
+        let stats = light_pass_into(scene, opts.photons, opts.seed, index, opts.colours, &grids, progress);
+        let trace_s = t.elapsed().as_secs_f64();
+        let t = Instant::now();
+        let maps = grids.grids.iter().enumerate().map(|(m, g)| SurfaceMap::Buffer { size: g.size, nu: g.nu, nv: g.nv, flux: grids.flux(m) }).collect();
+        (stats, maps, trace_s, t.elapsed().as_secs_f64())
+    } else {
+        let pass = light_pass_from(scene, opts.photons, opts.seed, index, opts.colours, progress);
+        let trace_s = t.elapsed().as_secs_f64();
+        let t = Instant::now();
+        let maps = scene.maps.iter().zip(pass.photons).map(|(&f, photons)| SurfaceMap::build(opts.map, size(f), photons, texel)).collect();
+        (pass.stats, maps, trace_s, t.elapsed().as_secs_f64())
+    };
     let map_bytes = maps.iter().map(SurfaceMap::bytes).sum();
 
     // Eye wavelengths follow the lights' spectra.
@@ -126,7 +132,16 @@ pub fn render_offset(scene: &World, opts: &RenderOptions, place: Option<PassPlac
         .sum();
     progress.finish("eye");
     let render_s = t.elapsed().as_secs_f64();
-    SpectralRender { image: XyzImage { width: cam.width, height: cam.height, xyz }, stats: pass.stats, trace_s, build_s, render_s, map_bytes, eye_rays: rays }
+    SpectralRender { image: XyzImage { width: cam.width, height: cam.height, xyz }, stats, trace_s, build_s, render_s, map_bytes, eye_rays: rays }
+}
+
+/// The most XYZ flux the matte surfaces can receive in all: every light's
+/// power at the colour map's largest weight, once per landing (a photon
+/// lands at most 1 + bounces times, each time with at most its flux).
+fn max_flux(scene: &World, colours: crate::spectrum::colormap::ColorMap) -> f64 {
+    let power: f64 = scene.lights.iter().map(|l| l.power.abs()).sum();
+    let w = (360..=830).map(|nm| colours.xyz_weight(nm as f64).abs().max_element()).fold(0.0, f64::max);
+    2.0 * power * w.max(1.0) * (1 + scene.bounces) as f64
 }
 
 /// A spectrum as a mixture for `--eye lines`: one component per emission
