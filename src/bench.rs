@@ -242,13 +242,16 @@ fn prism_error_vs_time(scene: &crate::world::World, radius: f64, quick: bool, ou
     }
     // Progressive: the running mean after each pass, recorded at powers of
     // two and every 64 passes.
-    let passes = if quick { 16 } else { 512 };
-    for (map, per) in [(MapKind::Kdtree, 25_000u64), (MapKind::Buffer, 100_000)] {
+    // As `refract prism --passes` runs it: the first radius one pixel's
+    // footprint (half the one-pass default).
+    let passes = if quick { 4 } else { 64 };
+    for (map, per) in [(MapKind::Kdtree, 400_000u64), (MapKind::Buffer, 1_600_000)] {
+        let per = if quick { per / 8 } else { per };
         let name = format!("progressive {} box {}k/pass", map.name(), per / 1000);
         let mut runs = Vec::new();
         let mut rows = Vec::new();
-        crate::spectral::progressive::render(scene, &prism_opts(per, map, Filter::Box, radius), passes, &crate::progress::Silent, |p| {
-            if p.passes.is_power_of_two() || p.passes % 64 == 0 {
+        crate::spectral::progressive::render(scene, &prism_opts(per, map, Filter::Box, radius / 2.0), passes, &crate::progress::Silent, |p| {
+            if p.passes.is_power_of_two() || p.passes % 16 == 0 {
                 let err = relative_error(p.image, &reference);
                 runs.push((p.seconds, err));
                 rows.push((p.photons, p.seconds, err));

@@ -39,7 +39,7 @@ const SWEEPS: [(&str, &str); 8] = [
     ("lab-size", "Report 004's limitation: render time against pixels"),
     ("lab-ior", "Highlight area against refractive index"),
     ("lab-shininess", "Highlight area against shininess"),
-    ("prism-photons", "Photon maps and filters: error against time on the single-prism anchor scene"),
+    ("prism-photons", "Photon maps and filters, one pass and progressive: error against time on the single-prism anchor scene, against its exact image"),
     ("eye-split", "The eye pass at a dispersive face: hero wavelength against report 001's split into N rays"),
     ("stability", "Where the methods fail"),
 ];

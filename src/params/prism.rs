@@ -182,7 +182,7 @@ pub static PARAMS: &[Param<SpectralConfig>] = &[
         key: "passes",
         aliases: &[],
         section: LIGHT,
-        help: "Progressive photon mapping: this many passes of --photons and --spp each, the gather radius shrinking pass by pass from --radius (Knaus and Zwicker); 1 is the report's single pass",
+        help: "Progressive photon mapping: this many passes of --photons and --spp each, the gather radius shrinking pass by pass from --radius (by default one pixel's footprint; Knaus and Zwicker); 1 is the report's single pass",
         unit: "passes",
         kind: Kind::Count { min: 1, max: 1_000_000 },
         auto: "",

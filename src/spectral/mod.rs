@@ -146,7 +146,9 @@ pub fn render_config(cfg: &SpectralConfig, progress: &dyn Progress) -> Result<Sp
         &format!("--photons {} and --size {}x{}", cfg.photons, cfg.scene.width, cfg.scene.height),
     )
     .map_err(anyhow::Error::msg)?;
-    let radius = cfg.radius.unwrap_or_else(|| default_radius(&scene));
+    // Progressive passes start from one pixel's footprint (the radius
+    // then shrinks pass by pass); one pass gathers over two.
+    let radius = cfg.radius.unwrap_or_else(|| default_radius(&scene) / if cfg.passes > 1 { 2.0 } else { 1.0 });
     let lookup = match cfg.k {
         Some(k) => Lookup::Nearest(k),
         None => Lookup::Radius(radius),
