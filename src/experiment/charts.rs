@@ -29,9 +29,15 @@ pub fn draw_all(e: &Experiment, dir: &Path, header: &[String], rows: &[Vec<Strin
     Ok(())
 }
 
-/// What the experiment held fixed, for the subtitle.
+/// What the experiment held fixed, for the subtitle: the fixed parameters
+/// no case overrides.
 fn fixed_text(e: &Experiment) -> String {
-    let parts: Vec<String> = e.fixed.iter().map(|(k, v)| format!("{} {}", k.replace('_', " "), super::params::cell(v))).collect();
+    let parts: Vec<String> = e
+        .fixed
+        .iter()
+        .filter(|(k, _)| !e.cases.iter().any(|c| c.params.iter().any(|(q, _)| q == k)))
+        .map(|(k, v)| format!("{} {}", k.replace('_', " "), super::params::cell(v)))
+        .collect();
     if parts.is_empty() {
         String::new()
     } else {
