@@ -48,9 +48,11 @@ pub struct Pass<'a> {
 /// point of a shifted (2, 3) Halton sequence, so the result is the same for
 /// a seed whatever the thread count.
 pub fn render(scene: &World, opts: &RenderOptions, passes: usize, progress: &dyn Progress, mut after_pass: impl FnMut(&Pass)) -> SpectralRender {
+    // k nearest adapts its own radius: passes then only average (the
+    // command line refuses --passes with --k).
     let r0 = match opts.lookup {
-        Lookup::Radius(r) => r,
-        Lookup::Nearest(_) => panic!("progressive photon mapping needs a radius, not k nearest"),
+        Lookup::Radius(r) => Some(r),
+        Lookup::Nearest(_) => None,
     };
     let t = Instant::now();
     let (w, h) = (scene.camera.width, scene.camera.height);
@@ -62,10 +64,10 @@ pub fn render(scene: &World, opts: &RenderOptions, passes: usize, progress: &dyn
     let (mut trace_s, mut build_s, mut render_s, mut rays, mut photons) = (0.0, 0.0, 0.0, 0, 0);
     let mut stats = crate::photon::emit::LightStats::default();
     for i in 0..passes.max(1) {
-        let r = radius(r0, i, ALPHA);
+        let r = r0.map_or(0.0, |r0| radius(r0, i, ALPHA));
         // One photon sequence for all passes (its next batch each pass), a
         // new eye-pass seed each pass.
-        let o = RenderOptions { lookup: Lookup::Radius(r), ..opts.clone() };
+        let o = RenderOptions { lookup: if r0.is_some() { Lookup::Radius(r) } else { opts.lookup }, ..opts.clone() };
         let offset = DVec2::new(rotate(radical_inverse(i as u64, 2), shift[0]), rotate(radical_inverse(i as u64, 3), shift[1]));
         let pass = render_offset(scene, &o, Some(PassPlace { offset, eye_seed: opts.seed.wrapping_add(i as u64), index: i as u64 }), progress);
         for (s, x) in sum.iter_mut().zip(&pass.image.xyz) {
