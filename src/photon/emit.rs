@@ -189,11 +189,16 @@ fn trace_lights<D: Deposit + Send>(
         let n = ((total as f64 * shares[li]).round() as u64).max(1);
         let emission = &light.emission;
         let sampler = WavelengthSampler::new(&light.spectrum);
+        // Wavelengths are drawn in proportion to the spectrum times how much
+        // they show (the colour map's weights), each photon's flux weighted
+        // back by the spectrum's pdf over the drawing pdf: no photon spent
+        // at 370 nm carrying almost nothing (docs/physics.md §16).
+        let importance = WavelengthSampler::weighted(&light.spectrum, |nm| colours.xyz_weight(nm).abs().element_sum());
         let white = sampler.mean_weight(colours);
         // What one watt of this light's whole spectrum leaves as from each
         // matte surface: its spectrum times the surface's reflectance.
         let reflected = scene.reflected_per_map(&sampler, colours);
-        let source = Emitted { power: 0.0, white, reflected: &reflected, sampler: &sampler };
+        let source = Emitted { power: 0.0, white, reflected: &reflected, sampler: &sampler, importance: &importance };
         let per_photon = light.power / n as f64;
         let mut key = Rng::new(seed, li as u64, 0xfeed);
         let offsets = [key.f64(), key.f64(), key.f64()];
@@ -287,6 +292,16 @@ struct Emitted<'a> {
     white: DVec3,
     reflected: &'a [DVec3],
     sampler: &'a WavelengthSampler,
+    importance: &'a WavelengthSampler,
+}
+
+impl Emitted<'_> {
+    /// A wavelength for `u` and the XYZ flux a photon of it carries.
+    fn pick(&self, u: f64, colours: ColorMap) -> (f64, DVec3) {
+        let (l, q) = self.importance.sample(u);
+        let w = if q > 0.0 { self.sampler.pdf(l) / q } else { 0.0 };
+        (l, colours.xyz_weight(l) * (self.power * w))
+    }
 }
 
 #[allow(clippy::too_many_arguments)]
@@ -301,7 +316,7 @@ fn trace_photon(
     maps: &mut impl Deposit,
     stats: &mut LightStats,
 ) {
-    let Emitted { power, white, reflected, sampler } = *light;
+    let Emitted { power, white, reflected, .. } = *light;
     stats.emitted += 1;
     stats.emitted_power += power;
     let pol = if rng.f64() < 0.5 { Polarisation::S } else { Polarisation::P };
@@ -320,11 +335,9 @@ fn trace_photon(
                 let c = match cross(scene, hit.face, p, d, nm) {
                     Ok(c) => c,
                     Err(_) => {
-                        let (l, _pdf) = sampler.sample(u_lambda);
+                        let (l, flux) = light.pick(u_lambda, colours);
                         nm = Some(l);
-                        // Sampled in proportion to the spectrum: the flux of
-                        // one watt at l is its colour weight (see `mean_weight`).
-                        xyz = colours.xyz_weight(l) * power;
+                        xyz = flux;
                         stats.dispersed += 1;
                         cross(scene, hit.face, p, d, nm).expect("a wavelength is set")
                     }
@@ -378,8 +391,8 @@ fn trace_photon(
                     return;
                 }
                 let l = *nm.get_or_insert_with(|| {
-                    let (l, _) = sampler.sample(u_lambda);
-                    xyz = colours.xyz_weight(l) * power;
+                    let (l, flux) = light.pick(u_lambda, colours);
+                    xyz = flux;
                     l
                 });
                 if !(rng.f64() < albedo.at(l)) {
@@ -400,6 +413,30 @@ mod tests {
     use super::*;
     use crate::spectrum::Spectrum;
     use crate::world::{Face, Light, Medium};
+
+    /// Wavelengths drawn by importance (spectrum x colour weight) and
+    /// weighted back carry, on average, exactly the light's XYZ: for D65,
+    /// a CFL's lines and a 2700 K black body, with CIE and a report's map;
+    /// and fewer of them fall where the eye sees little than when drawn by
+    /// the spectrum alone.
+    #[test]
+    fn importance_sampled_wavelengths_carry_the_lights_colour() {
+        for name in ["d65", "cfl-lines", "blackbody:2700"] {
+            let s = crate::spectrum::spectra::NamedSpectrum::parse(name).unwrap().spectrum;
+            for colours in [ColorMap::Cie, ColorMap::Gradient] {
+                let sampler = WavelengthSampler::new(&s);
+                let importance = WavelengthSampler::weighted(&s, |nm| colours.xyz_weight(nm).abs().element_sum());
+                let e = Emitted { power: 1.0, white: DVec3::ZERO, reflected: &[], sampler: &sampler, importance: &importance };
+                let n = 200_000;
+                let mean = (0..n).map(|i| e.pick((i as f64 + 0.5) / n as f64, colours).1).sum::<DVec3>() / n as f64;
+                let want = sampler.mean_weight(colours);
+                assert!((mean - want).abs().max_element() < 2e-3 * want.max_element(), "{name} {colours:?}: {mean} vs {want}");
+            }
+            let dim = |w: &WavelengthSampler| (0..1000).filter(|i| !(420.0..680.0).contains(&w.sample((*i as f64 + 0.5) / 1000.0).0)).count();
+            let by_cmf = WavelengthSampler::weighted(&s, |nm| ColorMap::Cie.xyz_weight(nm).element_sum());
+            assert!(dim(&by_cmf) < dim(&WavelengthSampler::new(&s)), "{name}");
+        }
+    }
 
     /// A closed cube of matte walls (albedo rho, normals inward) with a
     /// point light at its centre: every photon lands, and after k bounces it

@@ -16,12 +16,20 @@ pub struct WavelengthSampler {
 
 impl WavelengthSampler {
     pub fn new(s: &Spectrum) -> Self {
+        Self::weighted(s, |_| 1.0)
+    }
+
+    /// Sampling in proportion to the spectrum times `f(nm)` (importance:
+    /// e.g. how much a wavelength shows, so few samples go where the eye
+    /// sees little). `integral` is then that product's.
+    pub fn weighted(s: &Spectrum, f: impl Fn(f64) -> f64) -> Self {
         let n = ((LAMBDA_MAX - LAMBDA_MIN) / BIN_NM).round() as usize;
         let mut cdf = Vec::with_capacity(n + 1);
         cdf.push(0.0);
         let mut acc = 0.0;
         for i in 0..n {
-            let v = s.eval(LAMBDA_MIN + (i as f64 + 0.5) * BIN_NM).max(0.0);
+            let nm = LAMBDA_MIN + (i as f64 + 0.5) * BIN_NM;
+            let v = (s.eval(nm) * f(nm)).max(0.0);
             acc += if v.is_finite() { v * BIN_NM } else { 0.0 };
             cdf.push(acc);
         }
