@@ -25,6 +25,11 @@ install() {
 start() {
   host=$(hostname -s)
   cpus=$(nproc)
+  # The daemons look the controller and node up by name: make sure this
+  # host's name resolves (containers often lack it in /etc/hosts).
+  if ! getent hosts "$host" >/dev/null 2>&1; then
+    echo "127.0.0.1 $host" >>/etc/hosts
+  fi
   mem_mb=$(( $(awk '/MemTotal/ {print $2}' /proc/meminfo) * 9 / 10 / 1024 ))
   mkdir -p "$conf_dir" "$state/ctld" "$state/d" "$logs" /run/munge /var/lib/munge /var/log/munge
   # munge: a key, and the daemon (as root: a container has no munge user session).
@@ -44,7 +49,7 @@ start() {
   cat >"$conf_dir/slurm.conf" <<EOF
 # Written by refract's scripts/local-slurm.sh: a one-node cluster.
 ClusterName=refract-local
-SlurmctldHost=$host
+SlurmctldHost=$host(127.0.0.1)
 SlurmUser=root
 SlurmdUser=root
 AuthType=auth/munge
@@ -64,7 +69,7 @@ SelectTypeParameters=CR_Core_Memory
 ReturnToService=2
 MinJobAge=300
 SlurmdTimeout=60
-NodeName=$host CPUs=$cpus RealMemory=$mem_mb State=UNKNOWN
+NodeName=$host NodeAddr=127.0.0.1 CPUs=$cpus RealMemory=$mem_mb State=UNKNOWN
 PartitionName=local Nodes=$host Default=YES MaxTime=INFINITE State=UP
 EOF
   : >"$conf_dir/cgroup.conf"
