@@ -25,15 +25,7 @@ pub fn expand(e: &Experiment) -> Vec<RunSpec> {
     let cases = if e.cases.is_empty() { vec![Case { name: String::new(), mode: e.mode, params: Vec::new() }] } else { e.cases.clone() };
     let mut runs = Vec::new();
     for Case { name: case, mode, params: case_params } in &cases {
-        // A case may narrow an axis by listing its own values for it.
-        let axes: Vec<(String, Vec<Value>)> = e
-            .sweep
-            .iter()
-            .map(|(k, vals)| match case_params.iter().find(|(c, _)| c == k) {
-                Some((_, Value::Array(own))) => (k.clone(), own.clone()),
-                _ => (k.clone(), vals.clone()),
-            })
-            .collect();
+        let axes: Vec<(String, Vec<Value>)> = e.axes_for(case_params).map(|(k, v)| (k.clone(), v.clone())).collect();
         let overrides: Vec<(String, Value)> = case_params.iter().filter(|(k, _)| !axes.iter().any(|(a, _)| a == k)).cloned().collect();
         let lens: Vec<usize> = axes.iter().map(|s| s.1.len()).collect();
         let total: usize = lens.iter().product();

@@ -123,14 +123,7 @@ pub struct ShardLoad {
 pub fn loads(e: &Experiment, n: usize) -> Vec<ShardLoad> {
     let runs = expand(e);
     let shard = assign(&runs, n);
-    let reference = e.reference.as_ref().map(|over| {
-        let mut p = e.fixed.clone();
-        for (k, v) in over {
-            p.retain(|(q, _)| q != k);
-            p.push((k.clone(), v.clone()));
-        }
-        cost(e.mode, &p)
-    });
+    let reference = e.reference_params().map(|p| cost(e.mode, &p));
     let mut out = vec![ShardLoad::default(); n];
     for (r, &s) in runs.iter().zip(&shard) {
         let c = cost(r.mode, &r.params);

@@ -178,22 +178,34 @@ impl Experiment {
         Ok(e)
     }
 
+    /// The sweep axes as a case sees them: a case may narrow an axis by
+    /// listing its own values for it.
+    pub fn axes_for<'a>(&'a self, case_params: &'a [(String, Value)]) -> impl Iterator<Item = (&'a String, &'a Vec<Value>)> {
+        self.sweep.iter().map(move |(k, vals)| match case_params.iter().find(|(c, _)| c == k) {
+            Some((_, Value::Array(own))) => (k, own),
+            _ => (k, vals),
+        })
+    }
+
     /// How many runs the grid holds (each case times the product of its
-    /// axes' lengths, narrowed where the case lists its own values, times
-    /// the repeats), without building it.
+    /// axes' lengths, times the repeats), without building it.
     pub fn run_count(&self) -> u128 {
-        let per_case = |case_params: &[(String, Value)]| -> u128 {
-            self.sweep
-                .iter()
-                .map(|(k, vals)| match case_params.iter().find(|(c, _)| c == k) {
-                    Some((_, Value::Array(own))) => own.len() as u128,
-                    _ => vals.len() as u128,
-                })
-                .fold(1u128, |a, n| a.saturating_mul(n))
-        };
+        let per_case = |case_params: &[(String, Value)]| -> u128 { self.axes_for(case_params).fold(1u128, |a, (_, v)| a.saturating_mul(v.len() as u128)) };
         let cases: u128 =
             if self.cases.is_empty() { per_case(&[]) } else { self.cases.iter().map(|c| per_case(&c.params)).fold(0u128, |a, n| a.saturating_add(n)) };
         cases.saturating_mul(self.repeats as u128)
+    }
+
+    /// The reference run's parameters: the fixed ones with the reference's
+    /// overrides, if the experiment has a reference.
+    pub fn reference_params(&self) -> Option<Vec<(String, Value)>> {
+        let over = self.reference.as_ref()?;
+        let mut p = self.fixed.clone();
+        for (k, v) in over {
+            p.retain(|(q, _)| q != k);
+            p.push((k.clone(), v.clone()));
+        }
+        Some(p)
     }
 }
 

@@ -309,12 +309,7 @@ pub fn run(e: &Experiment, opts: &SweepOptions) -> Result<(PathBuf, String)> {
 /// The reference run's frame (the fixed parameters with the reference's
 /// overrides), written as reference.png.
 fn reference_frame(e: &Experiment, dir: &Path, meshes: &MeshCache) -> Result<Option<Frame>> {
-    let Some(over) = &e.reference else { return Ok(None) };
-    let mut p = e.fixed.clone();
-    for (k, v) in over {
-        p.retain(|(q, _)| q != k);
-        p.push((k.clone(), v.clone()));
-    }
+    let Some(p) = e.reference_params() else { return Ok(None) };
     let o = run_one(e.mode, &p, meshes);
     if let Some(f) = &o.frame {
         write_rgb8(&dir.join("reference.png"), f.width, f.height, &f.display)?;
