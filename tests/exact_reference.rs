@@ -125,7 +125,15 @@ fn a_plates_ghost_lands_where_and_as_bright_as_fresnel_says() {
     w.camera = Camera::look_at(v(0.3, -0.01, 0.0), v(0.5, -0.01, 0.0), DVec3::Z, 2.0 * (0.025f64 / 0.2).atan().to_degrees(), 200, 100);
     w.lights.push(Light {
         name: "beam".into(),
-        emission: Emission::Beam { centre: v(-0.2, 0.0, 0.0), dir: DVec3::X, u: DVec3::Y, v: DVec3::Z, half: DVec2::splat(0.002), disc: true },
+        emission: Emission::Beam {
+            centre: v(-0.2, 0.0, 0.0),
+            dir: DVec3::X,
+            u: DVec3::Y,
+            v: DVec3::Z,
+            half: DVec2::splat(0.002),
+            disc: true,
+            polarisation: None,
+        },
         spectrum: refract::spectrum::spectra::laser(550.0),
         power: 1.0,
     });

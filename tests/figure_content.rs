@@ -125,3 +125,79 @@ fn report_000_pictures_4_to_6_differ_where_their_captions_say() {
     let n = differ.count();
     assert!(n > w * h / 100, "the prism must show in Picture 6: {n} px differ from Picture 4");
 }
+
+#[test]
+fn the_album_cover_has_no_stray_beams() {
+    // pm-dark-side at quick size: above the prism's apex nothing is lit
+    // (the beam rises from the lower left, the fan leaves down to the
+    // right). Its beam is p-polarised, so at minimum deviation (near
+    // Brewster's angle) the faces reflect under 0.2 %; natural light sends
+    // 14 % up off the entry face, a grey line above the prism.
+    let s = SceneFile::load(&repo("scenes/pm-dark-side.toml"), true).unwrap();
+    let cfg = refract::experiment::params::prism_config(&s.params).unwrap();
+    let scene = refract::scenes::build(&cfg.scene).unwrap();
+    let apex = scene
+        .faces
+        .iter()
+        .filter(|f| f.name.starts_with("outline"))
+        .flat_map(|f| f.verts.clone())
+        .map(|v| scene.camera.project(v).unwrap().y)
+        .fold(f64::MAX, f64::min);
+    let brightest_above = |scene: &refract::world::World| -> u8 {
+        let r = refract::spectral::render_world(&cfg, scene, &refract::progress::Silent).unwrap();
+        let (w, img) = (r.render.image.width, r.render.image.to_srgb8(r.exposure, cfg.gamut));
+        let rows = (apex - 4.0) as usize;
+        img[..rows * w * 3].chunks(3).map(|c| *c.iter().max().unwrap()).max().unwrap()
+    };
+    assert!(apex > 30.0, "the apex stands {apex:.0} px below the top");
+    let polarised = brightest_above(&scene);
+    assert!(polarised < 20, "stray light above the prism: {polarised} of 255");
+    let mut natural = scene.clone();
+    for l in &mut natural.lights {
+        if let refract::world::Emission::Beam { polarisation, .. } = &mut l.emission {
+            *polarisation = None;
+        }
+    }
+    let stray = brightest_above(&natural);
+    assert!(stray > 3 * polarised.max(10), "natural light shows the entry face's reflection above the prism: {stray} against {polarised}");
+}
+
+#[test]
+fn the_laser_beam_shows_on_its_way_to_the_prism_and_beyond() {
+    // pm-laser-prism at quick size, with its haze and in clear air: the
+    // pixels half way from the laser to the prism, and half way from the
+    // prism to the wall (550 nm), are lit only by the haze.
+    let s = SceneFile::load(&repo("scenes/pm-laser-prism.toml"), true).unwrap();
+    let cfg = refract::experiment::params::prism_config(&s.params).unwrap();
+    let hazy = refract::scenes::build(&cfg.scene).unwrap();
+    assert!(hazy.haze > 0.0, "the laser's box has a haze");
+    let mut clear = hazy.clone();
+    clear.haze = 0.0;
+    let beam = hazy.lights.iter().find(|l| l.name == "laser").expect("a laser");
+    let refract::world::Emission::Beam { centre, dir, .. } = beam.emission else { panic!("the laser is a beam") };
+    let entry = centre + dir * hazy.intersect(centre, dir, None).expect("the laser meets the prism").t;
+    let p = refract::world::probe::probe(&hazy, 550.0);
+    let wall = p.exit_point + p.exit_dir * hazy.intersect(p.exit_point + p.exit_dir * 1e-9, p.exit_dir, None).unwrap().t;
+    let render = |scene: &refract::world::World| {
+        let r = refract::spectral::render_world(&cfg, scene, &refract::progress::Silent).unwrap();
+        (r.render.image.width, r.render.image.to_srgb8(r.exposure, cfg.gamut))
+    };
+    let ((w, with), (_, without)) = (render(&hazy), render(&clear));
+    for (what, point) in [("incoming beam", (centre + entry) / 2.0), ("fan", (p.exit_point + wall) / 2.0)] {
+        let at = hazy.camera.project(point).expect("in view");
+        // The brightest pixel within 2 px (the line is thin).
+        let lum = |img: &[u8]| {
+            let mut best = 0;
+            for dy in -2..=2 {
+                for dx in -2..=2 {
+                    let (x, y) = ((at.x as i64 + dx) as usize, (at.y as i64 + dy) as usize);
+                    let i = (y * w + x) * 3;
+                    best = best.max(img[i] as i32 + img[i + 1] as i32 + img[i + 2] as i32);
+                }
+            }
+            best / 3
+        };
+        let (a, b) = (lum(&with), lum(&without));
+        assert!(a > b + 40, "the {what} at {at:?} shows in the haze: {a} against {b} in clear air");
+    }
+}

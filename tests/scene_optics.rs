@@ -128,7 +128,15 @@ fn wall_through_plate(albedo: [f64; 3], light: &str, plate: bool) -> DVec3 {
     let u = DVec3::Z.cross(dir).normalize();
     w.lights.push(Light {
         name: "beam".into(),
-        emission: Emission::Beam { centre: v(1.0, 0.0, 0.0) - dir * 0.5, dir, u, v: DVec3::Z, half: glam::DVec2::new(0.2, 0.2), disc: false },
+        emission: Emission::Beam {
+            centre: v(1.0, 0.0, 0.0) - dir * 0.5,
+            dir,
+            u,
+            v: DVec3::Z,
+            half: glam::DVec2::new(0.2, 0.2),
+            disc: false,
+            polarisation: None,
+        },
         spectrum: NamedSpectrum::parse(light).unwrap().spectrum,
         power: 1.0,
     });

@@ -124,6 +124,17 @@ pub static PARAMS: &[Param<SpectralConfig>] = &[
         set: |c, v| c.scene.incidence_deg = Some(v.real()),
     },
     Param {
+        key: "haze",
+        aliases: &[],
+        section: SCENE,
+        help: "Scattering coefficient of a thin haze in the air, which shows the beams' paths (single scattering, isotropic)",
+        unit: "per metre",
+        kind: Kind::Real { lo: End::Closed(0.0), hi: End::Closed(10.0) },
+        auto: "the scene's: clear air, except the laser's Cornell box (cornell-laser)",
+        get: |c| c.scene.haze.map(Value::Real),
+        set: |c, v| c.scene.haze = Some(v.real()),
+    },
+    Param {
         key: "no_prism",
         aliases: &[],
         section: SCENE,

@@ -198,7 +198,11 @@ fn trace_lights<D: Deposit + Send>(
         // What one watt of this light's whole spectrum leaves as from each
         // matte surface: its spectrum times the surface's reflectance.
         let reflected = scene.reflected_per_map(&sampler, colours);
-        let source = Emitted { power: 0.0, white, reflected: &reflected, sampler: &sampler, importance: &importance };
+        let polarisation = match *emission {
+            Emission::Beam { polarisation, .. } => polarisation,
+            _ => None,
+        };
+        let source = Emitted { power: 0.0, white, reflected: &reflected, sampler: &sampler, importance: &importance, polarisation };
         let per_photon = light.power / n as f64;
         let mut key = Rng::new(seed, li as u64, 0xfeed);
         let offsets = [key.f64(), key.f64(), key.f64()];
@@ -236,7 +240,7 @@ fn trace_lights<D: Deposit + Send>(
 /// the photon's own stream where a direction is random too).
 fn emit(scene: &World, e: &Emission, a: f64, b: f64, rng: &mut Rng) -> (DVec3, DVec3) {
     match e {
-        Emission::Beam { centre, dir, u, v, half, disc } => {
+        Emission::Beam { centre, dir, u, v, half, disc, .. } => {
             let p = if *disc { concentric_disc(a, b) } else { DVec2::new(2.0 * a - 1.0, 2.0 * b - 1.0) };
             (*centre + *u * (p.x * half.x) + *v * (p.y * half.y), *dir)
         }
@@ -293,6 +297,7 @@ struct Emitted<'a> {
     reflected: &'a [DVec3],
     sampler: &'a WavelengthSampler,
     importance: &'a WavelengthSampler,
+    polarisation: Option<Polarisation>,
 }
 
 impl Emitted<'_> {
@@ -319,7 +324,14 @@ fn trace_photon(
     let Emitted { power, white, reflected, .. } = *light;
     stats.emitted += 1;
     stats.emitted_power += power;
-    let pol = if rng.f64() < 0.5 { Polarisation::S } else { Polarisation::P };
+    // A natural light's photons are s or p at random; a polarised beam's all
+    // of one.
+    let u_pol = rng.f64();
+    let pol = match light.polarisation {
+        Some(p) => p,
+        None if u_pol < 0.5 => Polarisation::S,
+        None => Polarisation::P,
+    };
     let mut nm: Option<f64> = None;
     let mut xyz = white * power;
     let mut skip = None;
@@ -426,7 +438,7 @@ mod tests {
             for colours in [ColorMap::Cie, ColorMap::Gradient] {
                 let sampler = WavelengthSampler::new(&s);
                 let importance = WavelengthSampler::weighted(&s, |nm| colours.xyz_weight(nm).abs().element_sum());
-                let e = Emitted { power: 1.0, white: DVec3::ZERO, reflected: &[], sampler: &sampler, importance: &importance };
+                let e = Emitted { power: 1.0, white: DVec3::ZERO, reflected: &[], sampler: &sampler, importance: &importance, polarisation: None };
                 let n = 200_000;
                 let mean = (0..n).map(|i| e.pick((i as f64 + 0.5) / n as f64, colours).1).sum::<DVec3>() / n as f64;
                 let want = sampler.mean_weight(colours);

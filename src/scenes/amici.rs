@@ -154,7 +154,7 @@ fn add_screen(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism, design: &
     let u = rotate_z(DVec3::Y, prism.h - prism.a1 + prism.incidence);
     scene.lights.push(Light {
         name: "beam".into(),
-        emission: Emission::Beam { centre: prism.start, dir: prism.dir, u, v: DVec3::Z, half: DVec2::new(0.001, 0.01), disc: false },
+        emission: Emission::Beam { centre: prism.start, dir: prism.dir, u, v: DVec3::Z, half: DVec2::new(0.001, 0.01), disc: false, polarisation: None },
         spectrum: light_spectrum(o, "D65")?,
         power: 1.0,
     });
@@ -205,7 +205,7 @@ fn add_bench(scene: &mut World, o: &SceneOptions) -> Result<()> {
     let half = DVec2::new((y1 - y0) / 2.0 + 0.02, (x1 - x0) / 2.0 * dir.z.abs() + 0.05);
     scene.lights.push(Light {
         name: "window light".into(),
-        emission: Emission::Beam { centre: mid - dir * 1.5, dir, u: DVec3::Y, v, half, disc: false },
+        emission: Emission::Beam { centre: mid - dir * 1.5, dir, u: DVec3::Y, v, half, disc: false, polarisation: None },
         spectrum: light_spectrum(o, "D65")?,
         power: 45.0,
     });

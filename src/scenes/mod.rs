@@ -62,6 +62,8 @@ pub struct SceneOptions {
     pub incidence_deg: Option<f64>,
     pub no_prism: bool,
     pub no_dispersion: bool,
+    /// Haze in the air, per metre; `None` = the scene's own.
+    pub haze: Option<f64>,
     /// A user's OBJ mesh (metres) of `crown` glass in place of the prism.
     pub obj: Option<std::path::PathBuf>,
     pub width: usize,
@@ -80,6 +82,7 @@ impl SceneOptions {
             incidence_deg: None,
             no_prism: false,
             no_dispersion: false,
+            haze: None,
             obj: None,
             width: 640,
             height: 240,
@@ -114,6 +117,9 @@ pub fn build(o: &SceneOptions) -> Result<World> {
         SceneKind::CornellPointlight | SceneKind::CornellMirrorTube | SceneKind::CornellLaser => cornell::build(o)?,
         SceneKind::DarkSide => cornell::dark_side(o)?,
     };
+    if let Some(h) = o.haze {
+        scene.haze = h;
+    }
     if let Some(path) = &o.obj {
         // The user's mesh replaces the prism; beam, screen and camera stay
         // where the built-in prism put them.

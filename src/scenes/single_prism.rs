@@ -49,7 +49,7 @@ pub fn build(o: &SceneOptions) -> Result<World> {
     let bu = DVec3::Z.cross(dir).normalize();
     scene.lights.push(Light {
         name: "beam".into(),
-        emission: Emission::Beam { centre: start, dir, u: bu, v: DVec3::Z, half: DVec2::new(0.01, 0.01), disc: true },
+        emission: Emission::Beam { centre: start, dir, u: bu, v: DVec3::Z, half: DVec2::new(0.01, 0.01), disc: true, polarisation: None },
         spectrum: light_spectrum(o, "D65")?,
         power: 1.0,
     });

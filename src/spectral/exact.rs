@@ -16,7 +16,7 @@
 use super::film::XyzImage;
 use crate::spectrum::colormap::ColorMap;
 use crate::spectrum::sampler::WavelengthSampler;
-use crate::world::interface::cross;
+use crate::world::interface::{cross, Polarisation};
 use crate::world::{Emission, Surface, World};
 use glam::{DMat2, DVec2, DVec3};
 use rayon::prelude::*;
@@ -136,7 +136,7 @@ const MAX_FACES: usize = 24;
 /// points of the cross-section at 33 wavelengths, branching at every
 /// interface, as long as a route keeps MIN_SHARE of the power.
 fn discover(scene: &World, screen: usize, sampler: &WavelengthSampler) -> BTreeSet<Route> {
-    let Emission::Beam { centre, dir, u, v, half, disc } = scene.lights[0].emission else { unreachable!() };
+    let Emission::Beam { centre, dir, u, v, half, disc, .. } = scene.lights[0].emission else { unreachable!() };
     let mut seeds = vec![DVec2::ZERO];
     for (r, k) in [(0.5, 6), (0.97, 12)] {
         for i in 0..k {
@@ -166,7 +166,9 @@ fn follow(scene: &World, screen: usize, o: DVec3, d: DVec3, nm: f64, share: f64,
     match *scene.surface(hit.face) {
         Surface::Interface { .. } => {
             let Ok(c) = cross(scene, hit.face, p, d, Some(nm)) else { return };
-            let r = 0.5 * (c.fresnel.rs + c.fresnel.rp);
+            let Emission::Beam { polarisation, .. } = scene.lights[0].emission else { unreachable!() };
+            let (ws, wp) = Polarisation::shares(polarisation);
+            let r = ws * c.fresnel.rs + wp * c.fresnel.rp;
             if let Some(t) = c.refracted {
                 route.push((hit.face, false));
                 follow(scene, screen, p, t, nm, share * (1.0 - r), Some(hit.face), route, out);
@@ -194,7 +196,7 @@ fn follow(scene: &World, screen: usize, o: DVec3, d: DVec3, nm: f64, share: f64,
 /// weighted), or `None` where the route is closed at this wavelength
 /// (a refraction past the critical angle).
 fn footprint(scene: &World, route: &Route, nm: f64, flux: DVec3) -> Option<Footprint> {
-    let Emission::Beam { centre, dir, u, v, half, disc } = scene.lights[0].emission else { unreachable!() };
+    let Emission::Beam { centre, dir, u, v, half, disc, polarisation } = scene.lights[0].emission else { unreachable!() };
     let mut b = Bundle { o: centre, m: [u * half.x, v * half.y], d: dir };
     let (mut ts, mut tp) = (1.0, 1.0);
     let mut faces = Vec::with_capacity(route.len());
@@ -237,7 +239,8 @@ fn footprint(scene: &World, route: &Route, nm: f64, flux: DVec3) -> Option<Footp
     let pos0 = pos(on.o)?;
     let j = DMat2::from_cols(pos(on.o + on.m[0])? - pos0, pos(on.o + on.m[1])? - pos0);
     let det = j.determinant();
-    let t = 0.5 * (ts + tp);
+    let (s_share, p_share) = Polarisation::shares(polarisation);
+    let t = s_share * ts + p_share * tp;
     if det.abs() < 1e-300 || !(t > 0.0) {
         return None;
     }

@@ -276,7 +276,7 @@ impl Eye<'_> {
                     }
                     e
                 }
-                Emission::Beam { centre, dir, u, v, half, disc } => {
+                Emission::Beam { centre, dir, u, v, half, disc, .. } => {
                     // Back along the beam to its aperture (the plane of u, v).
                     let m = u.cross(v);
                     let t = (x - centre).dot(m) / dir.dot(m);

@@ -9,6 +9,7 @@
 pub mod exact;
 pub mod eye;
 pub mod film;
+pub mod haze;
 pub mod options;
 pub mod progressive;
 pub mod render;
@@ -123,6 +124,13 @@ pub fn run(cfg: &SpectralConfig, progress: &dyn Progress) -> Result<SpectralRepo
 pub fn render_config(cfg: &SpectralConfig, progress: &dyn Progress) -> Result<SpectralReport> {
     cfg.validate()?;
     let scene = crate::scenes::build(&cfg.scene)?;
+    render_world(cfg, &scene, progress)
+}
+
+/// Renders `scene` (built from `cfg.scene`, perhaps changed since) with
+/// `cfg`'s method and settings.
+pub fn render_world(cfg: &SpectralConfig, scene: &crate::world::World, progress: &dyn Progress) -> Result<SpectralReport> {
+    cfg.validate()?;
     // Before any tracing: the photons (for the kd-tree: stored once per
     // surface they land on, up to 1 + bounces times, 20 B each, and the map
     // built from them) and the image (XYZ in f64, then 8-bit sRGB) must fit
@@ -130,7 +138,7 @@ pub fn render_config(cfg: &SpectralConfig, progress: &dyn Progress) -> Result<Sp
     // The buffer map keeps no photons, only its texels (24 bytes each).
     let photon_bytes = match cfg.map {
         MapKind::Buffer => {
-            let texel = (cfg.radius.unwrap_or_else(|| default_radius(&scene)) / 2.0).max(1e-5);
+            let texel = (cfg.radius.unwrap_or_else(|| default_radius(scene)) / 2.0).max(1e-5);
             scene
                 .maps
                 .iter()
@@ -148,7 +156,7 @@ pub fn render_config(cfg: &SpectralConfig, progress: &dyn Progress) -> Result<Sp
     .map_err(anyhow::Error::msg)?;
     // Progressive passes start from one pixel's footprint (the radius
     // then shrinks pass by pass); one pass gathers over two.
-    let radius = cfg.radius.unwrap_or_else(|| default_radius(&scene) / if cfg.passes > 1 { 2.0 } else { 1.0 });
+    let radius = cfg.radius.unwrap_or_else(|| default_radius(scene) / if cfg.passes > 1 { 2.0 } else { 1.0 });
     let lookup = match cfg.k {
         Some(k) => Lookup::Nearest(k),
         None => Lookup::Radius(radius),
@@ -168,19 +176,19 @@ pub fn render_config(cfg: &SpectralConfig, progress: &dyn Progress) -> Result<Sp
     let render = if cfg.exact {
         let o = exact::ExactOptions { wavelengths: cfg.exact_wavelengths, subsamples: cfg.exact_subsamples, colours: cfg.colours };
         let t = std::time::Instant::now();
-        let image = pool.install(|| exact::render(&scene, &o))?;
+        let image = pool.install(|| exact::render(scene, &o))?;
         SpectralRender { image, stats: Default::default(), trace_s: 0.0, build_s: 0.0, render_s: t.elapsed().as_secs_f64(), map_bytes: 0, eye_rays: 0 }
     } else {
         pool.install(|| match cfg.passes {
-            0 | 1 => render::render(&scene, &opts, progress),
-            n => progressive::render(&scene, &opts, n as usize, progress, |_| {}),
+            0 | 1 => render::render(scene, &opts, progress),
+            n => progressive::render(scene, &opts, n as usize, progress, |_| {}),
         })
     };
     let exposure = cfg.exposure.unwrap_or_else(|| render.image.auto_exposure() * cfg.exposure_gain);
     let notes = match cfg.exact {
         true if render.image.xyz.iter().all(|v| v.y <= 0.0) => vec!["the image is black: the beam reaches no part of the screen the camera sees".to_string()],
         true => Vec::new(),
-        false => notes(&scene, &render, lookup),
+        false => notes(scene, &render, lookup),
     };
     Ok(SpectralReport { render, notes, exposure, radius: lookup.radius(), threads: pool.current_num_threads(), peak_mem_mb: peak_memory_mb() })
 }

@@ -4,6 +4,7 @@
 
 use super::eye::Eye;
 use super::film::XyzImage;
+use super::haze::Haze;
 use super::options::{EyeMode, RenderOptions};
 use crate::photon::emit::{light_pass_from, light_pass_into, Grids, LightStats};
 use crate::photon::map::MapKind;
@@ -98,6 +99,7 @@ pub fn render_offset(scene: &World, opts: &RenderOptions, place: Option<PassPlac
     // What one watt of each light leaves each matte surface with.
     let direct = lights.iter().map(|(_, sampler, _)| scene.reflected_per_map(sampler, opts.colours)).collect();
     let eye = Eye { scene, maps, opts, sampler, components, lights, direct };
+    let haze = Haze::new(scene, opts.colours);
 
     let cam = &scene.camera;
     progress.start("eye", cam.height as u64);
@@ -123,6 +125,10 @@ pub fn render_offset(scene: &World, opts: &RenderOptions, place: Option<PassPlac
                     };
                     let d = cam.ray(x as f64 + jx, y as f64 + jy);
                     sum += eye.radiance(cam.pos, d, u_lambda, s, &mut rng, &mut rays);
+                    if !haze.segments.is_empty() {
+                        let t = scene.intersect(cam.pos, d, None).map_or(f64::INFINITY, |h| h.t);
+                        sum += haze.radiance(cam.pos, d, t);
+                    }
                 }
                 *px = sum / opts.spp as f64;
             }

@@ -16,6 +16,18 @@ pub enum Polarisation {
     P,
 }
 
+impl Polarisation {
+    /// The shares of s and p in light of polarisation `p` (`None`:
+    /// natural light, half of each).
+    pub fn shares(p: Option<Polarisation>) -> (f64, f64) {
+        match p {
+            None => (0.5, 0.5),
+            Some(Polarisation::S) => (1.0, 0.0),
+            Some(Polarisation::P) => (0.0, 1.0),
+        }
+    }
+}
+
 /// The outcome at an interface, for one wavelength.
 #[derive(Copy, Clone, Debug)]
 pub struct Crossing {

@@ -1,6 +1,7 @@
 //! Lights: how each emits (a collimated beam or laser, a point, a
 //! Lambertian face or sphere), its spectrum and its power.
 
+use super::interface::Polarisation;
 use crate::spectrum::Spectrum;
 use glam::{DVec2, DVec3};
 
@@ -9,8 +10,11 @@ use glam::{DVec2, DVec3};
 pub enum Emission {
     /// A collimated beam (or laser): parallel rays along `dir` from a disc
     /// or rectangle of half-sizes `half` in the (u, v) frame round `centre`.
-    /// No inverse-square fall-off.
-    Beam { centre: DVec3, dir: DVec3, u: DVec3, v: DVec3, half: DVec2, disc: bool },
+    /// No inverse-square fall-off. `polarisation`: `None` for natural
+    /// (unpolarised) light, or the linear polarisation the beam keeps
+    /// relative to the faces' plane of incidence, as a laser's or a beam
+    /// behind a polariser.
+    Beam { centre: DVec3, dir: DVec3, u: DVec3, v: DVec3, half: DVec2, disc: bool, polarisation: Option<Polarisation> },
     /// A point light, uniform in all directions.
     Point { pos: DVec3 },
     /// A one-sided Lambertian emitter covering face `face`.

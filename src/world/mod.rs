@@ -54,6 +54,10 @@ pub struct World {
     /// A BVH over the faces, for worlds of many (`build_accel`); `None`
     /// (or out of date) means a linear scan.
     pub accel: Option<bvh::FaceBvh>,
+    /// Scattering coefficient of a thin haze in the air (per metre) that
+    /// shows the beams' paths to the camera; 0 is clear air
+    /// (`spectral::haze`).
+    pub haze: f64,
 }
 
 /// Nearest face hit by a ray.
@@ -80,6 +84,7 @@ impl World {
             photon_shares: None,
             direct_lighting: false,
             accel: None,
+            haze: 0.0,
         }
     }
 
