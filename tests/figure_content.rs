@@ -201,3 +201,39 @@ fn the_laser_beam_shows_on_its_way_to_the_prism_and_beyond() {
         assert!(a > b + 40, "the {what} at {at:?} shows in the haze: {a} against {b} in clear air");
     }
 }
+
+#[test]
+fn the_glass_sphere_fringes_the_light_blue_inside_and_orange_red_outside() {
+    // cs348b-sphere-arealight at its full size (fewer samples): along the
+    // row through the light's image in the sphere (the right half), the
+    // edge toward the sphere's centre is blue and the outer edge
+    // orange-red; with the index held constant neither edge is coloured.
+    let s = SceneFile::load(&repo("scenes/cs348b-sphere-arealight.toml"), false).unwrap();
+    let mut cfg = refract::experiment::params::prism_config(&s.params).unwrap();
+    cfg.spp = 16;
+    let edges = |cfg: &refract::spectral::SpectralConfig| -> (bool, bool) {
+        let r = refract::spectral::render_config(cfg, &refract::progress::Silent).unwrap();
+        let (w, h) = (r.render.image.width, r.render.image.height);
+        let img = r.render.image.to_srgb8(r.exposure, cfg.gamut);
+        let px = |x: usize, y: usize| [img[(y * w + x) * 3] as i32, img[(y * w + x) * 3 + 1] as i32, img[(y * w + x) * 3 + 2] as i32];
+        let bright = |p: [i32; 3]| p.iter().sum::<i32>() > 500;
+        let (mut sy, mut n) = (0, 0);
+        for y in 0..h {
+            for x in w / 2..w {
+                if bright(px(x, y)) {
+                    sy += y;
+                    n += 1;
+                }
+            }
+        }
+        assert!(n > 1000, "the sphere shows the light: {n} px");
+        let y = sy / n;
+        let inside: Vec<usize> = (w / 2..w).filter(|&x| bright(px(x, y))).collect();
+        let (left, right) = (inside[0], *inside.last().unwrap());
+        let near = |x0: usize, f: &dyn Fn([i32; 3]) -> bool| (x0.saturating_sub(3)..(x0 + 4).min(w)).any(|x| f(px(x, y)));
+        (near(left, &|[r, _, b]| b > r + 60), near(right, &|[r, _, b]| r > b + 60))
+    };
+    assert_eq!(edges(&cfg), (true, true), "blue inner edge, orange-red outer edge");
+    cfg.scene.no_dispersion = true;
+    assert_eq!(edges(&cfg), (false, false), "no fringes without dispersion");
+}

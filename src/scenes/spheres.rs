@@ -3,9 +3,11 @@
 //! +x; z is up.
 //!
 //! - `sphere-arealight`: a glass sphere hanging before a large spherical
-//!   black-body light well off centre: the sphere shows the light as an
-//!   off-centre disc with a colour fringe at its edge (a ball lens's
-//!   lateral colour, about 2 % of the image's radius for N-SF11).
+//!   black-body light off centre: the sphere shows the light as an
+//!   off-centre patch, blue-fringed on the edge toward the sphere's centre
+//!   and orange-red on the outer one (blue bends more, so its image of the
+//!   light lies nearer the centre; the fringes are the spread of a ball's
+//!   deviation over the visible, at most about 2 % of its radius for N-SF11).
 //! - `sphere-metal`: the sphere before a polished metal plate that reflects
 //!   a warm black-body light: a yellow-to-red fringe.
 //! - `spheres-final`: three flint spheres before two bright bar lights, where
@@ -44,8 +46,12 @@ pub fn build(o: &SceneOptions) -> Result<World> {
             if !o.no_prism {
                 glass_sphere(&mut s, "glass sphere", DVec3::new(3.0, 0.0, 0.0), 0.5);
             }
-            sphere_light(&mut s, o, DVec3::new(6.0, 0.9, 0.3), 1.5, "blackbody:6500")?;
-            s.camera = Camera::look_at(DVec3::ZERO, DVec3::new(3.0, 0.0, 0.0), DVec3::Z, 23.0, o.width, o.height);
+            // Seen from the sphere the light spans 6-56 degrees off the axis,
+            // clear of it, so the sphere shows it as an off-centre patch with
+            // a blue inner and an orange-red outer edge; from the camera the
+            // sphere stands dark against the light's edge.
+            sphere_light(&mut s, o, DVec3::new(6.0, 1.8, 0.3), 1.5, "blackbody:6500")?;
+            s.camera = Camera::look_at(DVec3::ZERO, DVec3::new(3.0, 0.0, 0.0), DVec3::Z, 20.0, o.width, o.height);
         }
         SceneKind::SphereMetal => {
             if !o.no_prism {
