@@ -135,6 +135,17 @@ pub static PARAMS: &[Param<SpectralConfig>] = &[
         set: |c, v| c.scene.haze = Some(v.real()),
     },
     Param {
+        key: "indirect_gather",
+        aliases: &[],
+        section: SCENE,
+        help: "Where the scene computes direct light by shadow rays (report 003's rooms), light that reached a surface by a diffuse bounce or by mirrors alone is kept in a second photon map and gathered over this many times the radius; light through glass keeps the radius. 1: one map for all",
+        unit: "times the radius",
+        kind: Kind::Real { lo: End::Closed(1.0), hi: End::Closed(100.0) },
+        auto: "the scene's: 8 in report 003's Cornell boxes, else 1",
+        get: |c| c.scene.indirect_gather.map(Value::Real),
+        set: |c, v| c.scene.indirect_gather = Some(v.real()),
+    },
+    Param {
         key: "no_prism",
         aliases: &[],
         section: SCENE,

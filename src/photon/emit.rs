@@ -84,12 +84,13 @@ pub struct Grid {
 
 impl Grids {
     /// Texels `texel` metres wide (at most 4096 a side) on every matte
-    /// surface of the scene, for at most `max_flux` of XYZ flux in all.
+    /// surface of the scene (times `slot_scale` for the second set of split
+    /// maps), for at most `max_flux` of XYZ flux in all.
     pub fn new(scene: &World, texel: f64, max_flux: f64) -> Grids {
-        let grids = scene
-            .maps
-            .iter()
-            .map(|&f| {
+        let grids = (0..scene.map_slots())
+            .map(|slot| {
+                let f = scene.maps[slot % scene.maps.len()];
+                let texel = texel * scene.slot_scale(slot);
                 let (_, eu, ev) = scene.faces[f].frame.expect("matte surfaces are parallelograms");
                 let size = DVec2::new(eu.length(), ev.length());
                 let nu = ((size.x / texel).ceil() as usize).clamp(1, 4096);
@@ -142,8 +143,8 @@ pub fn light_pass(scene: &World, total: u64, seed: u64, colours: ColorMap, progr
 /// passes of progressive photon mapping continue the sequence, so their
 /// union is as evenly spread as one pass with all the photons.
 pub fn light_pass_from(scene: &World, total: u64, seed: u64, pass: u64, colours: ColorMap, progress: &dyn Progress) -> LightPass {
-    let mut out = LightPass { photons: vec![Vec::new(); scene.maps.len()], stats: LightStats::default() };
-    let results = trace_lights(scene, total, seed, pass, colours, progress, || vec![Vec::new(); scene.maps.len()]);
+    let mut out = LightPass { photons: vec![Vec::new(); scene.map_slots()], stats: LightStats::default() };
+    let results = trace_lights(scene, total, seed, pass, colours, progress, || vec![Vec::new(); scene.map_slots()]);
     for (maps, stats) in results {
         for (dst, src) in out.photons.iter_mut().zip(maps) {
             dst.extend(src);
@@ -339,6 +340,10 @@ fn trace_photon(
     // Whether the photon has crossed glass or met a mirror (then it is not
     // direct light, whatever the scene computes directly).
     let mut specular = false;
+    // Whether it has crossed glass since it left the light (a caustic
+    // while it has not bounced).
+    let mut through_glass = false;
+    let split = scene.split_maps();
     for _ in 0..MAX_BOUNCES {
         let Some(hit) = scene.intersect(o, d, skip) else { return };
         let p = o + hit.t * d;
@@ -358,6 +363,7 @@ fn trace_photon(
                     stats.tir += 1;
                 }
                 specular = true;
+                through_glass = true;
                 d = match c.refracted {
                     Some(t) if rng.f64() >= c.reflectance(pol) => t,
                     _ => c.reflected,
@@ -387,7 +393,8 @@ fn trace_photon(
                         Some(l) => xyz * albedo.at(l),
                         None => reflected[map] * power,
                     };
-                    maps.deposit(map, Photon { pos, xyz: [out.x as f32, out.y as f32, out.z as f32] });
+                    let slot = if split && (bounces > 0 || !through_glass) { map + scene.maps.len() } else { map };
+                    maps.deposit(slot, Photon { pos, xyz: [out.x as f32, out.y as f32, out.z as f32] });
                     stats.stored += 1;
                 }
                 if bounces == 0 {
@@ -503,5 +510,35 @@ mod tests {
             assert!((stored / emitted / want - 1.0).abs() < 0.01, "{bounces} bounces: {} vs {want}", stored / emitted);
             assert!((pass.stats.stored_power - 1.0).abs() < 1e-9, "first landings carry all the power");
         }
+    }
+
+    /// Report 003's laser room, one seed, with and without the split into
+    /// a caustic and a wider-gathered map (docs/physics.md §18): the same
+    /// photons land with the same flux in all; split, the back wall's
+    /// caustic map holds only light that came through the prism (the
+    /// strip, a band under 6 cm tall) and its second map the bounced light
+    /// spread over the wall.
+    #[test]
+    fn split_maps_move_photons_without_changing_the_flux() {
+        let o = crate::scenes::SceneOptions::new(crate::scenes::SceneKind::CornellLaser);
+        let split = crate::scenes::build(&o).unwrap();
+        assert!(split.split_maps());
+        let mut one = split.clone();
+        one.indirect_gather = 1.0;
+        let progress = crate::progress::Silent;
+        let (a, b) = (light_pass(&split, 200_000, 3, ColorMap::Cie, &progress), light_pass(&one, 200_000, 3, ColorMap::Cie, &progress));
+        let n = split.maps.len();
+        assert_eq!((a.photons.len(), b.photons.len()), (2 * n, n));
+        let total = |maps: &[Vec<Photon>]| maps.iter().flatten().map(|p| p.xyz[1] as f64).sum::<f64>();
+        assert!((total(&a.photons) / total(&b.photons) - 1.0).abs() < 1e-9);
+        for m in 0..n {
+            assert_eq!(a.photons[m].len() + a.photons[m + n].len(), b.photons[m].len(), "map {m}");
+        }
+        let back = split.maps.iter().position(|&f| split.faces[f].name == "back wall").unwrap();
+        let heights = |ps: &[Photon]| ps.iter().map(|p| p.pos[1]).fold((f32::MAX, f32::MIN), |(lo, hi), v| (lo.min(v), hi.max(v)));
+        let (lo, hi) = heights(&a.photons[back]);
+        assert!(a.photons[back].len() > 1000 && hi - lo < 0.06, "the strip: {} photons over {lo}..{hi} m", a.photons[back].len());
+        let (lo, hi) = heights(&a.photons[back + n]);
+        assert!(hi - lo > 1.5, "bounced light covers the wall: {lo}..{hi} m");
     }
 }

@@ -35,7 +35,7 @@ impl MapKind {}
 
 pub enum SurfaceMap {
     Buffer { size: DVec2, nu: usize, nv: usize, flux: Vec<[f32; 3]> },
-    Kd { photons: Vec<Photon> },
+    Kd { size: DVec2, photons: Vec<Photon> },
 }
 
 impl SurfaceMap {
@@ -59,7 +59,7 @@ impl SurfaceMap {
             MapKind::Kdtree => {
                 let mut photons = photons;
                 balance(&mut photons, 0);
-                SurfaceMap::Kd { photons }
+                SurfaceMap::Kd { size, photons }
             }
         }
     }
@@ -68,7 +68,7 @@ impl SurfaceMap {
     pub fn bytes(&self) -> usize {
         match self {
             SurfaceMap::Buffer { flux, .. } => flux.len() * std::mem::size_of::<[f32; 3]>(),
-            SurfaceMap::Kd { photons } => photons.len() * std::mem::size_of::<Photon>(),
+            SurfaceMap::Kd { photons, .. } => photons.len() * std::mem::size_of::<Photon>(),
         }
     }
 
@@ -104,7 +104,7 @@ impl SurfaceMap {
                     DVec3::new(f[0] as f64, f[1] as f64, f[2] as f64) / (tu * tv)
                 }
             }
-            SurfaceMap::Kd { photons } => {
+            SurfaceMap::Kd { size, photons } => {
                 let (found, r) = match lookup {
                     Lookup::Radius(r) => {
                         let mut found = Vec::new();
@@ -130,9 +130,38 @@ impl SurfaceMap {
                     let p = &photons[i];
                     sum += filter.weight(d2.sqrt(), r) * DVec3::new(p.xyz[0] as f64, p.xyz[1] as f64, p.xyz[2] as f64);
                 }
-                sum * filter.norm(r)
+                // Over the part of the disc on the surface: no darkening at
+                // its edges (as the buffer's discrete kernel sum gives).
+                sum * filter.norm(r) / kernel_inside(filter, x, r, *size)
             }
         }
+    }
+}
+
+/// The share of the normalised kernel round `x` (radius `r`) that lies on
+/// the surface `[0, size.x] x [0, size.y]`: 1 when the disc is inside,
+/// else integrated on a 32 x 32 grid over the disc (never below 1/32).
+fn kernel_inside(filter: Filter, x: DVec2, r: f64, size: DVec2) -> f64 {
+    if x.x - r >= 0.0 && x.y - r >= 0.0 && x.x + r <= size.x && x.y + r <= size.y {
+        return 1.0;
+    }
+    const N: usize = 32;
+    let cell = 2.0 * r / N as f64;
+    let (mut inside, mut all) = (0.0, 0.0);
+    for j in 0..N {
+        for i in 0..N {
+            let p = x + DVec2::new(-r + (i as f64 + 0.5) * cell, -r + (j as f64 + 0.5) * cell);
+            let w = filter.weight((p - x).length(), r);
+            all += w;
+            if p.x >= 0.0 && p.y >= 0.0 && p.x <= size.x && p.y <= size.y {
+                inside += w;
+            }
+        }
+    }
+    if all > 0.0 {
+        (inside / all).max(1.0 / N as f64)
+    } else {
+        1.0
     }
 }
 
@@ -236,7 +265,7 @@ mod tests {
     fn kdtree_queries_equal_brute_force() {
         let photons = cloud(5000);
         let map = SurfaceMap::build(MapKind::Kdtree, DVec2::new(1.0, 0.5), photons.clone(), 0.01);
-        let SurfaceMap::Kd { photons: tree } = &map else { unreachable!() };
+        let SurfaceMap::Kd { photons: tree, .. } = &map else { unreachable!() };
         let mut r = Rng::new(9, 0, 0);
         for _ in 0..200 {
             let x = DVec2::new(r.f64(), r.f64() * 0.5);
@@ -267,6 +296,13 @@ mod tests {
                     }
                     let e = map.irradiance(DVec2::new(0.5, 0.25), filter, lookup).x;
                     assert!((e - 2.0).abs() < 0.15, "{kind:?} {filter:?} {lookup:?}: {e}");
+                }
+                // At a corner and on an edge, a fixed radius reads the same:
+                // the kernel counts only its part on the surface (a quarter
+                // and a half of it here).
+                for at in [DVec2::new(0.0, 0.0), DVec2::new(0.5, 0.0), DVec2::new(1.0, 0.25)] {
+                    let e = map.irradiance(at, filter, Lookup::Radius(0.05)).x;
+                    assert!((e - 2.0).abs() < 0.15, "{kind:?} {filter:?} at {at}: {e}");
                 }
             }
         }

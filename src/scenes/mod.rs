@@ -64,6 +64,8 @@ pub struct SceneOptions {
     pub no_dispersion: bool,
     /// Haze in the air, per metre; `None` = the scene's own.
     pub haze: Option<f64>,
+    /// Gather factor for bounced and mirrored light; `None` = the scene's.
+    pub indirect_gather: Option<f64>,
     /// A user's OBJ mesh (metres) of `crown` glass in place of the prism.
     pub obj: Option<std::path::PathBuf>,
     pub width: usize,
@@ -83,6 +85,7 @@ impl SceneOptions {
             no_prism: false,
             no_dispersion: false,
             haze: None,
+            indirect_gather: None,
             obj: None,
             width: 640,
             height: 240,
@@ -119,6 +122,9 @@ pub fn build(o: &SceneOptions) -> Result<World> {
     };
     if let Some(h) = o.haze {
         scene.haze = h;
+    }
+    if let Some(g) = o.indirect_gather {
+        scene.indirect_gather = g;
     }
     if let Some(path) = &o.obj {
         // The user's mesh replaces the prism; beam, screen and camera stay

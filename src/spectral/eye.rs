@@ -10,6 +10,7 @@
 //! (report 001's method).
 
 use super::options::{EyeMode, RenderOptions};
+use crate::photon::gather::Lookup;
 use crate::photon::map::SurfaceMap;
 use crate::sampling::Rng;
 use crate::spectrum::sampler::WavelengthSampler;
@@ -194,6 +195,14 @@ impl Eye<'_> {
         let (Some(uv), Some((_, eu, ev))) = (face.uv(x), face.frame) else { return DVec3::ZERO };
         let pos = DVec2::new(uv.x * eu.length(), uv.y * ev.length());
         let mut e = self.maps[map].irradiance(pos, self.opts.filter, self.opts.lookup);
+        if let Some(smooth) = self.maps.get(map + self.scene.maps.len()) {
+            // Bounced and mirrored light, gathered wider (docs/physics.md §18).
+            let lookup = match self.opts.lookup {
+                Lookup::Radius(r) => Lookup::Radius(r * self.scene.indirect_gather),
+                k => k,
+            };
+            e += smooth.irradiance(pos, self.opts.filter, lookup);
+        }
         if self.scene.direct_lighting {
             e += self.direct_light(id, x, map, rng);
         }
@@ -214,9 +223,10 @@ impl Eye<'_> {
 
     /// Reflected flux density (XYZ per m^2) at `x` on matte face `id` from
     /// light that comes straight from each light through air: shadow rays
-    /// to a point light, four stratified samples of an area or spherical
-    /// light, and for a beam whether `x` lies in it, unshadowed
-    /// (docs/physics.md §13).
+    /// to a point light, stratified samples of an area or spherical light
+    /// (four per eye sample at up to 4 samples a pixel, fewer above, so a
+    /// pixel takes about 16 in all), and for a beam whether `x` lies in it,
+    /// unshadowed (docs/physics.md §13).
     fn direct_light(&self, id: usize, x: DVec3, map: usize, rng: &mut Rng) -> DVec3 {
         use std::f64::consts::PI;
         let n = self.scene.faces[id].normal;
@@ -228,6 +238,12 @@ impl Eye<'_> {
             Some(h) => h.t >= dist * (1.0 - 1e-9) || Some(h.face) == target,
         };
         let mut sum = DVec3::ZERO;
+        let per_side: usize = match self.opts.spp {
+            0..=4 => 2,
+            _ => 1,
+        };
+        let grid: Vec<(f64, f64)> = (0..per_side * per_side).map(|k| ((k / per_side) as f64, (k % per_side) as f64)).collect();
+        let samples = grid.len() as f64;
         for (k, light) in self.scene.lights.iter().enumerate() {
             let e = match light.emission {
                 Emission::Point { pos } => {
@@ -246,14 +262,14 @@ impl Eye<'_> {
                     let area = f.area();
                     let radiance = light.power / (PI * area);
                     let mut e = 0.0;
-                    for (i, j) in [(0, 0), (0, 1), (1, 0), (1, 1)] {
-                        let q = c0 + eu * ((i as f64 + rng.f64()) / 2.0) + ev * ((j as f64 + rng.f64()) / 2.0);
+                    for &(i, j) in &grid {
+                        let q = c0 + eu * ((i + rng.f64()) / per_side as f64) + ev * ((j + rng.f64()) / per_side as f64);
                         let d = q - x;
                         let r = d.length();
                         let w = d / r;
                         let (cx, cl) = (n.dot(w), -f.normal.dot(w));
                         if cx > 0.0 && cl > 0.0 && clear(w, r, Some(face)) {
-                            e += radiance * cx * cl / (r * r) * area / 4.0;
+                            e += radiance * cx * cl / (r * r) * area / samples;
                         }
                     }
                     e
@@ -263,7 +279,7 @@ impl Eye<'_> {
                     let area = 4.0 * PI * sp.radius * sp.radius;
                     let radiance = light.power / (PI * area);
                     let mut e = 0.0;
-                    for _ in 0..4 {
+                    for _ in 0..grid.len() {
                         let (a, b) = (rng.f64(), rng.f64());
                         let s = crate::photon::emit::uniform_sphere(a, b);
                         let d = sp.centre + s * sp.radius - x;
@@ -271,7 +287,7 @@ impl Eye<'_> {
                         let w = d / r;
                         let (cx, cl) = (n.dot(w), -s.dot(w));
                         if cx > 0.0 && cl > 0.0 && clear(w, r, Some(self.scene.faces.len() + sphere)) {
-                            e += radiance * cx * cl / (r * r) * area / 4.0;
+                            e += radiance * cx * cl / (r * r) * area / samples;
                         }
                     }
                     e

@@ -139,11 +139,9 @@ pub fn render_world(cfg: &SpectralConfig, scene: &crate::world::World, progress:
     let photon_bytes = match cfg.map {
         MapKind::Buffer => {
             let texel = (cfg.radius.unwrap_or_else(|| default_radius(scene)) / 2.0).max(1e-5);
-            scene
-                .maps
-                .iter()
-                .filter_map(|&f| scene.faces[f].frame)
-                .map(|(_, eu, ev)| ((eu.length() / texel).ceil().clamp(1.0, 4096.0) * (ev.length() / texel).ceil().clamp(1.0, 4096.0)) as u64 * 24)
+            (0..scene.map_slots())
+                .filter_map(|slot| scene.faces[scene.maps[slot % scene.maps.len()]].frame.map(|fr| (fr, texel * scene.slot_scale(slot))))
+                .map(|((_, eu, ev), texel)| ((eu.length() / texel).ceil().clamp(1.0, 4096.0) * (ev.length() / texel).ceil().clamp(1.0, 4096.0)) as u64 * 24)
                 .sum()
         }
         MapKind::Kdtree => cfg.photons.saturating_mul(1 + scene.bounces as u64).saturating_mul(2 * std::mem::size_of::<crate::photon::map::Photon>() as u64),

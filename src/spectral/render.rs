@@ -72,7 +72,12 @@ pub fn render_offset(scene: &World, opts: &RenderOptions, place: Option<PassPlac
         let pass = light_pass_from(scene, opts.photons, opts.seed, index, opts.colours, progress);
         let trace_s = t.elapsed().as_secs_f64();
         let t = Instant::now();
-        let maps = scene.maps.iter().zip(pass.photons).map(|(&f, photons)| SurfaceMap::build(opts.map, size(f), photons, texel)).collect();
+        let maps = pass
+            .photons
+            .into_iter()
+            .enumerate()
+            .map(|(slot, photons)| SurfaceMap::build(opts.map, size(scene.maps[slot % scene.maps.len()]), photons, texel * scene.slot_scale(slot)))
+            .collect();
         (pass.stats, maps, trace_s, t.elapsed().as_secs_f64())
     };
     let map_bytes = maps.iter().map(SurfaceMap::bytes).sum();

@@ -61,8 +61,10 @@ impl FaceBvh {
                     if Some(k) == skip {
                         continue;
                     }
-                    if let Some(t) = faces[k].intersect_before(o, d, best.map_or(f64::INFINITY, |b| b.0)) {
-                        // Ties go to the lower index, as in the linear scan.
+                    // Up to and including the best distance so far: ties (coplanar
+                    // faces, as a prism standing on the floor) go to the lower
+                    // index, as in the linear scan, whichever leaf comes first.
+                    if let Some(t) = faces[k].intersect_before(o, d, best.map_or(f64::INFINITY, |b| b.0.next_up())) {
                         if best.is_none_or(|b| t < b.0 || (t == b.0 && k < b.1)) {
                             best = Some((t, k));
                         }
@@ -186,5 +188,38 @@ mod tests {
             }
         }
         assert!(hits > 5000 && misses > 2000, "{hits} hits, {misses} misses");
+    }
+
+    /// In a room of axis-aligned walls (flat boxes) with a mirror tube and
+    /// a prism, rays from inside it, some leaving a face, meet the same
+    /// face at the same distance through the BVH as by the linear scan.
+    #[test]
+    fn the_bvh_agrees_in_a_room_of_flat_walls() {
+        let mut o = crate::scenes::SceneOptions::new(crate::scenes::SceneKind::CornellMirrorTube);
+        o.width = 8;
+        o.height = 8;
+        let w = crate::scenes::build(&o).unwrap();
+        let faces = &w.faces;
+        let bvh = FaceBvh::build(faces);
+        let mut rng = Rng::new(9, 0, 0);
+        for i in 0..100_000 {
+            let d = crate::photon::emit::uniform_sphere(rng.f64(), rng.f64());
+            let (o, skip) = if i % 2 == 0 {
+                (DVec3::new(1.9 * rng.f64() - 0.95, 1.9 * rng.f64() - 0.95, 1.9 * rng.f64() + 0.05), None)
+            } else {
+                let k = (rng.next_u64() % faces.len() as u64) as usize;
+                let f = &faces[k];
+                (f.verts.iter().sum::<DVec3>() / f.verts.len() as f64, Some(k))
+            };
+            let mut linear: Option<(f64, usize)> = None;
+            for (k, f) in faces.iter().enumerate() {
+                if Some(k) != skip {
+                    if let Some(t) = f.intersect_before(o, d, linear.map_or(f64::INFINITY, |b| b.0)) {
+                        linear = Some((t, k));
+                    }
+                }
+            }
+            assert_eq!(bvh.intersect(faces, o, d, skip), linear, "ray {i} from {o} along {d}");
+        }
     }
 }

@@ -58,6 +58,13 @@ pub struct World {
     /// shows the beams' paths to the camera; 0 is clear air
     /// (`spectral::haze`).
     pub haze: f64,
+    /// Where the scene computes direct light (`direct_lighting`), photons
+    /// that reach a matte surface by a diffuse bounce or mirrors only are
+    /// kept in a second map per surface and gathered over this many times
+    /// the radius, as Jensen's global map is (docs/physics.md §18); light
+    /// that came through glass keeps its own map and the radius, so
+    /// caustics stay sharp. 1: one map for all.
+    pub indirect_gather: f64,
 }
 
 /// Nearest face hit by a ray.
@@ -70,6 +77,27 @@ pub struct FaceHit {
 impl World {
     /// An empty scene with these media (air first), a placeholder camera
     /// of the image's size, and nothing in it yet.
+    /// Whether photons keep separate maps for light through glass and for
+    /// the rest (see `indirect_gather`).
+    pub fn split_maps(&self) -> bool {
+        self.direct_lighting && self.indirect_gather > 1.0
+    }
+
+    /// Photon maps in all: one per matte surface, two with `split_maps`
+    /// (the second set after the first, in the same order).
+    pub fn map_slots(&self) -> usize {
+        self.maps.len() * if self.split_maps() { 2 } else { 1 }
+    }
+
+    /// Texel or gather-size factor of map slot `slot`.
+    pub fn slot_scale(&self, slot: usize) -> f64 {
+        if slot >= self.maps.len() {
+            self.indirect_gather
+        } else {
+            1.0
+        }
+    }
+
     pub fn new(name: &str, media: Vec<Medium>, width: usize, height: usize) -> World {
         World {
             name: name.into(),
@@ -85,6 +113,7 @@ impl World {
             direct_lighting: false,
             accel: None,
             haze: 0.0,
+            indirect_gather: 1.0,
         }
     }
 
