@@ -162,6 +162,7 @@ fn cfl_lines_give_separate_tube_images_where_the_probe_says() {
     let (cfg, s) = figure_p1(None, [320, 120]);
     let mut o = opts(1, cfg.spp);
     o.eye = cfg.eye;
+    o.split = cfg.split;
     let r = render(&s, &o, &hidden());
     // Brightness per column: the largest linear sRGB channel, summed over
     // the legs' middle rows.
@@ -181,9 +182,16 @@ fn cfl_lines_give_separate_tube_images_where_the_probe_says() {
         let peak = |c: f64| (at(c - half)..=at(c + half)).map(|k| profile[k]).fold(0.0, f64::max);
         let dimmer = peak(w[0]).min(peak(w[1]));
         let gap = (at(left) + 1..at(right)).map(|k| profile[k]).fold(f64::INFINITY, f64::min);
-        // Measured: 0 %, 1.8 % and 3.6 % (404.7|435.8, 435.8|546.1 with the
-        // dim Tb 488 image between them, 546.1|587).
-        assert!(gap < 0.05 * dimmer, "between the images at columns {:.1} and {:.1}: {gap:.3} against a peak of {dimmer:.3}", w[1], w[0]);
+        // Measured with the continuum traced by 16 stratified rays a sample
+        // (eye = "lines"): 5.0 %, 2.7 % and 4.4 % (404.7|435.8, 435.8|546.1
+        // with the dim Tb 488 image between them, 546.1|587). Between the
+        // two violet lines the lamp's own continuum (F12's 410-430 nm bands:
+        // 1.0-1.7 units per nm against 58 for the 404.7 line) stands at
+        // about 5 % of the dim 404.7 image, so that pair is allowed 8 %.
+        // (One hero wavelength per sample read 0 % there: the least of a
+        // sparse, noisy estimate over 70 columns.)
+        let limit = if w[0] == x[0] { 0.08 } else { 0.05 };
+        assert!(gap < limit * dimmer, "between the images at columns {:.1} and {:.1}: {gap:.3} against a peak of {dimmer:.3}", w[1], w[0]);
     }
 }
 
