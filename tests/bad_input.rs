@@ -211,7 +211,7 @@ fn a_run_bigger_than_memory_is_refused_before_work() {
         .env("REFRACT_AVAILABLE_MEMORY", (1u64 << 30).to_string())
         .output()
         .unwrap();
-    assert_clean_failure(&o, "--photons 200000000 and --size 64x24 would need about 7.5 GiB of memory; this machine has 1.0 GiB free");
+    assert_clean_failure(&o, "--photons 200000000 and --size 64x24 would need about 6.0 GiB of memory; this machine has 1.0 GiB free");
     assert!(!dir.path().join("m.png").exists());
     // A run that fits goes ahead.
     let o = bin()

@@ -66,8 +66,8 @@ fn the_cornell_laser_lands_where_the_probe_says() {
         for ph in &pass.photons[map] {
             let q = glam::DVec2::new(ph.pos[0] as f64, ph.pos[1] as f64);
             if (q - want).length() < 0.05 {
-                sum += q * ph.xyz[1] as f64;
-                weight += ph.xyz[1] as f64;
+                sum += q * ph.xyz()[1] as f64;
+                weight += ph.xyz()[1] as f64;
             }
         }
         assert!(weight > 0.0, "{nm} nm: nothing landed near {want}");

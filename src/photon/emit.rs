@@ -55,12 +55,13 @@ impl LightStats {
 /// kd-tree), or added straight into the buffer map's texels (`Grids`), so
 /// memory does not grow with the photon count.
 pub trait Deposit {
-    fn deposit(&mut self, map: usize, p: Photon);
+    /// A photon lands at `pos` on map `map` carrying XYZ flux `xyz`.
+    fn deposit(&mut self, map: usize, pos: [f32; 2], xyz: [f32; 3]);
 }
 
 impl Deposit for Vec<Vec<Photon>> {
-    fn deposit(&mut self, map: usize, p: Photon) {
-        self[map].push(p);
+    fn deposit(&mut self, map: usize, pos: [f32; 2], xyz: [f32; 3]) {
+        self[map].push(Photon::new(pos, xyz));
     }
 }
 
@@ -112,12 +113,12 @@ impl Grids {
 }
 
 impl Deposit for &Grids {
-    fn deposit(&mut self, map: usize, p: Photon) {
+    fn deposit(&mut self, map: usize, pos: [f32; 2], xyz: [f32; 3]) {
         use std::sync::atomic::Ordering::Relaxed;
         let g = &self.grids[map];
-        let iu = ((p.pos[0] as f64 / g.size.x * g.nu as f64) as usize).min(g.nu - 1);
-        let iv = ((p.pos[1] as f64 / g.size.y * g.nv as f64) as usize).min(g.nv - 1);
-        for (cell, x) in g.cells[iv * g.nu + iu].iter().zip(p.xyz) {
+        let iu = ((pos[0] as f64 / g.size.x * g.nu as f64) as usize).min(g.nu - 1);
+        let iv = ((pos[1] as f64 / g.size.y * g.nv as f64) as usize).min(g.nv - 1);
+        for (cell, x) in g.cells[iv * g.nu + iu].iter().zip(xyz) {
             cell.fetch_add((x as f64 * self.scale).round() as i64, Relaxed);
         }
     }
@@ -394,7 +395,7 @@ fn trace_photon(
                         None => reflected[map] * power,
                     };
                     let slot = if split && (bounces > 0 || !through_glass) { map + scene.maps.len() } else { map };
-                    maps.deposit(slot, Photon { pos, xyz: [out.x as f32, out.y as f32, out.z as f32] });
+                    maps.deposit(slot, pos, [out.x as f32, out.y as f32, out.z as f32]);
                     stats.stored += 1;
                 }
                 if bounces == 0 {
@@ -495,7 +496,7 @@ mod tests {
             power: 3.0,
         });
         let flux =
-            |w: &World| light_pass(w, 100_000, 2, ColorMap::Cie, &crate::progress::Silent).photons.iter().flatten().map(|p| p.xyz[1] as f64).sum::<f64>();
+            |w: &World| light_pass(w, 100_000, 2, ColorMap::Cie, &crate::progress::Silent).photons.iter().flatten().map(|p| p.xyz()[1] as f64).sum::<f64>();
         let by_power = flux(&two);
         two.photon_shares = Some(vec![1.0, 1.0]);
         let (shared, counts) = (flux(&two), light_pass(&two, 100_000, 2, ColorMap::Cie, &crate::progress::Silent).stats.emitted);
@@ -504,7 +505,7 @@ mod tests {
         for bounces in [0u32, 4] {
             s.bounces = bounces;
             let pass = light_pass(&s, 200_000, 1, ColorMap::Cie, &crate::progress::Silent);
-            let stored: f64 = pass.photons.iter().flatten().map(|p| p.xyz[1] as f64).sum();
+            let stored: f64 = pass.photons.iter().flatten().map(|p| p.xyz()[1] as f64).sum();
             let emitted = WavelengthSampler::new(&Spectrum::Constant(1.0)).mean_cmf().y;
             let want: f64 = (1..=bounces + 1).map(|k| rho.powi(k as i32)).sum();
             assert!((stored / emitted / want - 1.0).abs() < 0.01, "{bounces} bounces: {} vs {want}", stored / emitted);
@@ -529,7 +530,7 @@ mod tests {
         let (a, b) = (light_pass(&split, 200_000, 3, ColorMap::Cie, &progress), light_pass(&one, 200_000, 3, ColorMap::Cie, &progress));
         let n = split.maps.len();
         assert_eq!((a.photons.len(), b.photons.len()), (2 * n, n));
-        let total = |maps: &[Vec<Photon>]| maps.iter().flatten().map(|p| p.xyz[1] as f64).sum::<f64>();
+        let total = |maps: &[Vec<Photon>]| maps.iter().flatten().map(|p| p.xyz()[1] as f64).sum::<f64>();
         assert!((total(&a.photons) / total(&b.photons) - 1.0).abs() < 1e-9);
         for m in 0..n {
             assert_eq!(a.photons[m].len() + a.photons[m + n].len(), b.photons[m].len(), "map {m}");

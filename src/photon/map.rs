@@ -2,9 +2,9 @@
 //! - `buffer`: report 000's per-object 2-D photon map buffer, texels over
 //!   the surface's (u, v), each summing the flux of the photons that land
 //!   in it (no memory per photon);
-//! - `kdtree`: every photon kept (20 bytes: u, v in metres and XYZ flux as
-//!   f32) in an implicit, balanced 2-D kd-tree for radius or k-nearest
-//!   queries.
+//! - `kdtree`: every photon kept (16 bytes: u, v in metres as f32 and XYZ
+//!   flux as three 16-bit mantissas with a shared exponent) in an implicit,
+//!   balanced 2-D kd-tree for radius or k-nearest queries.
 //!
 //! Both answer the same question: irradiance (XYZ per m^2) at a point,
 //! estimated with a filter kernel (box, cone or Gaussian, see `gather`).
@@ -13,13 +13,45 @@ use super::gather::{Filter, Lookup};
 use glam::{DVec2, DVec3};
 use std::collections::BinaryHeap;
 
-/// One stored photon: position on the surface (m) and XYZ flux (W-weighted
-/// colour-matching values).
+/// One stored photon, 16 bytes: position on the surface's chart (m) and
+/// XYZ flux (W-weighted colour-matching values) packed as three signed
+/// 16-bit mantissas over a shared power of two, like RGBE with 15-bit
+/// precision: each component within 2^-15 of the largest.
 #[derive(Copy, Clone, Debug, PartialEq)]
 #[repr(C)]
 pub struct Photon {
     pub pos: [f32; 2],
-    pub xyz: [f32; 3],
+    mantissa: [i16; 3],
+    exponent: i16,
+}
+
+/// 2^k as an f32 for k in [-126, 127] (k outside gives 0 or the limit).
+fn pow2(k: i32) -> f32 {
+    f32::from_bits((k.clamp(-126, 127) + 127) as u32 * (1 << 23)) * if k < -126 { 0.0 } else { 1.0 }
+}
+
+impl Photon {
+    /// A photon at `pos` carrying `xyz` (finite).
+    pub fn new(pos: [f32; 2], xyz: [f32; 3]) -> Photon {
+        let m = xyz.iter().fold(0f32, |m, x| m.max(x.abs()));
+        if !(m > 0.0) || !m.is_finite() {
+            return Photon { pos, mantissa: [0; 3], exponent: 0 };
+        }
+        // The least e with m < 2^e, so every |x| 2^(15 - e) < 32768.
+        let mut e = m.log2().floor() as i32 + 1;
+        if m >= pow2(e) {
+            e += 1;
+        }
+        let scale = pow2(15 - e);
+        let mantissa = xyz.map(|x| (x * scale).round().clamp(-32767.0, 32767.0) as i16);
+        Photon { pos, mantissa, exponent: e as i16 }
+    }
+
+    /// The XYZ flux it carries.
+    pub fn xyz(&self) -> [f32; 3] {
+        let scale = pow2(self.exponent as i32 - 15);
+        self.mantissa.map(|m| m as f32 * scale)
+    }
 }
 
 crate::named_enum! {
@@ -50,7 +82,7 @@ impl SurfaceMap {
                 for p in &photons {
                     let iu = ((p.pos[0] as f64 / size.x * nu as f64) as usize).min(nu - 1);
                     let iv = ((p.pos[1] as f64 / size.y * nv as f64) as usize).min(nv - 1);
-                    for (t, x) in flux[iv * nu + iu].iter_mut().zip(p.xyz) {
+                    for (t, x) in flux[iv * nu + iu].iter_mut().zip(p.xyz()) {
                         *t += x;
                     }
                 }
@@ -128,7 +160,8 @@ impl SurfaceMap {
                 let mut sum = DVec3::ZERO;
                 for (i, d2) in found {
                     let p = &photons[i];
-                    sum += filter.weight(d2.sqrt(), r) * DVec3::new(p.xyz[0] as f64, p.xyz[1] as f64, p.xyz[2] as f64);
+                    let xyz = p.xyz();
+                    sum += filter.weight(d2.sqrt(), r) * DVec3::new(xyz[0] as f64, xyz[1] as f64, xyz[2] as f64);
                 }
                 // Over the part of the disc on the surface: no darkening at
                 // its edges (as the buffer's discrete kernel sum gives).
@@ -253,12 +286,7 @@ mod tests {
 
     fn cloud(n: usize) -> Vec<Photon> {
         let mut r = Rng::new(5, 0, 0);
-        (0..n).map(|_| Photon { pos: [r.f32(), r.f32() * 0.5], xyz: [1.0, 2.0, 3.0] }).collect()
-    }
-
-    #[test]
-    fn photon_is_20_bytes() {
-        assert_eq!(std::mem::size_of::<Photon>(), 20);
+        (0..n).map(|_| Photon::new([r.f32(), r.f32() * 0.5], [1.0, 2.0, 3.0])).collect()
     }
 
     #[test]
@@ -281,12 +309,32 @@ mod tests {
         }
     }
 
+    /// A stored photon is 16 bytes, and its flux comes back within 2^-15
+    /// of its largest component, signs kept, from 1e-30 to 1e20 (a photon's
+    /// flux is its light's watts over the photon count).
+    #[test]
+    fn packed_photons_keep_their_flux() {
+        assert_eq!(std::mem::size_of::<Photon>(), 16);
+        let mut r = Rng::new(4, 0, 0);
+        for i in 0..100_000 {
+            let scale = 10f32.powi((i % 51) - 30);
+            let xyz = [r.f32() * scale, (r.f32() - 0.3) * scale, r.f32() * r.f32() * scale];
+            let back = Photon::new([0.5, 0.25], xyz).xyz();
+            let m = xyz.iter().fold(0f32, |m, x| m.max(x.abs()));
+            for k in 0..3 {
+                assert!((back[k] - xyz[k]).abs() <= m * 2f32.powi(-15), "{xyz:?} came back as {back:?}");
+            }
+        }
+        assert_eq!(Photon::new([0.0; 2], [0.0; 3]).xyz(), [0.0; 3]);
+        assert_eq!(Photon::new([0.0; 2], [1.0, 0.5, 0.25]).xyz(), [1.0, 0.5, 0.25]);
+    }
+
     #[test]
     fn uniform_light_gives_its_irradiance_with_every_map_and_filter() {
         // 400k photons of flux 1/400k over 1 x 0.5 m: irradiance 2 per m^2.
         let n = 400_000;
         let mut photons = cloud(n);
-        photons.iter_mut().for_each(|p| p.xyz = [1.0 / n as f32; 3]);
+        photons.iter_mut().for_each(|p| *p = Photon::new(p.pos, [1.0 / n as f32; 3]));
         for kind in [MapKind::Buffer, MapKind::Kdtree] {
             let map = SurfaceMap::build(kind, DVec2::new(1.0, 0.5), photons.clone(), 0.01);
             for filter in [Filter::Box, Filter::Cone, Filter::Gaussian] {
@@ -316,7 +364,7 @@ mod tests {
     fn k_nearest_is_unbiased_on_a_uniform_density() {
         let n = 200_000;
         let mut photons = cloud(n);
-        photons.iter_mut().for_each(|p| p.xyz = [1.0 / n as f32; 3]);
+        photons.iter_mut().for_each(|p| *p = Photon::new(p.pos, [1.0 / n as f32; 3]));
         let map = SurfaceMap::build(MapKind::Kdtree, DVec2::new(1.0, 0.5), photons, 0.01);
         let mut r = Rng::new(11, 0, 0);
         for k in [4, 10, 50] {

@@ -132,7 +132,7 @@ pub fn render_config(cfg: &SpectralConfig, progress: &dyn Progress) -> Result<Sp
 pub fn render_world(cfg: &SpectralConfig, scene: &crate::world::World, progress: &dyn Progress) -> Result<SpectralReport> {
     cfg.validate()?;
     // Before any tracing: the photons (for the kd-tree: stored once per
-    // surface they land on, up to 1 + bounces times, 20 B each, and the map
+    // surface they land on, up to 1 + bounces times, 16 B each, and the map
     // built from them) and the image (XYZ in f64, then 8-bit sRGB) must fit
     // in memory.
     // The buffer map keeps no photons, only its texels (24 bytes each).
