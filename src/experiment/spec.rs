@@ -139,7 +139,18 @@ impl Experiment {
         let p = FileParser::new(text, file, quick)?;
         let (name, mode) = p.name_and_mode()?;
         let sweep = p.sweep(mode)?;
-        let cases = p.cases(mode, &sweep)?;
+        let mut cases = p.cases(mode, &sweep)?;
+        // Under --quick, a case's own list for an axis [quick] shortens is
+        // cut to its first values, as many as the quick list has.
+        if let Some(Value::Table(q)) = p.quick.get("sweep") {
+            for case in &mut cases {
+                for (k, v) in &mut case.params {
+                    if let (Some(Value::Array(short)), Value::Array(own)) = (q.get(k.as_str()), v) {
+                        own.truncate(short.len().max(1));
+                    }
+                }
+            }
+        }
         let outputs = p.table("outputs")?;
         let images = match outputs.get("images") {
             None => false,
@@ -452,6 +463,17 @@ sweep = { trace = [0] }
         assert_eq!(e.sweep[1].1, vec![Value::Float(1.1), Value::Float(1.3), Value::Float(1.5)]);
         let q = Experiment::parse(GOOD, "t.toml", true).unwrap();
         assert_eq!(q.sweep.iter().find(|s| s.0 == "trace").unwrap().1.len(), 1);
+    }
+
+    #[test]
+    fn quick_also_cuts_a_cases_own_list_of_a_shortened_axis() {
+        let text = format!("{GOOD}[[case]]\nname = \"a\"\n[[case]]\nname = \"deep\"\ntrace = [1, 3, 5]\n");
+        let full = Experiment::parse(&text, "t.toml", false).unwrap();
+        assert_eq!(full.run_count(), 2 * 3 + 3 * 3);
+        let quick = Experiment::parse(&text, "t.toml", true).unwrap();
+        assert_eq!(quick.run_count(), 3 + 3, "the case's own [1, 3, 5] is cut to [1] as [quick] cuts trace to one value");
+        let deep = quick.cases.iter().find(|c| c.name == "deep").unwrap();
+        assert_eq!(quick.axes_for(&deep.params).find(|(k, _)| *k == "trace").unwrap().1, &vec![Value::Integer(1)]);
     }
 
     #[test]
