@@ -81,7 +81,8 @@ impl Haze {
             }
             let r2 = (o + d * t - s.a - s.e * u).length_squared();
             let width = 0.5 * self.pixel_angle * t;
-            let s2 = s.sigma * s.sigma + width * width;
+            // (Never 0: a beam of no width seen from its own start.)
+            let s2 = (s.sigma * s.sigma + width * width).max(1e-18);
             if r2 > 25.0 * s2 {
                 continue;
             }
