@@ -90,7 +90,7 @@ impl Grids {
     pub fn new(scene: &World, texel: f64, max_flux: f64) -> Grids {
         let grids = (0..scene.map_slots())
             .map(|slot| {
-                let f = scene.maps[slot % scene.maps.len()];
+                let f = scene.slot_face(slot);
                 let texel = texel * scene.slot_scale(slot);
                 let (_, eu, ev) = scene.faces[f].frame.expect("matte surfaces are parallelograms");
                 let size = DVec2::new(eu.length(), ev.length());

@@ -140,7 +140,7 @@ pub fn render_world(cfg: &SpectralConfig, scene: &crate::world::World, progress:
         MapKind::Buffer => {
             let texel = (cfg.radius.unwrap_or_else(|| default_radius(scene)) / 2.0).max(1e-5);
             (0..scene.map_slots())
-                .filter_map(|slot| scene.faces[scene.maps[slot % scene.maps.len()]].frame.map(|fr| (fr, texel * scene.slot_scale(slot))))
+                .filter_map(|slot| scene.faces[scene.slot_face(slot)].frame.map(|fr| (fr, texel * scene.slot_scale(slot))))
                 .map(|((_, eu, ev), texel)| ((eu.length() / texel).ceil().clamp(1.0, 4096.0) * (ev.length() / texel).ceil().clamp(1.0, 4096.0)) as u64 * 24)
                 .sum()
         }

@@ -76,7 +76,7 @@ pub fn render_offset(scene: &World, opts: &RenderOptions, place: Option<PassPlac
             .photons
             .into_iter()
             .enumerate()
-            .map(|(slot, photons)| SurfaceMap::build(opts.map, size(scene.maps[slot % scene.maps.len()]), photons, texel * scene.slot_scale(slot)))
+            .map(|(slot, photons)| SurfaceMap::build(opts.map, size(scene.slot_face(slot)), photons, texel * scene.slot_scale(slot)))
             .collect();
         (pass.stats, maps, trace_s, t.elapsed().as_secs_f64())
     };

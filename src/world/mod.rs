@@ -89,6 +89,11 @@ impl World {
         self.maps.len() * if self.split_maps() { 2 } else { 1 }
     }
 
+    /// The matte face map slot `slot` belongs to.
+    pub fn slot_face(&self, slot: usize) -> usize {
+        self.maps[slot % self.maps.len()]
+    }
+
     /// Texel or gather-size factor of map slot `slot`.
     pub fn slot_scale(&self, slot: usize) -> f64 {
         if slot >= self.maps.len() {
