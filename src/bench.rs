@@ -258,6 +258,20 @@ fn prism_error_vs_time(scene: &crate::world::World, radius: f64, quick: bool, ou
             series.push((name, runs));
         }
     }
+    // Light tracing onto the film: no kernel, so no floor from blur.
+    {
+        let name = "film (light tracing)".to_string();
+        let mut runs = Vec::new();
+        let film_counts: Vec<u64> = if quick { counts.clone() } else { counts.iter().copied().chain([12_800_000, 25_600_000]).collect() };
+        for &c in &film_counts {
+            let r = render(scene, &prism_opts(c, MapKind::Film, Filter::Box, radius), &crate::progress::Silent);
+            let time = r.trace_s + r.build_s + r.render_s;
+            let err = relative_error(&r.image, &reference);
+            row(&mut csv, &name, c, time, err)?;
+            runs.push((time, err));
+        }
+        series.push((name, runs));
+    }
     // Progressive: the running mean after each pass, recorded at powers of
     // two and every 64 passes.
     // As `refract prism --passes` runs it: the first radius one pixel's

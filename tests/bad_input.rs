@@ -171,7 +171,7 @@ fn bare_command_and_typos_help_the_user() {
     let err = stderr(&o);
     assert!(err.contains("unexpected argument '--photon'") && err.contains("--photons") && err.contains("try '--help'"), "{err}");
     let o = run(&["prism", "--map", "octree"], "", dir.path());
-    assert!(stderr(&o).contains("[possible values: buffer, kdtree]"), "{}", stderr(&o));
+    assert!(stderr(&o).contains("[possible values: buffer, kdtree, film]"), "{}", stderr(&o));
 }
 
 /// Inputs are read only from regular files and up to a size cap, and a

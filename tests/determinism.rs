@@ -50,15 +50,16 @@ fn timing_csv_gets_one_flushed_row_per_run() {
     assert!(!dir.path().join("y.png").exists(), "checked before rendering: no image");
 }
 
-/// The prism mode too, for both photon maps: the buffer map sums photons
+/// The prism mode too, for every photon map: the buffer map sums photons
 /// straight into its texels as they land (fixed-point, so the order they
-/// arrive in does not matter) and the kd-tree keeps them in chunk order.
+/// arrive in does not matter), the film into its pixels the same way, and
+/// the kd-tree keeps them in chunk order.
 /// A Cornell box (bounces, several lights) and the anchor scene.
 #[test]
 fn prism_renders_are_the_same_on_any_thread_count() {
     let dir = tempfile::tempdir().unwrap();
     for scene in ["cornell-pointlight", "single-prism"] {
-        for map in ["buffer", "kdtree"] {
+        for map in ["buffer", "kdtree", "film"] {
             let mut images = Vec::new();
             for threads in ["1", "2", "5"] {
                 let out = dir.path().join(format!("{scene}-{map}-{threads}.pfm"));

@@ -159,8 +159,23 @@ pub fn light_pass_from(scene: &World, total: u64, seed: u64, pass: u64, colours:
 /// photon is kept, so memory does not grow with `total`. Otherwise as
 /// `light_pass_from`.
 pub fn light_pass_into(scene: &World, total: u64, seed: u64, pass: u64, colours: ColorMap, grids: &Grids, progress: &dyn Progress) -> LightStats {
+    light_pass_with(scene, total, seed, pass, colours, progress, || grids)
+}
+
+/// The light pass into any sink (`sink()` makes one per chunk of photons
+/// traced in parallel; it must not depend on their order): for sinks that
+/// share their sums, such as the buffer map's texels and the film.
+pub fn light_pass_with<D: Deposit + Send>(
+    scene: &World,
+    total: u64,
+    seed: u64,
+    pass: u64,
+    colours: ColorMap,
+    progress: &dyn Progress,
+    sink: impl Fn() -> D + Sync,
+) -> LightStats {
     let mut stats = LightStats::default();
-    for (_, s) in trace_lights(scene, total, seed, pass, colours, progress, || grids) {
+    for (_, s) in trace_lights(scene, total, seed, pass, colours, progress, sink) {
         stats.add(&s);
     }
     stats
@@ -394,6 +409,8 @@ fn trace_photon(
                         Some(l) => xyz * albedo.at(l),
                         None => reflected[map] * power,
                     };
+                    // Caustics (through glass, no matte bounce) keep the
+                    // first map of a split.
                     let slot = if split && (bounces > 0 || !through_glass) { map + scene.maps.len() } else { map };
                     maps.deposit(slot, pos, [out.x as f32, out.y as f32, out.z as f32]);
                     stats.stored += 1;

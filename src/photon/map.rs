@@ -60,6 +60,10 @@ crate::named_enum! {
         Buffer = "buffer",
         /// A kd-tree of individual photons.
         Kdtree = "kdtree",
+        /// Light tracing: photons added straight to the pixel the camera
+        /// sees them in (no kernel), the buffer map for what it sees
+        /// through glass or in mirrors (`spectral::splat`).
+        Film = "film",
     }
 }
 
@@ -75,7 +79,8 @@ impl SurfaceMap {
     /// buffer's texels are `texel` metres wide (at most 4096 per side).
     pub fn build(kind: MapKind, size: DVec2, photons: Vec<Photon>, texel: f64) -> SurfaceMap {
         match kind {
-            MapKind::Buffer => {
+            // The film's own map, for what is seen through glass, is a buffer.
+            MapKind::Buffer | MapKind::Film => {
                 let nu = ((size.x / texel).ceil() as usize).clamp(1, 4096);
                 let nv = ((size.y / texel).ceil() as usize).clamp(1, 4096);
                 let mut flux = vec![[0f32; 3]; nu * nv];

@@ -210,6 +210,10 @@ fn add_bench(scene: &mut World, o: &SceneOptions) -> Result<()> {
         power: 45.0,
     });
     scene.photon_shares = Some(vec![0.5, 0.5]);
+    // Light straight from either beam by shadow rays (docs/physics.md
+    // §13): the table and the white slit image come out without photon
+    // noise; the photons carry what crosses the prism.
+    scene.direct_lighting = true;
     // Above and behind the prism, looking down the bench: the prism near
     // (from above, its three glass parts and cemented faces show), the
     // screen beyond; the view is framed on both, with a margin.

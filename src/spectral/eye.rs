@@ -40,6 +40,10 @@ pub(super) struct Eye<'a> {
     /// Per light, per photon map: the XYZ one watt of the light's spectrum
     /// leaves that map's surface with (for direct lighting).
     pub direct: Vec<Vec<DVec3>>,
+    /// Whether the caustics seen directly are on the film already
+    /// (`--map film`): a camera ray's first matte hit then reads only the
+    /// second map and direct light.
+    pub film: bool,
 }
 
 /// One eye path: where it is, where it goes, its wavelength once it has
@@ -194,7 +198,10 @@ impl Eye<'_> {
         let face = &self.scene.faces[id];
         let (Some(uv), Some((_, eu, ev))) = (face.uv(x), face.frame) else { return DVec3::ZERO };
         let pos = DVec2::new(uv.x * eu.length(), uv.y * ev.length());
-        let mut e = self.maps[map].irradiance(pos, self.opts.filter, self.opts.lookup);
+        // Under --map film the caustics the camera sees directly are on
+        // the film already.
+        let on_film = self.film && p.depth == 0;
+        let mut e = if on_film { DVec3::ZERO } else { self.maps[map].irradiance(pos, self.opts.filter, self.opts.lookup) };
         if let Some(smooth) = self.maps.get(map + self.scene.maps.len()) {
             // Bounced and mirrored light, gathered wider (docs/physics.md §18).
             let lookup = match self.opts.lookup {

@@ -13,6 +13,7 @@ pub mod haze;
 pub mod options;
 pub mod progressive;
 pub mod render;
+pub mod splat;
 pub mod strip;
 
 use crate::photon::gather::{Filter, Lookup};
@@ -94,7 +95,7 @@ impl SpectralConfig {
             bail!("--passes needs a gather radius: progressive photon mapping shrinks it, and --k has none");
         }
         match self.k {
-            Some(_) if self.map == MapKind::Buffer => bail!("--k needs --map kdtree: the buffer holds texels, not photons"),
+            Some(_) if self.map != MapKind::Kdtree => bail!("--k needs --map kdtree: the buffer and the film hold texels and pixels, not photons"),
             Some(_) if self.radius.is_some() => bail!("--k and --radius exclude each other"),
             _ => Ok(()),
         }
@@ -137,16 +138,19 @@ pub fn render_world(cfg: &SpectralConfig, scene: &crate::world::World, progress:
     // in memory.
     // The buffer map keeps no photons, only its texels (24 bytes each).
     let photon_bytes = match cfg.map {
-        MapKind::Buffer => {
+        MapKind::Buffer | MapKind::Film => {
             let texel = (cfg.radius.unwrap_or_else(|| default_radius(scene)) / 2.0).max(1e-5);
-            (0..scene.map_slots())
+            // The film keeps caustics in maps of its own (2 per surface).
+            let slots = if cfg.map == MapKind::Film { 2 * scene.maps.len() } else { scene.map_slots() };
+            (0..slots)
                 .filter_map(|slot| scene.faces[scene.slot_face(slot)].frame.map(|fr| (fr, texel * scene.slot_scale(slot))))
                 .map(|((_, eu, ev), texel)| ((eu.length() / texel).ceil().clamp(1.0, 4096.0) * (ev.length() / texel).ceil().clamp(1.0, 4096.0)) as u64 * 24)
                 .sum()
         }
         MapKind::Kdtree => cfg.photons.saturating_mul(1 + scene.bounces as u64).saturating_mul(2 * std::mem::size_of::<crate::photon::map::Photon>() as u64),
     };
-    let image_bytes = (cfg.scene.width as u64 * cfg.scene.height as u64).saturating_mul(24 + 3);
+    // XYZ in f64 and 8-bit sRGB, and the film's sums (24 bytes more) under --map film.
+    let image_bytes = (cfg.scene.width as u64 * cfg.scene.height as u64).saturating_mul(24 + 3 + if cfg.map == MapKind::Film { 24 } else { 0 });
     crate::data::check_memory(
         photon_bytes.saturating_add(image_bytes),
         &format!("--photons {} and --size {}x{}", cfg.photons, cfg.scene.width, cfg.scene.height),

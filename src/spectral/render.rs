@@ -6,7 +6,8 @@ use super::eye::Eye;
 use super::film::XyzImage;
 use super::haze::Haze;
 use super::options::{EyeMode, RenderOptions};
-use crate::photon::emit::{light_pass_from, light_pass_into, Grids, LightStats};
+use super::splat::{FilmAndBuffer, Splat};
+use crate::photon::emit::{light_pass_from, light_pass_into, light_pass_with, Grids, LightStats};
 use crate::photon::map::MapKind;
 use crate::photon::map::SurfaceMap;
 use crate::progress::Progress;
@@ -48,6 +49,14 @@ pub struct PassPlace {
 
 /// `render`, as pass `place` of a progressive render.
 pub fn render_offset(scene: &World, opts: &RenderOptions, place: Option<PassPlace>, progress: &dyn Progress) -> SpectralRender {
+    // The film takes the caustics, kept apart from the rest.
+    let film_world;
+    let scene = if opts.map == MapKind::Film && !scene.sharp_apart {
+        film_world = World { sharp_apart: true, ..scene.clone() };
+        &film_world
+    } else {
+        scene
+    };
     let offset = place.map(|p| p.offset);
     let eye_seed = place.map_or(opts.seed, |p| p.eye_seed);
     let t = Instant::now();
@@ -58,12 +67,21 @@ pub fn render_offset(scene: &World, opts: &RenderOptions, place: Option<PassPlac
         DVec2::new(eu.length(), ev.length())
     };
     // The buffer map is filled as photons land (no photon is kept); the
-    // kd-tree keeps every photon and is built from them.
+    // kd-tree keeps every photon and is built from them. Under --map film,
+    // photons the camera sees land on the film too.
+    let mut film: Option<Vec<DVec3>> = None;
     let (stats, maps, trace_s, build_s): (LightStats, Vec<SurfaceMap>, f64, f64) = if scene.maps.is_empty() {
         (LightStats::default(), Vec::new(), 0.0, 0.0)
-    } else if opts.map == MapKind::Buffer {
+    } else if opts.map != MapKind::Kdtree {
         let grids = Grids::new(scene, texel, max_flux(scene, opts.colours));
-        let stats = light_pass_into(scene, opts.photons, opts.seed, index, opts.colours, &grids, progress);
+        let stats = if opts.map == MapKind::Film {
+            let splat = Splat::new(scene, max_flux(scene, opts.colours));
+            let stats = light_pass_with(scene, opts.photons, opts.seed, index, opts.colours, progress, || FilmAndBuffer { grids: &grids, splat: &splat });
+            film = Some(splat.image());
+            stats
+        } else {
+            light_pass_into(scene, opts.photons, opts.seed, index, opts.colours, &grids, progress)
+        };
         let trace_s = t.elapsed().as_secs_f64();
         let t = Instant::now();
         let maps = grids.grids.iter().enumerate().map(|(m, g)| SurfaceMap::Buffer { size: g.size, nu: g.nu, nv: g.nv, flux: grids.flux(m) }).collect();
@@ -103,7 +121,7 @@ pub fn render_offset(scene: &World, opts: &RenderOptions, place: Option<PassPlac
     let components = if opts.eye == EyeMode::Lines { mixture(&eye_spectrum, sampler.integral()) } else { Vec::new() };
     // What one watt of each light leaves each matte surface with.
     let direct = lights.iter().map(|(_, sampler, _)| scene.reflected_per_map(sampler, opts.colours)).collect();
-    let eye = Eye { scene, maps, opts, sampler, components, lights, direct };
+    let eye = Eye { scene, maps, opts, sampler, components, lights, direct, film: film.is_some() };
     let haze = Haze::new(scene, opts.colours);
 
     let cam = &scene.camera;
@@ -135,7 +153,7 @@ pub fn render_offset(scene: &World, opts: &RenderOptions, place: Option<PassPlac
                         sum += haze.radiance(cam.pos, d, t);
                     }
                 }
-                *px = sum / opts.spp as f64;
+                *px = sum / opts.spp as f64 + film.as_ref().map_or(DVec3::ZERO, |f| f[y * cam.width + x]);
             }
             progress.advance("eye", 1);
             rays

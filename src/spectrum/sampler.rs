@@ -12,7 +12,13 @@ pub struct WavelengthSampler {
     cdf: Vec<f64>,
     /// Integral of the spectrum over 360-830 nm (nm times its unit).
     integral: f64,
+    /// Guide table (Chen and Asau's cutpoints): entry k is the first edge
+    /// whose cdf exceeds k / GUIDE, so a search starts next to its answer.
+    guide: Vec<u32>,
 }
+
+/// Entries of the guide table.
+const GUIDE: usize = 1024;
 
 impl WavelengthSampler {
     pub fn new(s: &Spectrum) -> Self {
@@ -41,14 +47,18 @@ impl WavelengthSampler {
         } else {
             cdf.iter_mut().for_each(|c| *c /= acc);
         }
-        WavelengthSampler { cdf, integral: acc }
+        let guide = (0..=GUIDE).map(|k| cdf.partition_point(|&c| c <= k as f64 / GUIDE as f64) as u32).collect();
+        WavelengthSampler { cdf, integral: acc, guide }
     }
 
     /// A wavelength for `u` in [0, 1) and its pdf (per nm).
     pub fn sample(&self, u: f64) -> (f64, f64) {
         let u = u.clamp(0.0, 1.0 - 1e-12);
-        // First edge with cdf > u; the bin before it holds u.
-        let i = self.cdf.partition_point(|&c| c <= u).clamp(1, self.cdf.len() - 1) - 1;
+        // First edge with cdf > u (between the guide's cutpoints around u);
+        // the bin before it holds u.
+        let k = ((u * GUIDE as f64) as usize).min(GUIDE - 1);
+        let (lo, hi) = (self.guide[k] as usize, (self.guide[k + 1] as usize + 1).min(self.cdf.len()));
+        let i = (lo + self.cdf[lo..hi].partition_point(|&c| c <= u)).clamp(1, self.cdf.len() - 1) - 1;
         let (c0, c1) = (self.cdf[i], self.cdf[i + 1]);
         let frac = if c1 > c0 { (u - c0) / (c1 - c0) } else { 0.5 };
         let nm = LAMBDA_MIN + (i as f64 + frac) * BIN_NM;
@@ -109,5 +119,29 @@ mod tests {
         // Uniform for a dark spectrum.
         let dark = WavelengthSampler::new(&Spectrum::Constant(0.0));
         assert!((dark.sample(0.5).0 - 595.0).abs() < 0.2);
+    }
+
+    /// The guide table only shortens the search: every u finds the bin a
+    /// search of the whole cdf finds, for a smooth spectrum, narrow lines
+    /// (most bins empty) and a dark one, at u = 0, cutpoints and near 1.
+    #[test]
+    fn the_guide_table_finds_the_bin_the_whole_search_finds() {
+        let spectra =
+            [Spectrum::Constant(1.0), Spectrum::Lines { lines: vec![(404.7, 1.0), (546.1, 5.0), (611.0, 0.01)], fwhm: 0.05 }, Spectrum::Constant(0.0)];
+        for s in spectra {
+            let w = WavelengthSampler::new(&s);
+            let whole = |u: f64| {
+                let i = w.cdf.partition_point(|&c| c <= u).clamp(1, w.cdf.len() - 1) - 1;
+                LAMBDA_MIN + i as f64 * BIN_NM
+            };
+            let mut rng = crate::sampling::Rng::new(1, 2, 3);
+            let us = (0..20_000).map(|_| rng.f64()).chain((0..=GUIDE).map(|k| k as f64 / GUIDE as f64)).chain([0.0, 1.0 - 1e-12, 0.999_999]);
+            for u in us {
+                let u = u.clamp(0.0, 1.0 - 1e-12);
+                let (nm, _) = w.sample(u);
+                let bin = whole(u);
+                assert!(nm >= bin - 1e-9 && nm <= bin + BIN_NM + 1e-9, "u {u}: {nm} outside the bin at {bin}");
+            }
+        }
     }
 }

@@ -65,6 +65,11 @@ pub struct World {
     /// that came through glass keeps its own map and the radius, so
     /// caustics stay sharp. 1: one map for all.
     pub indirect_gather: f64,
+    /// Whether caustics (photons that came through glass with no matte
+    /// bounce) are kept in maps of their own whatever the scene computes
+    /// directly: set for `--map film`, which puts them on the film
+    /// (`spectral::splat`).
+    pub sharp_apart: bool,
 }
 
 /// Nearest face hit by a ray.
@@ -80,7 +85,7 @@ impl World {
     /// Whether photons keep separate maps for light through glass and for
     /// the rest (see `indirect_gather`).
     pub fn split_maps(&self) -> bool {
-        self.direct_lighting && self.indirect_gather > 1.0
+        self.sharp_apart || (self.direct_lighting && self.indirect_gather > 1.0)
     }
 
     /// Photon maps in all: one per matte surface, two with `split_maps`
@@ -119,6 +124,7 @@ impl World {
             accel: None,
             haze: 0.0,
             indirect_gather: 1.0,
+            sharp_apart: false,
         }
     }
 
