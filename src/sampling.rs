@@ -38,6 +38,12 @@ impl Rng {
 
 /// Radical inverse of `i` in a prime `base` (a Halton dimension).
 pub fn radical_inverse(mut i: u64, base: u64) -> f64 {
+    if base == 2 {
+        // The bits reversed: the same value, exactly for i below 2^53
+        // (every partial sum of the loop below is a dyadic fraction it
+        // represents exactly), in one instruction instead of one per bit.
+        return i.reverse_bits() as f64 * (1.0 / 18_446_744_073_709_551_616.0);
+    }
     let inv = 1.0 / base as f64;
     let (mut f, mut r) = (1.0, 0.0);
     while i > 0 {
@@ -115,6 +121,28 @@ mod tests {
         // Each point alone is uniform over the pixel.
         let mean: f64 = (0..20_000).map(|k| multi_jittered(4, &mut Rng::new(1, k, 0))[2][0]).sum::<f64>() / 20_000.0;
         assert!((mean - 0.5).abs() < 0.01, "{mean}");
+    }
+
+    /// Base 2 by reversing the bits gives the digit loop's value to the
+    /// last bit (photon positions, and so the figures, do not move), and
+    /// the digits come out as they should.
+    #[test]
+    fn the_base_2_radical_inverse_is_the_digit_loops_to_the_bit() {
+        let by_digits = |mut i: u64| {
+            let (mut f, mut r) = (1.0, 0.0);
+            while i > 0 {
+                f *= 0.5;
+                r += f * (i % 2) as f64;
+                i /= 2;
+            }
+            r
+        };
+        let mut rng = Rng::new(5, 6, 7);
+        for i in (0..200_000).chain((0..10_000).map(|_| rng.next_u64() >> 11)) {
+            assert_eq!(radical_inverse(i, 2).to_bits(), by_digits(i).to_bits(), "{i}");
+        }
+        assert_eq!((radical_inverse(1, 2), radical_inverse(6, 2)), (0.5, 0.375));
+        assert!((radical_inverse(5, 3) - 7.0 / 9.0).abs() < 1e-15, "5 = 12 in base 3 reads 0.21");
     }
 
     #[test]
