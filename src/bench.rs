@@ -31,6 +31,27 @@ fn cast(accel: &Accel, scene: &InteriorScene, rows: &[usize]) -> (u64, f64) {
     (hits, t.elapsed().as_secs_f64())
 }
 
+/// `n` incoherent rays: origins uniform in `bounds`, directions uniform
+/// over the sphere (a fixed seed: the same rays on every run).
+fn incoherent_rays(bounds: crate::geometry::Aabb, n: usize) -> Vec<Ray> {
+    let mut rng = crate::sampling::Rng::new(11, 0, 0);
+    (0..n)
+        .map(|_| {
+            let u = glam::Vec3::new(rng.f32(), rng.f32(), rng.f32());
+            let o = bounds.min + (bounds.max - bounds.min) * u;
+            let d = crate::photon::emit::uniform_sphere(rng.f64(), rng.f64()).as_vec3();
+            Ray::new(o, d)
+        })
+        .collect()
+}
+
+/// Casts `rays`; returns (hits, seconds).
+fn cast_rays(accel: &Accel, rays: &[Ray]) -> (u64, f64) {
+    let t = Instant::now();
+    let hits = rays.iter().filter(|r| accel.intersect(r).is_some()).count() as u64;
+    (hits, t.elapsed().as_secs_f64())
+}
+
 /// Best of `n` timings of `f` (the least disturbed run).
 fn best_of<T>(n: usize, mut f: impl FnMut() -> (T, f64)) -> (T, f64) {
     let mut best = f();
@@ -52,19 +73,23 @@ pub fn interior(quick: bool) -> Result<String> {
     let repeats = if quick { 1 } else { 3 };
     let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
     let mut out = String::new();
+    let n_incoherent = if quick { 20_000 } else { 400_000 };
     writeln!(out, "interior bench: icospheres at {w}x{h}, primary rays (nearest hit only), 1 thread unless noted")?;
     writeln!(
         out,
-        "{:>9} {:>9} {:>7} {:>14} {:>14} {:>14} {:>10} {:>13} {:>13}",
+        "{:>9} {:>9} {:>7} {:>14} {:>9} {:>14} {:>14} {:>10} {:>13} {:>13} {:>13} {:>9}",
         "triangles",
         "build_ms",
         "nodes",
         "bvh_Mray/s",
+        "hits",
         "bvh_rows_Mr/s",
         "linear_Mr/s",
         "ratio",
         "render_1t_Mr/s",
-        format!("render_{threads}t_Mr/s")
+        format!("render_{threads}t_Mr/s"),
+        "incoh_Mr/s",
+        "hits"
     )?;
     for subdiv in [3, 5, 6] {
         let mesh = icosphere(subdiv);
@@ -100,6 +125,16 @@ pub fn interior(quick: bool) -> Result<String> {
             (full, rows_b, rows_l, r1)
         });
         ensure!(row_hits == lin_hits, "bvh and linear disagree on {tris} triangles: {row_hits} vs {lin_hits} hits");
+        // Incoherent rays: origins inside the mesh's box, directions
+        // uniform; the BVH checked against the scan on the first 1000.
+        let bounds = match &bvh {
+            Accel::Bvh(b) => b.bounds(),
+            Accel::Linear(_) => unreachable!("built as a BVH"),
+        };
+        let rays = incoherent_rays(bounds, n_incoherent);
+        let ((incoh_hits, t_incoh), (check_b, check_l)) =
+            one.install(|| (best_of(repeats, || cast_rays(&bvh, &rays)), (cast_rays(&bvh, &rays[..1000]).0, cast_rays(&lin, &rays[..1000]).0)));
+        ensure!(check_b == check_l, "bvh and linear disagree on incoherent rays: {check_b} vs {check_l} hits");
         ensure!(full_hits > 0, "the benchmark sphere is not in view");
         let tracer = Tracer::new(&scene, &bvh, &cfg);
         let t_render_n = best_of(repeats, || {
@@ -111,19 +146,23 @@ pub fn interior(quick: bool) -> Result<String> {
         let mrays = |n: f64, s: f64| n / s / 1e6;
         writeln!(
             out,
-            "{:>9} {:>9.1} {:>7} {:>14.2} {:>14.2} {:>14.4} {:>9.0}x {:>13.2} {:>13.2}",
+            "{:>9} {:>9.1} {:>7} {:>14.2} {:>9} {:>14.2} {:>14.4} {:>9.0}x {:>13.2} {:>13.2} {:>13.2} {:>9}",
             tris,
             build * 1e3,
             nodes,
             mrays((w * h) as f64, t_full),
+            full_hits,
             mrays(row_rays, t_rows),
             mrays(row_rays, t_lin),
             t_lin / t_rows,
             mrays(t_render1.0 as f64, t_render1.1),
             mrays(t_render_n.0 as f64, t_render_n.1),
+            mrays(rays.len() as f64, t_incoh),
+            incoh_hits,
         )?;
     }
     writeln!(out, "ratio = linear time / bvh time on the same {} rows; columns in millions of rays per second", if quick { "few" } else { "sampled" })?;
+    writeln!(out, "incoh: {n_incoherent} rays from uniform points in the mesh's box in uniform directions (fixed seed), 1 thread; hits: rays that hit")?;
     Ok(out)
 }
 
