@@ -1,10 +1,11 @@
 //! Light tracing onto the film (`--map film`, docs/physics.md §19): where
 //! a caustic photon (through glass, no matte bounce) lands on a matte
 //! surface the camera sees directly, it adds its reflected flux over pi,
-//! divided by the area the pixel it falls in covers on that surface,
-//! straight to that pixel. No kernel blurs the caustic: a pixel's value is
-//! the mean radiance over its own footprint, which is what the exact image
-//! computes, so the only error left is the photons' noise. The rest of the
+//! times the image area per surface area there, over the pixel's image
+//! area, straight to the pixel it falls in. No kernel blurs the caustic: a
+//! pixel's value is the mean radiance over the pixel, which is what the
+//! exact image and the eye pass's samples compute, so the only error left
+//! is the photons' noise. The rest of the
 //! light, and surfaces seen through glass or in a mirror, still read the
 //! buffer maps, filled by the same photons.
 
@@ -32,9 +33,8 @@ impl<'a> Splat<'a> {
         // The smallest footprint any pixel can have: a corner pixel's
         // solid angle times the squared distance to the nearest matte
         // surface (a lower bound: its bounding box's distance).
-        let side = 2.0 * pixels.half.y / cam.height as f64;
         let cos_corner = 1.0 / (1.0 + pixels.half.length_squared()).sqrt();
-        let solid = side * side * cos_corner.powi(3);
+        let solid = pixels.area * cos_corner.powi(3);
         let nearest = scene
             .maps
             .iter()
@@ -65,14 +65,19 @@ impl<'a> Splat<'a> {
         if !(f.normal.dot(to_eye) > 0.0 && dist > 0.0) {
             return;
         }
-        let Some((ix, iy)) = self.pixels.project(p) else { return };
-        let Some(area) = self.pixels.footprint(f.normal, c, ix, iy) else { return };
+        let Some((ix, iy, z)) = self.pixels.project(p) else { return };
         // Seen directly: nothing between the point and the camera.
         let w = to_eye / dist;
         if self.scene.intersect(p, w, Some(face)).is_some_and(|h| h.t < dist * (1.0 - 1e-9)) {
             return;
         }
-        let k = self.scale / (std::f64::consts::PI * area);
+        // The pixel's mean radiance over its area on the image plane one
+        // metre ahead: the photon's radiance flux over pi, times the image
+        // area per surface area at p, |h| / z^3 (h the camera's distance
+        // to the surface's plane, z the point's depth), over the pixel's
+        // image area (docs/physics.md §19).
+        let h = f.normal.dot(self.pixels.pos - c).abs();
+        let k = self.scale * h / (std::f64::consts::PI * z * z * z * self.pixels.area);
         for (cell, x) in self.cells[iy * self.pixels.width + ix].iter().zip(xyz) {
             cell.fetch_add((x as f64 * k).round() as i64, Relaxed);
         }
@@ -94,6 +99,8 @@ pub struct Pixels {
     /// Half the image's extent on the plane one metre ahead (tan of half
     /// the field of view, across and up).
     half: glam::DVec2,
+    /// A pixel's area on that plane.
+    area: f64,
     width: usize,
     height: usize,
 }
@@ -108,6 +115,7 @@ impl Pixels {
             right: cam.forward.cross(cam.up),
             up: cam.up,
             half: glam::DVec2::new(t * aspect, t),
+            area: (2.0 * t * aspect / cam.width as f64) * (2.0 * t / cam.height as f64),
             width: cam.width,
             height: cam.height,
         }
@@ -115,14 +123,16 @@ impl Pixels {
 
     /// The direction (not unit) through image position (x, y) in pixels
     /// from the top left, as `Camera::ray`.
+    #[cfg(test)]
     fn dir(&self, x: f64, y: f64) -> DVec3 {
         let sx = (2.0 * x / self.width as f64 - 1.0) * self.half.x;
         let sy = (1.0 - 2.0 * y / self.height as f64) * self.half.y;
         self.forward + sx * self.right + sy * self.up
     }
 
-    /// The pixel a point in front of the camera falls in.
-    fn project(&self, p: DVec3) -> Option<(usize, usize)> {
+    /// The pixel a point in front of the camera falls in, and the point's
+    /// depth along the camera's axis.
+    fn project(&self, p: DVec3) -> Option<(usize, usize, f64)> {
         let r = p - self.pos;
         let z = r.dot(self.forward);
         if !(z > 0.0) {
@@ -130,14 +140,15 @@ impl Pixels {
         }
         let x = (r.dot(self.right) / (z * self.half.x) + 1.0) * self.width as f64 / 2.0;
         let y = (1.0 - r.dot(self.up) / (z * self.half.y)) * self.height as f64 / 2.0;
-        (x >= 0.0 && y >= 0.0 && x < self.width as f64 && y < self.height as f64).then_some((x as usize, y as usize))
+        (x >= 0.0 && y >= 0.0 && x < self.width as f64 && y < self.height as f64).then_some((x as usize, y as usize, z))
     }
 
     /// The area pixel (ix, iy) covers on the plane through `c` with unit
     /// normal `n`: its four corner rays meet the plane in a quadrilateral
     /// (a perspective view of a plane maps lines to lines). `None` where
-    /// a corner ray misses the plane.
-    pub fn footprint(&self, n: DVec3, c: DVec3, ix: usize, iy: usize) -> Option<f64> {
+    /// a corner ray misses the plane. (A check of the film's Jacobian.)
+    #[cfg(test)]
+    fn footprint(&self, n: DVec3, c: DVec3, ix: usize, iy: usize) -> Option<f64> {
         let h = (c - self.pos).dot(n);
         let corner = |x: usize, y: usize| {
             let d = self.dir(x as f64, y as f64);
@@ -196,13 +207,24 @@ mod tests {
         let pixels = Pixels::new(cam);
         let got = pixels.footprint(n, c, ix, iy).unwrap();
         assert!((got / expected - 1.0).abs() < 1e-3, "footprint {got:e} against {expected:e}");
+        // The film's Jacobian: a pixel's image area over |h| / z^3 at its
+        // centre is the area it covers on the screen, at the centre and at
+        // the corners of the frame (where the screen is seen obliquely).
+        let h = (c - cam.pos).dot(n).abs();
+        for (ix, iy) in [(ix, iy), (0, 0), (cam.width - 1, 0), (3, cam.height - 2)] {
+            let d = cam.ray(ix as f64 + 0.5, iy as f64 + 0.5);
+            let p = cam.pos + d * ((c - cam.pos).dot(n) / d.dot(n));
+            let (_, _, z) = pixels.project(p).unwrap();
+            let quad = pixels.footprint(n, c, ix, iy).unwrap();
+            assert!((pixels.area * z.powi(3) / h / quad - 1.0).abs() < 1e-4, "pixel ({ix}, {iy})");
+        }
         // A point on the screen falls in the pixel the camera's own
         // projection names, and the pixel's rays are the camera's.
         for (x, y) in [(0.3, 0.7), (17.5, 200.2), (319.9, 0.1), (160.0, 120.0)] {
             let d = cam.ray(x, y);
             let p = cam.pos + d * ((c - cam.pos).dot(n) / d.dot(n));
             let q = cam.project(p).unwrap();
-            assert_eq!(pixels.project(p), Some((q.x as usize, q.y as usize)), "({x}, {y})");
+            assert_eq!(pixels.project(p).map(|(x, y, _)| (x, y)), Some((q.x as usize, q.y as usize)), "({x}, {y})");
             assert!((pixels.dir(x, y).normalize() - d).length() < 1e-12);
         }
         assert_eq!(pixels.project(cam.pos - cam.forward), None, "behind the camera");
