@@ -136,21 +136,27 @@ pub fn render_world(cfg: &SpectralConfig, scene: &crate::world::World, progress:
     // surface they land on, up to 1 + bounces times, 16 B each, and the map
     // built from them) and the image (XYZ in f64, then 8-bit sRGB) must fit
     // in memory.
-    // The buffer map keeps no photons, only its texels (24 bytes each).
+    // The buffer map keeps no photons, only its texels (24 bytes each, in
+    // up to one copy per thread: `sum_copies`).
+    let threads = if cfg.threads == 0 { std::thread::available_parallelism().map_or(1, |n| n.get()) } else { cfg.threads };
     let photon_bytes = match cfg.map {
         MapKind::Buffer | MapKind::Film => {
             let texel = (cfg.radius.unwrap_or_else(|| default_radius(scene)) / 2.0).max(1e-5);
             // The film keeps caustics in maps of its own (2 per surface).
             let slots = if cfg.map == MapKind::Film { 2 * scene.maps.len() } else { scene.map_slots() };
-            (0..slots)
+            let texels: u64 = (0..slots)
                 .filter_map(|slot| scene.faces[scene.slot_face(slot)].frame.map(|fr| (fr, texel * scene.slot_scale(slot))))
-                .map(|((_, eu, ev), texel)| ((eu.length() / texel).ceil().clamp(1.0, 4096.0) * (ev.length() / texel).ceil().clamp(1.0, 4096.0)) as u64 * 24)
-                .sum()
+                .map(|((_, eu, ev), texel)| ((eu.length() / texel).ceil().clamp(1.0, 4096.0) * (ev.length() / texel).ceil().clamp(1.0, 4096.0)) as u64)
+                .sum();
+            texels * 24 * crate::photon::emit::sum_copies(texels, threads) as u64
         }
         MapKind::Kdtree => cfg.photons.saturating_mul(1 + scene.bounces as u64).saturating_mul(2 * std::mem::size_of::<crate::photon::map::Photon>() as u64),
     };
-    // XYZ in f64 and 8-bit sRGB, and the film's sums (24 bytes more) under --map film.
-    let image_bytes = (cfg.scene.width as u64 * cfg.scene.height as u64).saturating_mul(24 + 3 + if cfg.map == MapKind::Film { 24 } else { 0 });
+    // XYZ in f64 and 8-bit sRGB, and the film's sums (24 bytes a copy)
+    // under --map film.
+    let pixels = cfg.scene.width as u64 * cfg.scene.height as u64;
+    let film_copies = if cfg.map == MapKind::Film { crate::photon::emit::sum_copies(pixels, threads) as u64 } else { 0 };
+    let image_bytes = pixels.saturating_mul(24 + 3 + 24 * film_copies);
     crate::data::check_memory(
         photon_bytes.saturating_add(image_bytes),
         &format!("--photons {} and --size {}x{}", cfg.photons, cfg.scene.width, cfg.scene.height),

@@ -22,6 +22,8 @@ pub struct Splat<'a> {
     cells: Vec<[AtomicI64; 3]>,
     /// Units per XYZ radiance.
     scale: f64,
+    /// Copies of the film's sums (`photon::emit::sum_copies`).
+    copies: usize,
 }
 
 impl<'a> Splat<'a> {
@@ -50,7 +52,9 @@ impl<'a> Splat<'a> {
         let most = max_flux / (std::f64::consts::PI * solid * nearest * nearest);
         // 2^61 units for the most a pixel can receive: no sum overflows.
         let scale = if most > 0.0 && most.is_finite() { (1u64 << 61) as f64 / most } else { 1.0 };
-        Splat { scene, pixels, cells: (0..cam.width * cam.height).map(|_| Default::default()).collect(), scale }
+        let n = cam.width * cam.height;
+        let copies = crate::photon::emit::sum_copies(n as u64, rayon::current_num_threads());
+        Splat { scene, pixels, cells: (0..copies * n).map(|_| Default::default()).collect(), scale, copies }
     }
 
     /// A photon carrying reflected XYZ flux `xyz` lands at `pos` (metres on
@@ -78,14 +82,21 @@ impl<'a> Splat<'a> {
         // image area (docs/physics.md §19).
         let h = f.normal.dot(self.pixels.pos - c).abs();
         let k = self.scale * h / (std::f64::consts::PI * z * z * z * self.pixels.area);
-        for (cell, x) in self.cells[iy * self.pixels.width + ix].iter().zip(xyz) {
+        let copy = crate::photon::emit::copy_index(self.copies) * self.pixels.width * self.pixels.height;
+        for (cell, x) in self.cells[copy + iy * self.pixels.width + ix].iter().zip(xyz) {
             cell.fetch_add((x as f64 * k).round() as i64, Relaxed);
         }
     }
 
-    /// XYZ radiance per pixel, row by row.
+    /// XYZ radiance per pixel, row by row (its copies summed).
     pub fn image(&self) -> Vec<DVec3> {
-        self.cells.iter().map(|c| DVec3::new(c[0].load(Relaxed) as f64, c[1].load(Relaxed) as f64, c[2].load(Relaxed) as f64) / self.scale).collect()
+        let n = self.pixels.width * self.pixels.height;
+        (0..n)
+            .map(|i| {
+                let sum = |k: usize| (0..self.copies).map(|c| self.cells[c * n + i][k].load(Relaxed)).sum::<i64>() as f64;
+                DVec3::new(sum(0), sum(1), sum(2)) / self.scale
+            })
+            .collect()
     }
 }
 
