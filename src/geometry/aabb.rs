@@ -4,7 +4,7 @@ use glam::Vec3;
 
 /// pbrt-v4's gamma(3) = 3u / (1 - 3u), u the unit roundoff: the bound on the
 /// relative error of three chained float operations.
-const GAMMA3: f32 = 3.0 * (f32::EPSILON * 0.5) / (1.0 - 3.0 * (f32::EPSILON * 0.5));
+pub(crate) const GAMMA3: f32 = 3.0 * (f32::EPSILON * 0.5) / (1.0 - 3.0 * (f32::EPSILON * 0.5));
 
 #[derive(Copy, Clone, Debug, PartialEq)]
 pub struct Aabb {

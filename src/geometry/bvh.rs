@@ -5,6 +5,7 @@
 //! lanes, no AVX-512 needed), and the nearer children are visited first.
 //! Triangles are stored in leaf order next to their mesh ids.
 
+use super::aabb::GAMMA3;
 use super::{Aabb, Hit, Ray, Triangle};
 use glam::Vec3;
 
@@ -34,10 +35,6 @@ struct Wide {
 
 /// The child index of an unused slot.
 const EMPTY: u32 = u32::MAX;
-
-/// Robustness factor on the far slab distance (as `Aabb::hit`): a box is
-/// never missed by rounding (Ize 2013; pbrt-v4 §6.8).
-const GAMMA3: f32 = 3.0 * (f32::EPSILON * 0.5) / (1.0 - 3.0 * (f32::EPSILON * 0.5));
 
 pub struct Bvh {
     nodes: Vec<Wide>,

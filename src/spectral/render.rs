@@ -51,8 +51,8 @@ pub struct PassPlace {
 pub fn render_offset(scene: &World, opts: &RenderOptions, place: Option<PassPlace>, progress: &dyn Progress) -> SpectralRender {
     // The film takes the caustics, kept apart from the rest.
     let film_world;
-    let scene = if opts.map == MapKind::Film && !scene.sharp_apart {
-        film_world = World { sharp_apart: true, ..scene.clone() };
+    let scene = if opts.map == MapKind::Film && !scene.caustics_apart {
+        film_world = World { caustics_apart: true, ..scene.clone() };
         &film_world
     } else {
         scene
@@ -73,9 +73,10 @@ pub fn render_offset(scene: &World, opts: &RenderOptions, place: Option<PassPlac
     let (stats, maps, trace_s, build_s): (LightStats, Vec<SurfaceMap>, f64, f64) = if scene.maps.is_empty() {
         (LightStats::default(), Vec::new(), 0.0, 0.0)
     } else if opts.map != MapKind::Kdtree {
-        let grids = Grids::new(scene, texel, max_flux(scene, opts.colours));
+        let most = max_flux(scene, opts.colours);
+        let grids = Grids::new(scene, texel, most);
         let stats = if opts.map == MapKind::Film {
-            let splat = Splat::new(scene, max_flux(scene, opts.colours));
+            let splat = Splat::new(scene, most);
             let stats = light_pass_with(scene, opts.photons, opts.seed, index, opts.colours, progress, || FilmAndBuffer { grids: &grids, splat: &splat });
             film = Some(splat.image());
             stats

@@ -185,7 +185,7 @@ impl Deposit for FilmAndBuffer<'_, '_> {
         let mut grids = self.grids;
         grids.deposit(slot, pos, xyz);
         // The first map of each surface holds the caustics
-        // (`World::sharp_apart`); the rest is gathered as usual.
+        // (`World::caustics_apart`); the rest is gathered as usual.
         if slot < self.splat.scene.maps.len() {
             self.splat.add(self.splat.scene.slot_face(slot), pos, xyz);
         }

@@ -69,7 +69,7 @@ pub struct World {
     /// bounce) are kept in maps of their own whatever the scene computes
     /// directly: set for `--map film`, which puts them on the film
     /// (`spectral::splat`).
-    pub sharp_apart: bool,
+    pub caustics_apart: bool,
 }
 
 /// Nearest face hit by a ray.
@@ -85,7 +85,7 @@ impl World {
     /// Whether photons keep separate maps for light through glass and for
     /// the rest (see `indirect_gather`).
     pub fn split_maps(&self) -> bool {
-        self.sharp_apart || (self.direct_lighting && self.indirect_gather > 1.0)
+        self.caustics_apart || (self.direct_lighting && self.indirect_gather > 1.0)
     }
 
     /// Photon maps in all: one per matte surface, two with `split_maps`
@@ -124,7 +124,7 @@ impl World {
             accel: None,
             haze: 0.0,
             indirect_gather: 1.0,
-            sharp_apart: false,
+            caustics_apart: false,
         }
     }
 
