@@ -236,7 +236,7 @@ pub fn prism(quick: bool, out_dir: &std::path::Path) -> Result<String> {
 
 /// The bench's render settings: one eye sample, a fixed seed.
 fn prism_opts(photons: u64, map: MapKind, filter: Filter, r: f64) -> RenderOptions {
-    RenderOptions { photons, map, filter, lookup: Lookup::Radius(r), spp: 1, seed: 1, eye: EyeMode::Hero, split: 8, colours: ColorMap::Cie }
+    RenderOptions { photons, map, filter, lookup: Lookup::Radius(r), spp: 1, seed: 1, eye: EyeMode::Hero, split: 8, colours: ColorMap::Cie, film_kernel: None }
 }
 
 /// The light pass alone on one thread: photons traced and stored per second.
@@ -297,19 +297,21 @@ fn prism_error_vs_time(scene: &crate::world::World, radius: f64, quick: bool, ou
             series.push((name, runs));
         }
     }
-    // Light tracing onto the film: no kernel, so no floor from blur.
-    {
-        let name = "film (light tracing)".to_string();
+    // Light tracing onto the film: bare, no kernel and so no floor from
+    // blur; and with the kernel its two halves choose (the default).
+    for (name, kernel) in [("film, no kernel", Some(0.0)), ("film, chosen kernel", None)] {
         let mut runs = Vec::new();
-        let film_counts: Vec<u64> = if quick { counts.clone() } else { counts.iter().copied().chain([12_800_000, 25_600_000]).collect() };
+        let film_counts: Vec<u64> =
+            if quick { counts.clone() } else { [6_250, 12_500].into_iter().chain(counts.iter().copied()).chain([12_800_000, 25_600_000]).collect() };
         for &c in &film_counts {
-            let r = render(scene, &prism_opts(c, MapKind::Film, Filter::Box, radius), &crate::progress::Silent);
+            let o = RenderOptions { film_kernel: kernel, ..prism_opts(c, MapKind::Film, Filter::Box, radius) };
+            let r = render(scene, &o, &crate::progress::Silent);
             let time = r.trace_s + r.build_s + r.render_s;
             let err = relative_error(&r.image, &reference);
-            row(&mut csv, &name, c, time, err)?;
+            row(&mut csv, name, c, time, err)?;
             runs.push((time, err));
         }
-        series.push((name, runs));
+        series.push((name.to_string(), runs));
     }
     // Progressive: the running mean after each pass, recorded at powers of
     // two and every 64 passes.

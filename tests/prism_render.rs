@@ -34,6 +34,7 @@ fn opts(photons: u64, spp: u32) -> RenderOptions {
         eye: EyeMode::Hero,
         split: 8,
         colours: refract::spectrum::colormap::ColorMap::Cie,
+        film_kernel: None,
     }
 }
 

@@ -151,6 +151,7 @@ fn wall_through_plate(albedo: [f64; 3], light: &str, plate: bool) -> DVec3 {
         eye: EyeMode::Hero,
         split: 8,
         colours: ColorMap::Cie,
+        film_kernel: None,
     };
     let r = refract::spectral::render::render(&w, &o, &refract::progress::Silent);
     r.image.xyz.iter().sum::<DVec3>() / r.image.xyz.len() as f64
@@ -238,6 +239,7 @@ fn same_light_both_ways(kind: SceneKind) {
         eye: EyeMode::Hero,
         split: 8,
         colours: ColorMap::Cie,
+        film_kernel: None,
     };
     let render = |w: &World| refract::spectral::render::render(w, &opts, &refract::progress::Silent).image;
     let (a, b) = (render(&with), render(&without));

@@ -601,6 +601,10 @@ fn run_prism(args: PrismArgs) -> Result<()> {
         report.render.render_s,
         report.exposure
     );
+    if let Some(r) = report.render.film_kernel {
+        let how = if cfg.film_kernel.is_some() || cfg.passes > 1 { "as asked" } else { "chosen from the film's two halves" };
+        eprintln!("film kernel: {r} px ({how})");
+    }
     Ok(())
 }
 

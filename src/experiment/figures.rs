@@ -505,6 +505,7 @@ fn colour_compare(png: &Path, quick: bool) -> Result<String> {
             eye: cfg.eye,
             split: 8,
             colours: *map,
+            film_kernel: cfg.film_kernel,
         };
         let img = crate::spectral::render::render(&scene, &opts, &crate::progress::Silent).image;
         let tile = img.to_srgb8(img.auto_exposure(), crate::spectrum::cie::GamutMap::Desaturate);

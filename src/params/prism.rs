@@ -289,6 +289,17 @@ pub static PARAMS: &[Param<SpectralConfig>] = &[
         set: |c, v| c.k = Some(v.count() as usize),
     },
     Param {
+        key: "film_kernel",
+        aliases: &[],
+        section: LIGHT,
+        help: "Under --map film: the caustics' kernel on the film, a tent of this radius (0: none, the unbiased film); under --passes, 0",
+        unit: "pixels",
+        kind: Kind::Real { lo: End::Closed(0.0), hi: End::Closed(16.0) },
+        auto: "chosen from the film's two halves of the photons (hold-out; docs/physics.md §20)",
+        get: |c| c.film_kernel.map(Value::Real),
+        set: |c, v| c.film_kernel = Some(v.real()),
+    },
+    Param {
         key: "spp",
         aliases: &[],
         section: EYE,

@@ -57,6 +57,8 @@ impl LightStats {
 pub trait Deposit {
     /// A photon lands at `pos` on map `map` carrying XYZ flux `xyz`.
     fn deposit(&mut self, map: usize, pos: [f32; 2], xyz: [f32; 3]);
+    /// Photon `index` of its light's sequence starts (before its deposits).
+    fn photon(&mut self, _index: u64) {}
 }
 
 impl Deposit for Vec<Vec<Photon>> {
@@ -270,6 +272,7 @@ fn trace_lights<D: Deposit + Send>(
                     };
                     let (o, d) = emit(scene, emission, a, b, &mut rng);
                     let photon = Emitted { power: per_photon, ..source };
+                    maps.photon(i);
                     trace_photon(scene, o, d, &photon, colours, u[2], &mut rng, &mut maps, &mut stats);
                 }
                 progress.advance("light", b - a);

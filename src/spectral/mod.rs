@@ -6,6 +6,7 @@
 //! this module turns a run's configuration (a scene to build, the passes'
 //! settings, the display transform) into an image.
 
+pub mod bandwidth;
 pub mod exact;
 pub mod eye;
 pub mod film;
@@ -46,6 +47,9 @@ pub struct SpectralConfig {
     pub radius: Option<f64>,
     /// k nearest photons instead of a fixed radius (kd-tree only).
     pub k: Option<usize>,
+    /// Under --map film, the kernel's radius in pixels; `None` = chosen
+    /// from the film (`bandwidth`).
+    pub film_kernel: Option<f64>,
     pub spp: u32,
     pub seed: u64,
     pub threads: usize,
@@ -75,6 +79,7 @@ impl SpectralConfig {
             filter: Filter::Cone,
             radius: None,
             k: None,
+            film_kernel: None,
             spp: 4,
             seed: 0,
             threads: 0,
@@ -152,11 +157,11 @@ pub fn render_world(cfg: &SpectralConfig, scene: &crate::world::World, progress:
         }
         MapKind::Kdtree => cfg.photons.saturating_mul(1 + scene.bounces as u64).saturating_mul(2 * std::mem::size_of::<crate::photon::map::Photon>() as u64),
     };
-    // XYZ in f64 and 8-bit sRGB, and the film's sums (24 bytes a copy)
-    // under --map film.
+    // XYZ in f64 and 8-bit sRGB, and under --map film the film's two
+    // halves' sums (48 bytes a pixel, a copy).
     let pixels = cfg.scene.width as u64 * cfg.scene.height as u64;
-    let film_copies = if cfg.map == MapKind::Film { crate::photon::emit::sum_copies(pixels, threads) as u64 } else { 0 };
-    let image_bytes = pixels.saturating_mul(24 + 3 + 24 * film_copies);
+    let film_copies = if cfg.map == MapKind::Film { crate::photon::emit::sum_copies(2 * pixels, threads) as u64 } else { 0 };
+    let image_bytes = pixels.saturating_mul(24 + 3 + 48 * film_copies);
     crate::data::check_memory(
         photon_bytes.saturating_add(image_bytes),
         &format!("--photons {} and --size {}x{}", cfg.photons, cfg.scene.width, cfg.scene.height),
@@ -179,13 +184,23 @@ pub fn render_world(cfg: &SpectralConfig, scene: &crate::world::World, progress:
         eye: cfg.eye,
         split: cfg.split,
         colours: cfg.colours,
+        film_kernel: cfg.film_kernel,
     };
     let pool = rayon::ThreadPoolBuilder::new().num_threads(cfg.threads).build()?;
     let render = if cfg.exact {
         let o = exact::ExactOptions { wavelengths: cfg.exact_wavelengths, subsamples: cfg.exact_subsamples, colours: cfg.colours };
         let t = std::time::Instant::now();
         let image = pool.install(|| exact::render(scene, &o))?;
-        SpectralRender { image, stats: Default::default(), trace_s: 0.0, build_s: 0.0, render_s: t.elapsed().as_secs_f64(), map_bytes: 0, eye_rays: 0 }
+        SpectralRender {
+            image,
+            stats: Default::default(),
+            trace_s: 0.0,
+            build_s: 0.0,
+            render_s: t.elapsed().as_secs_f64(),
+            map_bytes: 0,
+            film_kernel: None,
+            eye_rays: 0,
+        }
     } else {
         pool.install(|| match cfg.passes {
             0 | 1 => render::render(scene, &opts, progress),

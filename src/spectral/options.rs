@@ -31,4 +31,8 @@ pub struct RenderOptions {
     pub split: u32,
     /// How a wavelength becomes colour: CIE, or one of the reports' maps.
     pub colours: ColorMap,
+    /// Under `--map film`: the kernel over the film's caustics, a tent
+    /// this many pixels in radius (0: none); `None` chooses it from the
+    /// film's two halves (`spectral::bandwidth`).
+    pub film_kernel: Option<f64>,
 }

@@ -67,7 +67,13 @@ pub fn render(scene: &World, opts: &RenderOptions, passes: usize, progress: &dyn
         let r = r0.map_or(0.0, |r0| radius(r0, i, ALPHA));
         // One photon sequence for all passes (its next batch each pass), a
         // new eye-pass seed each pass.
-        let o = RenderOptions { lookup: if r0.is_some() { Lookup::Radius(r) } else { opts.lookup }, ..opts.clone() };
+        // A film kernel chosen per pass would stay in the mean: passes keep
+        // the film as it is unless a kernel is asked for.
+        let o = RenderOptions {
+            lookup: if r0.is_some() { Lookup::Radius(r) } else { opts.lookup },
+            film_kernel: Some(opts.film_kernel.unwrap_or(0.0)),
+            ..opts.clone()
+        };
         let offset = DVec2::new(rotate(radical_inverse(i as u64, 2), shift[0]), rotate(radical_inverse(i as u64, 3), shift[1]));
         let pass = render_offset(scene, &o, Some(PassPlace { offset, eye_seed: opts.seed.wrapping_add(i as u64), index: i as u64 }), progress);
         for (s, x) in sum.iter_mut().zip(&pass.image.xyz) {

@@ -28,6 +28,8 @@ pub struct SpectralRender {
     pub render_s: f64,
     /// Bytes the photon maps hold.
     pub map_bytes: usize,
+    /// Under --map film, the film kernel's radius in pixels (0: none).
+    pub film_kernel: Option<f64>,
     pub eye_rays: u64,
 }
 
@@ -70,6 +72,8 @@ pub fn render_offset(scene: &World, opts: &RenderOptions, place: Option<PassPlac
     // kd-tree keeps every photon and is built from them. Under --map film,
     // photons the camera sees land on the film too.
     let mut film: Option<Vec<DVec3>> = None;
+    let mut film_kernel = None;
+    let mut halves = None;
     let (stats, maps, trace_s, build_s): (LightStats, Vec<SurfaceMap>, f64, f64) = if scene.maps.is_empty() {
         (LightStats::default(), Vec::new(), 0.0, 0.0)
     } else if opts.map != MapKind::Kdtree {
@@ -77,14 +81,20 @@ pub fn render_offset(scene: &World, opts: &RenderOptions, place: Option<PassPlac
         let grids = Grids::new(scene, texel, most);
         let stats = if opts.map == MapKind::Film {
             let splat = Splat::new(scene, most);
-            let stats = light_pass_with(scene, opts.photons, opts.seed, index, opts.colours, progress, || FilmAndBuffer { grids: &grids, splat: &splat });
-            film = Some(splat.image());
+            let stats =
+                light_pass_with(scene, opts.photons, opts.seed, index, opts.colours, progress, || FilmAndBuffer { grids: &grids, splat: &splat, half: 0 });
+            halves = Some(splat.halves());
             stats
         } else {
             light_pass_into(scene, opts.photons, opts.seed, index, opts.colours, &grids, progress)
         };
         let trace_s = t.elapsed().as_secs_f64();
         let t = Instant::now();
+        if let Some(halves) = halves {
+            let g = super::bandwidth::Grid { width: scene.camera.width, height: scene.camera.height };
+            let (img, r) = super::bandwidth::film_image(&halves, g, opts.film_kernel);
+            (film, film_kernel) = (Some(img), Some(r));
+        }
         let maps = grids.grids.iter().enumerate().map(|(m, g)| SurfaceMap::Buffer { size: g.size, nu: g.nu, nv: g.nv, flux: grids.flux(m) }).collect();
         (stats, maps, trace_s, t.elapsed().as_secs_f64())
     } else {
@@ -170,7 +180,7 @@ pub fn render_offset(scene: &World, opts: &RenderOptions, place: Option<PassPlac
         .sum();
     progress.finish("eye");
     let render_s = t.elapsed().as_secs_f64();
-    SpectralRender { image: XyzImage { width: cam.width, height: cam.height, xyz }, stats, trace_s, build_s, render_s, map_bytes, eye_rays: rays }
+    SpectralRender { image: XyzImage { width: cam.width, height: cam.height, xyz }, stats, trace_s, build_s, render_s, map_bytes, film_kernel, eye_rays: rays }
 }
 
 /// The most XYZ flux the matte surfaces can receive in all: every light's

@@ -15,7 +15,10 @@ use glam::DVec3;
 use std::sync::atomic::{AtomicI64, Ordering::Relaxed};
 
 /// The film's pixels as fixed-point XYZ sums (atomic adds: the same
-/// bytes whatever order the photons arrive in).
+/// bytes whatever order the photons arrive in), in two halves: photons in
+/// alternate blocks of 256 of each light's sequence, two independent
+/// estimates of the same image from which its kernel is chosen
+/// (`spectral::bandwidth`).
 pub struct Splat<'a> {
     scene: &'a World,
     pixels: Pixels,
@@ -52,15 +55,15 @@ impl<'a> Splat<'a> {
         let most = max_flux / (std::f64::consts::PI * solid * nearest * nearest);
         // 2^61 units for the most a pixel can receive: no sum overflows.
         let scale = if most > 0.0 && most.is_finite() { (1u64 << 61) as f64 / most } else { 1.0 };
-        let n = cam.width * cam.height;
+        let n = 2 * cam.width * cam.height;
         let copies = crate::photon::emit::sum_copies(n as u64, rayon::current_num_threads());
         Splat { scene, pixels, cells: (0..copies * n).map(|_| Default::default()).collect(), scale, copies }
     }
 
-    /// A photon carrying reflected XYZ flux `xyz` lands at `pos` (metres on
-    /// the chart) on matte face `face`: added to the pixel it is seen in,
-    /// if the camera sees it directly.
-    pub fn add(&self, face: usize, pos: [f32; 2], xyz: [f32; 3]) {
+    /// A photon of half `half` carrying reflected XYZ flux `xyz` lands at
+    /// `pos` (metres on the chart) on matte face `face`: added to the pixel
+    /// it is seen in, if the camera sees it directly.
+    pub fn add(&self, half: usize, face: usize, pos: [f32; 2], xyz: [f32; 3]) {
         let f = &self.scene.faces[face];
         let Some((c, eu, ev)) = f.frame else { return };
         let p = c + eu * (pos[0] as f64 / eu.length()) + ev * (pos[1] as f64 / ev.length());
@@ -82,21 +85,26 @@ impl<'a> Splat<'a> {
         // image area (docs/physics.md §19).
         let h = f.normal.dot(self.pixels.pos - c).abs();
         let k = self.scale * h / (std::f64::consts::PI * z * z * z * self.pixels.area);
-        let copy = crate::photon::emit::copy_index(self.copies) * self.pixels.width * self.pixels.height;
-        for (cell, x) in self.cells[copy + iy * self.pixels.width + ix].iter().zip(xyz) {
+        let n = self.pixels.width * self.pixels.height;
+        let at = (2 * crate::photon::emit::copy_index(self.copies) + half) * n + iy * self.pixels.width + ix;
+        for (cell, x) in self.cells[at].iter().zip(xyz) {
             cell.fetch_add((x as f64 * k).round() as i64, Relaxed);
         }
     }
 
-    /// XYZ radiance per pixel, row by row (its copies summed).
-    pub fn image(&self) -> Vec<DVec3> {
+    /// Each half's share of the XYZ radiance per pixel, row by row (its
+    /// copies summed): their sum is the film's image.
+    pub fn halves(&self) -> [Vec<DVec3>; 2] {
         let n = self.pixels.width * self.pixels.height;
-        (0..n)
-            .map(|i| {
-                let sum = |k: usize| (0..self.copies).map(|c| self.cells[c * n + i][k].load(Relaxed)).sum::<i64>() as f64;
-                DVec3::new(sum(0), sum(1), sum(2)) / self.scale
-            })
-            .collect()
+        let half = |h: usize| {
+            (0..n)
+                .map(|i| {
+                    let sum = |k: usize| (0..self.copies).map(|c| self.cells[(2 * c + h) * n + i][k].load(Relaxed)).sum::<i64>() as f64;
+                    DVec3::new(sum(0), sum(1), sum(2)) / self.scale
+                })
+                .collect()
+        };
+        [half(0), half(1)]
     }
 }
 
@@ -178,6 +186,8 @@ impl Pixels {
 pub struct FilmAndBuffer<'a, 'b> {
     pub grids: &'b Grids,
     pub splat: &'b Splat<'a>,
+    /// The half of the film the current photon adds to.
+    pub half: usize,
 }
 
 impl Deposit for FilmAndBuffer<'_, '_> {
@@ -187,8 +197,15 @@ impl Deposit for FilmAndBuffer<'_, '_> {
         // The first map of each surface holds the caustics
         // (`World::caustics_apart`); the rest is gathered as usual.
         if slot < self.splat.scene.maps.len() {
-            self.splat.add(self.splat.scene.slot_face(slot), pos, xyz);
+            self.splat.add(self.half, self.splat.scene.slot_face(slot), pos, xyz);
         }
+    }
+
+    fn photon(&mut self, index: u64) {
+        // Blocks of 256: each half is spread over the beam and the
+        // spectrum as evenly as the whole (the wavelength's base-2 digits
+        // below the ninth do not tell the halves apart).
+        self.half = (index >> 8) as usize & 1;
     }
 }
 
