@@ -206,13 +206,21 @@ fn inputs_are_bounded() {
 fn a_run_bigger_than_memory_is_refused_before_work() {
     let dir = tempfile::tempdir().unwrap();
     let o = bin()
-        .args(["prism", "--photons", "200000000", "--size", "64,24", "--out", "m.png"])
+        .args(["prism", "--map", "kdtree", "--photons", "200000000", "--size", "64,24", "--out", "m.png"])
         .current_dir(dir.path())
         .env("REFRACT_AVAILABLE_MEMORY", (1u64 << 30).to_string())
         .output()
         .unwrap();
     assert_clean_failure(&o, "--photons 200000000 and --size 64x24 would need about 6.0 GiB of memory; this machine has 1.0 GiB free");
     assert!(!dir.path().join("m.png").exists());
+    // The film (the default map) keeps no photons, but two sums per pixel.
+    let o = bin()
+        .args(["prism", "--size", "8000,8000", "--photons", "1000", "--out", "m.png"])
+        .current_dir(dir.path())
+        .env("REFRACT_AVAILABLE_MEMORY", (1u64 << 30).to_string())
+        .output()
+        .unwrap();
+    assert!(!o.status.success() && stderr(&o).contains("--size 8000x8000 would need about"), "{}", stderr(&o));
     // A run that fits goes ahead.
     let o = bin()
         .args(["prism", "--photons", "2000", "--size", "64,24", "--out", "m.png"])

@@ -277,7 +277,7 @@ mod cli {
     #[test]
     fn a_black_render_says_why_and_what_to_do() {
         let dir = tempfile::tempdir().unwrap();
-        let o = run(&["prism", "--photons", "5000", "--size", "160,60", "--radius", "0.000001", "--out", "r.png"], "", dir.path());
+        let o = run(&["prism", "--map", "kdtree", "--photons", "5000", "--size", "160,60", "--radius", "0.000001", "--out", "r.png"], "", dir.path());
         assert!(o.status.success(), "{}", stderr(&o));
         let err = stderr(&o);
         assert!(err.contains("warning: --radius 1.000e-6 m is below the photons' spacing"), "{err}");
@@ -293,7 +293,7 @@ mod cli {
         for (args, out) in [
             (vec!["--map", "buffer", "--filter", "gaussian"], "a.png"),
             (vec!["--scene", "amici-lamp", "--spp", "2"], "b.ppm"),
-            (vec!["--no-prism", "--k", "50"], "c.pfm"),
+            (vec!["--no-prism", "--map", "kdtree", "--k", "50"], "c.pfm"),
         ] {
             let mut full = vec!["prism", "--photons", "20000", "--size", "64,24", "--out", out, "--timing-csv", "t.csv"];
             full.extend(args);

@@ -497,7 +497,7 @@ fn colour_compare(png: &Path, quick: bool) -> Result<String> {
         let r = crate::spectral::default_radius(&scene);
         let opts = crate::spectral::options::RenderOptions {
             photons,
-            map: cfg.map,
+            map: crate::photon::map::MapKind::Kdtree,
             filter: cfg.filter,
             lookup: crate::photon::gather::Lookup::Radius(r),
             spp: 2,

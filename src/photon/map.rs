@@ -61,8 +61,9 @@ crate::named_enum! {
         /// A kd-tree of individual photons.
         Kdtree = "kdtree",
         /// Light tracing: photons added straight to the pixel the camera
-        /// sees them in (no kernel), the buffer map for what it sees
-        /// through glass or in mirrors (`spectral::splat`).
+        /// sees them in (smoothed by a kernel the film chooses, none with
+        /// many photons), the buffer map for what it sees through glass or
+        /// in mirrors (`spectral::splat`, `spectral::bandwidth`).
         Film = "film",
     }
 }

@@ -75,7 +75,7 @@ impl SpectralConfig {
             exact: false,
             exact_wavelengths: exact::ExactOptions::default().wavelengths,
             exact_subsamples: exact::ExactOptions::default().subsamples,
-            map: MapKind::Kdtree,
+            map: MapKind::Film,
             filter: Filter::Cone,
             radius: None,
             k: None,
