@@ -33,7 +33,7 @@ pub(super) struct Eye<'a> {
     pub sampler: WavelengthSampler,
     /// The same spectrum as a mixture for `--eye lines`: each emission line,
     /// then the rest, with its share of the power.
-    pub components: Vec<(f64, WavelengthSampler)>,
+    pub components: Vec<Component>,
     /// Per light seen directly: its radiance per watt-spectrum unit, its
     /// sampler, and the colour of its whole spectrum (for white paths).
     pub lights: Vec<(f64, WavelengthSampler, DVec3)>,
@@ -57,6 +57,30 @@ struct Path {
     weight: f64,
     pol: Polarisation,
     depth: usize,
+}
+
+/// One component of the eye's wavelength mixture under `--eye lines`: its
+/// share of the spectrum, its own distribution, and the one its
+/// wavelengths are drawn from when that differs (the continuum's: see
+/// `spectral::render::mixture`).
+pub struct Component {
+    pub share: f64,
+    pub own: WavelengthSampler,
+    pub draw: Option<WavelengthSampler>,
+}
+
+impl Component {
+    /// A wavelength for `u` in [0, 1), and its weight: the component's own
+    /// pdf over the pdf it was drawn with (1 when they are the same).
+    pub fn sample(&self, u: f64) -> (f64, f64) {
+        match &self.draw {
+            None => (self.own.sample(u).0, 1.0),
+            Some(d) => {
+                let (l, q) = d.sample(u);
+                (l, if q > 0.0 { self.own.pdf(l) / q } else { 0.0 })
+            }
+        }
+    }
 }
 
 /// What a path does after meeting a surface.
@@ -131,11 +155,11 @@ impl Eye<'_> {
             // stratified rays, each with its share of the weight.
             let last = self.components.len() - 1;
             let mut first = None;
-            for (k, (w, s)) in self.components.iter().enumerate() {
+            for (k, c) in self.components.iter().enumerate() {
                 let n = if k == last { self.opts.split.max(1) } else { 1 };
                 for j in 0..n {
-                    let (l, _) = s.sample((j as f64 + u_lambda) / n as f64);
-                    let q = Path { nm: Some(l), weight: p.weight * w / (n as f64 * self.sampler.pdf(l).max(1e-300)), ..*p };
+                    let (l, ratio) = c.sample((j as f64 + u_lambda) / n as f64);
+                    let q = Path { nm: Some(l), weight: p.weight * c.share * ratio / (n as f64 * self.sampler.pdf(l).max(1e-300)), ..*p };
                     if first.is_none() {
                         first = Some(q);
                     } else {

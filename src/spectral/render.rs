@@ -2,7 +2,7 @@
 //! maps (`photon`), then the eye pass (`eye`) reads them back through the
 //! camera. Times each pass and counts what it did.
 
-use super::eye::Eye;
+use super::eye::{Component, Eye};
 use super::film::XyzImage;
 use super::haze::Haze;
 use super::options::{EyeMode, RenderOptions};
@@ -129,7 +129,7 @@ pub fn render_offset(scene: &World, opts: &RenderOptions, place: Option<PassPlac
         })
         .collect();
     let sampler = WavelengthSampler::new(&eye_spectrum);
-    let components = if opts.eye == EyeMode::Lines { mixture(&eye_spectrum, sampler.integral()) } else { Vec::new() };
+    let components = if opts.eye == EyeMode::Lines { mixture(&eye_spectrum, sampler.integral(), opts.colours) } else { Vec::new() };
     // What one watt of each light leaves each matte surface with.
     let direct = lights.iter().map(|(_, sampler, _)| scene.reflected_per_map(sampler, opts.colours)).collect();
     let eye = Eye { scene, maps, opts, sampler, components, lights, direct, film: film.is_some() };
@@ -195,8 +195,14 @@ fn max_flux(scene: &World, colours: crate::spectrum::colormap::ColorMap) -> f64 
 /// A spectrum as a mixture for `--eye lines`: one component per emission
 /// line (lines at the same wavelength, from several lights, merged), and
 /// one for the rest, each with its share of the integral `total`. Lines
-/// with under 0.1 % of the power join the rest.
-fn mixture(s: &Spectrum, total: f64) -> Vec<(f64, WavelengthSampler)> {
+/// with under 0.1 % of the power join the rest. The rest (a lamp's weak
+/// continuum) is drawn in proportion to how much each wavelength shows
+/// (the colour map's weights), not to its own spectrum: seen through a
+/// prism each pixel sees the continuum only over the few nanometres that
+/// land on the lamp there, and drawn by the spectrum the dim stretches
+/// between the phosphor bands got a few rays each (their grain was most of
+/// css552-p1's shown error).
+fn mixture(s: &Spectrum, total: f64, colours: crate::spectrum::colormap::ColorMap) -> Vec<Component> {
     let (lines, rest) = s.split_lines();
     let mut merged: Vec<(f64, f64, f64)> = Vec::new();
     for (c, p, w) in lines {
@@ -214,14 +220,64 @@ fn mixture(s: &Spectrum, total: f64) -> Vec<(f64, WavelengthSampler)> {
         if share < 1e-3 {
             rest.push(one);
         } else if share > 0.0 {
-            out.push((share, sampler));
+            out.push(Component { share, own: sampler, draw: None });
         }
     }
     if !rest.is_empty() {
-        let sampler = WavelengthSampler::new(&Spectrum::Sum(rest));
-        if sampler.integral() > 0.0 {
-            out.push((sampler.integral() / total, sampler));
+        let rest = Spectrum::Sum(rest);
+        let own = WavelengthSampler::new(&rest);
+        if own.integral() > 0.0 {
+            let draw = WavelengthSampler::weighted(&rest, |nm| {
+                let v = rest.eval(nm);
+                if v > 0.0 {
+                    colours.xyz_weight(nm).abs().element_sum() / v
+                } else {
+                    0.0
+                }
+            });
+            out.push(Component { share: own.integral() / total, own, draw: Some(draw) });
         }
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::spectrum::colormap::ColorMap;
+
+    /// The `--eye lines` mixture is unbiased: one draw per component, each
+    /// weighted by its share, by its own pdf over the one it is drawn from
+    /// (the continuum's are drawn by the colour weights), and over the
+    /// whole spectrum's pdf, carries on average the spectrum's colour, for
+    /// a lamp of lines over a continuum and for lines alone; and the
+    /// continuum puts more of its draws in the dim stretch between the
+    /// green and red phosphor bands than its spectrum would.
+    #[test]
+    fn the_line_mixture_carries_the_spectrums_colour() {
+        for name in ["cfl-lines", "FL11", "d65"] {
+            let s = crate::spectrum::spectra::NamedSpectrum::parse(name).unwrap().spectrum;
+            let whole = WavelengthSampler::new(&s);
+            let parts = mixture(&s, whole.integral(), ColorMap::Cie);
+            let n = 50_000;
+            let mut sum = DVec3::ZERO;
+            for c in &parts {
+                for j in 0..n {
+                    let (l, ratio) = c.sample((j as f64 + 0.5) / n as f64);
+                    // The path's radiance at l is the whole spectrum's
+                    // pdf there times the colour weights.
+                    sum += c.share * ratio / (n as f64 * whole.pdf(l)) * whole.pdf(l) * ColorMap::Cie.xyz_weight(l);
+                }
+            }
+            let want = whole.mean_cmf();
+            assert!((sum - want).abs().max_element() < 2e-3 * want.max_element(), "{name}: {sum} against {want}");
+            if name == "cfl-lines" {
+                let rest = parts.last().unwrap();
+                let between = |f: &dyn Fn(f64) -> f64| (0..1000).filter(|i| (560.0..600.0).contains(&f((*i as f64 + 0.5) / 1000.0))).count();
+                let drawn = between(&|u| rest.draw.as_ref().unwrap().sample(u).0);
+                let by_spectrum = between(&|u| rest.own.sample(u).0);
+                assert!(drawn > by_spectrum, "{drawn} draws in 560-600 nm against {by_spectrum}");
+            }
+        }
+    }
 }
