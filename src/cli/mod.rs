@@ -602,7 +602,11 @@ fn run_prism(args: PrismArgs) -> Result<()> {
         report.exposure
     );
     if let Some(r) = report.render.film_kernel {
-        let how = if cfg.film_kernel.is_some() || cfg.passes > 1 { "as asked" } else { "chosen from the film's two halves" };
+        let how = match (cfg.film_kernel, cfg.passes > 1) {
+            (Some(_), _) => "as asked",
+            (None, true) => "none under --passes",
+            (None, false) => "chosen from the film's two halves",
+        };
         eprintln!("film kernel: {r} px ({how})");
     }
     Ok(())

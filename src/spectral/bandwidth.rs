@@ -81,20 +81,18 @@ fn lit_window(halves: &[Vec<DVec3>; 2], g: Grid) -> (usize, usize, usize, usize)
 }
 
 /// The radius (one of `RADII`) whose kernel makes the whole film closest
-/// to the true image, as the two halves estimate it (docs/physics.md
+/// to the true image, as the two halves estimate it over `window` (the
+/// lit part, `lit_window`; docs/physics.md
 /// §20). With V the noise of one half (E|2A - I|^2, measured as |2A -
 /// 2B|^2 / 2) and s the kernel's sum of squared weights (how much of the
 /// noise it keeps), |K(2A) - 2B|^2 = bias + s V + V; the whole film, with
 /// half the noise of a half, has error bias + s V / 2.
-pub fn choose(halves: &[Vec<DVec3>; 2], g: Grid) -> f64 {
-    let (x0, y0, x1, y1) = lit_window(halves, g);
+fn choose(halves: &[Vec<DVec3>; 2], g: Grid, (x0, y0, x1, y1): (usize, usize, usize, usize)) -> f64 {
     if x1 == 0 {
         return 0.0;
     }
     let w = Grid { width: x1 - x0, height: y1 - y0 };
-
-    let crop = |h: &[DVec3]| -> Vec<DVec3> { (y0..y1).flat_map(|y| (x0..x1).map(move |x| (y, x))).map(|(y, x)| h[y * g.width + x] * 2.0).collect() };
-    let (a, b) = (crop(&halves[0]), crop(&halves[1]));
+    let (a, b) = (crop(&halves[0], g, x0..x1, y0..y1, 2.0), crop(&halves[1], g, x0..x1, y0..y1, 2.0));
     let miss = |s: &[DVec3], t: &[DVec3]| s.iter().zip(t).map(|(p, q)| (*p - *q).length_squared()).sum::<f64>();
     let noise = miss(&a, &b) / 2.0;
     let mut best = (0.0, f64::INFINITY);
@@ -136,9 +134,10 @@ fn crop(img: &[DVec3], g: Grid, xs: std::ops::Range<usize>, ys: std::ops::Range<
 /// by the kernel of radius `fixed`, or else the chosen one; and the
 /// kernel's radius.
 pub fn film_image(halves: &[Vec<DVec3>; 2], g: Grid, fixed: Option<f64>) -> (Vec<DVec3>, f64) {
-    let r = fixed.unwrap_or_else(|| choose(halves, g));
+    let window = lit_window(halves, g);
+    let r = fixed.unwrap_or_else(|| choose(halves, g, window));
     let mut sum: Vec<DVec3> = halves[0].iter().zip(&halves[1]).map(|(a, b)| *a + *b).collect();
-    let (x0, y0, x1, y1) = lit_window(halves, g);
+    let (x0, y0, x1, y1) = window;
     if r > 1.0 && x1 > 0 {
         let w = Grid { width: x1 - x0, height: y1 - y0 };
         let smoothed = smooth(&crop(&sum, g, x0..x1, y0..y1, 1.0), w, r);

@@ -250,7 +250,8 @@ mod tests {
     /// weighted by its share, by its own pdf over the one it is drawn from
     /// (the continuum's are drawn by the colour weights), and over the
     /// whole spectrum's pdf, carries on average the spectrum's colour, for
-    /// a lamp of lines over a continuum and for lines alone; and the
+    /// a lamp of lines over a continuum and for two tables (a continuum
+    /// only, as far as the split goes); and the
     /// continuum puts more of its draws in the dim stretch between the
     /// green and red phosphor bands than its spectrum would.
     #[test]
