@@ -226,7 +226,10 @@ fn build_rec(nodes: &mut Vec<Node>, at: usize, prims: &mut [BuildPrim], lo: usiz
     if n == 1 || depth >= MAX_DEPTH {
         return make_leaf(nodes);
     }
-    // Binned SAH over all three axes.
+    // Binned SAH over all three axes, with as many bins as prims up to
+    // BINS (small nodes near the leaves would otherwise pay for 16 empty
+    // bins per axis).
+    let nb = n.min(BINS);
     let mut best = (f32::INFINITY, 0usize, 0usize); // cost, axis, split bin
     for axis in 0..3 {
         if extent[axis] <= 0.0 {
@@ -234,23 +237,23 @@ fn build_rec(nodes: &mut Vec<Node>, at: usize, prims: &mut [BuildPrim], lo: usiz
         }
         let mut counts = [0usize; BINS];
         let mut boxes = [Aabb::EMPTY; BINS];
-        let scale = BINS as f32 / extent[axis];
+        let scale = nb as f32 / extent[axis];
         for p in &prims[lo..hi] {
-            let b = bin_of(p.centroid[axis], cbounds.min[axis], scale);
+            let b = bin_of(p.centroid[axis], cbounds.min[axis], scale, nb);
             counts[b] += 1;
             boxes[b] = boxes[b].union(p.bounds);
         }
         let mut right_area = [0.0f32; BINS];
         let mut right_count = [0usize; BINS];
         let (mut acc, mut cnt) = (Aabb::EMPTY, 0);
-        for i in (1..BINS).rev() {
+        for i in (1..nb).rev() {
             acc = acc.union(boxes[i]);
             cnt += counts[i];
             right_area[i] = acc.area();
             right_count[i] = cnt;
         }
         let (mut acc, mut cnt) = (Aabb::EMPTY, 0);
-        for i in 0..BINS - 1 {
+        for i in 0..nb - 1 {
             acc = acc.union(boxes[i]);
             cnt += counts[i];
             let (rc, ra) = (right_count[i + 1], right_area[i + 1]);
@@ -269,9 +272,9 @@ fn build_rec(nodes: &mut Vec<Node>, at: usize, prims: &mut [BuildPrim], lo: usiz
             return make_leaf(nodes);
         }
         let (axis, split) = (best.1, best.2);
-        let scale = BINS as f32 / extent[axis];
+        let scale = nb as f32 / extent[axis];
         let min = cbounds.min[axis];
-        lo + partition(&mut prims[lo..hi], |p| bin_of(p.centroid[axis], min, scale) <= split)
+        lo + partition(&mut prims[lo..hi], |p| bin_of(p.centroid[axis], min, scale, nb) <= split)
     } else if n <= MAX_LEAF {
         return make_leaf(nodes);
     } else {
@@ -287,9 +290,9 @@ fn build_rec(nodes: &mut Vec<Node>, at: usize, prims: &mut [BuildPrim], lo: usiz
 }
 
 #[inline]
-fn bin_of(c: f32, min: f32, scale: f32) -> usize {
+fn bin_of(c: f32, min: f32, scale: f32, bins: usize) -> usize {
     let b = ((c - min) * scale) as usize; // `as` saturates; NaN -> 0
-    b.min(BINS - 1)
+    b.min(bins - 1)
 }
 
 /// In-place partition; returns the number of elements for which `pred` holds.
