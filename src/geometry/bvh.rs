@@ -7,7 +7,7 @@
 
 use super::aabb::GAMMA3;
 use super::{Aabb, Hit, Ray, Triangle};
-use glam::Vec3;
+use glam::{Vec3, Vec3A};
 
 /// A node of the binary build: an interior node's children sit at `first`
 /// and `first + 1`; a leaf (`count > 0`) holds triangles
@@ -50,9 +50,36 @@ const MAX_DEPTH: usize = 60;
 const TRAVERSAL_COST: f32 = 1.0;
 
 struct BuildPrim {
-    bounds: Aabb,
-    centroid: Vec3,
+    bounds: BuildBox,
+    centroid: Vec3A,
     id: u32,
+}
+
+/// A box in SIMD lanes for the build's inner loops (min and max of four
+/// lanes in one instruction each; inputs are finite, so the same values as
+/// `Aabb`'s).
+#[derive(Clone, Copy)]
+struct BuildBox {
+    lo: Vec3A,
+    hi: Vec3A,
+}
+
+impl BuildBox {
+    const EMPTY: BuildBox = BuildBox { lo: Vec3A::splat(f32::INFINITY), hi: Vec3A::splat(f32::NEG_INFINITY) };
+
+    #[inline]
+    fn union(self, o: BuildBox) -> BuildBox {
+        BuildBox { lo: self.lo.min(o.lo), hi: self.hi.max(o.hi) }
+    }
+
+    #[inline]
+    fn grow(self, p: Vec3A) -> BuildBox {
+        BuildBox { lo: self.lo.min(p), hi: self.hi.max(p) }
+    }
+
+    fn aabb(self) -> Aabb {
+        Aabb { min: self.lo.into(), max: self.hi.into() }
+    }
 }
 
 impl Bvh {
@@ -63,7 +90,7 @@ impl Bvh {
             .enumerate()
             .map(|(i, t)| {
                 let b = Aabb::from_points(t.vertices());
-                BuildPrim { bounds: b, centroid: b.center(), id: i as u32 }
+                BuildPrim { bounds: BuildBox { lo: b.min.into(), hi: b.max.into() }, centroid: b.center().into(), id: i as u32 }
             })
             .collect();
         let mut binary = Vec::with_capacity(2 * tris.len().max(1));
@@ -216,8 +243,8 @@ fn collapse(binary: &[Node], at: usize, wide: &mut Vec<Wide>) -> u32 {
 /// `MAX_DEPTH` (a split always leaves both sides non-empty), so the
 /// traversal stack of 64 entries cannot overflow.
 fn build_rec(nodes: &mut Vec<Node>, at: usize, prims: &mut [BuildPrim], lo: usize, hi: usize, depth: usize) {
-    let bounds = prims[lo..hi].iter().fold(Aabb::EMPTY, |b, p| b.union(p.bounds));
-    let cbounds = prims[lo..hi].iter().fold(Aabb::EMPTY, |b, p| b.grow(p.centroid));
+    let bounds = prims[lo..hi].iter().fold(BuildBox::EMPTY, |b, p| b.union(p.bounds)).aabb();
+    let cbounds = prims[lo..hi].iter().fold(BuildBox::EMPTY, |b, p| b.grow(p.centroid)).aabb();
     let n = hi - lo;
     let make_leaf = |nodes: &mut Vec<Node>| {
         nodes[at] = Node { min: bounds.min, first: lo as u32, max: bounds.max, count: n as u32 };
@@ -236,7 +263,7 @@ fn build_rec(nodes: &mut Vec<Node>, at: usize, prims: &mut [BuildPrim], lo: usiz
             continue;
         }
         let mut counts = [0usize; BINS];
-        let mut boxes = [Aabb::EMPTY; BINS];
+        let mut boxes = [BuildBox::EMPTY; BINS];
         let scale = nb as f32 / extent[axis];
         for p in &prims[lo..hi] {
             let b = bin_of(p.centroid[axis], cbounds.min[axis], scale, nb);
@@ -245,14 +272,14 @@ fn build_rec(nodes: &mut Vec<Node>, at: usize, prims: &mut [BuildPrim], lo: usiz
         }
         let mut right_area = [0.0f32; BINS];
         let mut right_count = [0usize; BINS];
-        let (mut acc, mut cnt) = (Aabb::EMPTY, 0);
+        let (mut acc, mut cnt) = (BuildBox::EMPTY, 0);
         for i in (1..nb).rev() {
             acc = acc.union(boxes[i]);
             cnt += counts[i];
-            right_area[i] = acc.area();
+            right_area[i] = acc.aabb().area();
             right_count[i] = cnt;
         }
-        let (mut acc, mut cnt) = (Aabb::EMPTY, 0);
+        let (mut acc, mut cnt) = (BuildBox::EMPTY, 0);
         for i in 0..nb - 1 {
             acc = acc.union(boxes[i]);
             cnt += counts[i];
@@ -260,7 +287,7 @@ fn build_rec(nodes: &mut Vec<Node>, at: usize, prims: &mut [BuildPrim], lo: usiz
             if cnt == 0 || rc == 0 {
                 continue;
             }
-            let cost = cnt as f32 * acc.area() + rc as f32 * ra;
+            let cost = cnt as f32 * acc.aabb().area() + rc as f32 * ra;
             if cost < best.0 {
                 best = (cost, axis, i);
             }
