@@ -19,16 +19,14 @@ use std::time::Instant;
 
 /// Casts the camera's primary rays for `rows` and returns (hits, seconds).
 fn cast(accel: &Accel, scene: &InteriorScene, rows: &[usize]) -> (u64, f64) {
+    let rays = camera_rays(scene, rows);
+    cast_rays(accel, &rays)
+}
+
+/// The camera's primary rays through the centres of the pixels of `rows`.
+fn camera_rays(scene: &InteriorScene, rows: &[usize]) -> Vec<Ray> {
     let cam = scene.camera;
-    let t = Instant::now();
-    let mut hits = 0u64;
-    for &y in rows {
-        for x in 0..cam.width {
-            let r: Ray = cam.ray(x as f32 + 0.5, y as f32 + 0.5);
-            hits += accel.intersect(&r).is_some() as u64;
-        }
-    }
-    (hits, t.elapsed().as_secs_f64())
+    rows.iter().flat_map(|&y| (0..cam.width).map(move |x| cam.ray(x as f32 + 0.5, y as f32 + 0.5))).collect()
 }
 
 /// `n` incoherent rays: origins uniform in `bounds`, directions uniform
@@ -91,6 +89,7 @@ pub fn interior(quick: bool) -> Result<String> {
         "incoh_Mr/s",
         "hits"
     )?;
+    let mut vs_embree = String::new();
     for subdiv in [3, 5, 6] {
         let mesh = icosphere(subdiv);
         let mut cfg = crate::params::interior::defaults();
@@ -98,9 +97,11 @@ pub fn interior(quick: bool) -> Result<String> {
         (cfg.width, cfg.height) = (w, h);
         let scene = InteriorScene::new(mesh, &cfg);
         let tris = scene.triangles.len();
-        let t = Instant::now();
-        let bvh = scene.accel(AccelKind::Bvh);
-        let build = t.elapsed().as_secs_f64();
+        let (bvh, build) = best_of(repeats, || {
+            let t = Instant::now();
+            let bvh = scene.accel(AccelKind::Bvh);
+            (bvh, t.elapsed().as_secs_f64())
+        });
         let nodes = match &bvh {
             Accel::Bvh(b) => b.node_count(),
             Accel::Linear(_) => 0,
@@ -160,10 +161,73 @@ pub fn interior(quick: bool) -> Result<String> {
             mrays(rays.len() as f64, t_incoh),
             incoh_hits,
         )?;
+        let primary = camera_rays(&scene, &all);
+        one.install(|| against_embree(&scene.triangles, &bvh, build, repeats, &[&primary, &rays], &mut vs_embree))?;
     }
     writeln!(out, "ratio = linear time / bvh time on the same {} rows; columns in millions of rays per second", if quick { "few" } else { "sampled" })?;
     writeln!(out, "incoh: {n_incoherent} rays from uniform points in the mesh's box in uniform directions (fixed seed), 1 thread; hits: rays that hit")?;
+    writeln!(out)?;
+    out.push_str(&vs_embree);
     Ok(out)
+}
+
+/// The BVH against Embree on the same triangles and the same rays (the
+/// camera's primary rays, then the incoherent ones), 1 thread: build times,
+/// rates, hit counts and how many rays found the same triangle. Without
+/// the `embree` feature, a line saying how to get the comparison.
+#[cfg(feature = "embree")]
+fn against_embree(tris: &[crate::geometry::Triangle], bvh: &Accel, bvh_build: f64, repeats: usize, sets: &[&[Ray]], out: &mut String) -> Result<()> {
+    use crate::geometry::embree::Embree;
+    if out.is_empty() {
+        writeln!(out, "against Embree {} (rtcIntersect1, one ray at a time, default build quality), 1 thread, the same rays", Embree::version())?;
+        writeln!(
+            out,
+            "{:>9} {:>9} {:>11} {:>10} {:>10} {:>12} {:>12} {:>9} {:>9} {:>9}",
+            "triangles", "rays", "build_ms", "emb_ms", "bvh_Mr/s", "embree_Mr/s", "embree/bvh", "bvh_hits", "emb_hits", "same_tri"
+        )?;
+    }
+    let (embree, emb_build) = best_of(repeats, || {
+        let t = Instant::now();
+        let e = Embree::build(tris, 1);
+        (e, t.elapsed().as_secs_f64())
+    });
+    let embree = embree?;
+    for (k, rays) in sets.iter().enumerate() {
+        let ((bvh_hits, t_bvh), (emb_hits, t_emb)) = {
+            let b = best_of(repeats, || cast_rays(bvh, rays));
+            let e = best_of(repeats, || {
+                let t = Instant::now();
+                let hits = rays.iter().filter(|r| embree.intersect(r).is_some()).count() as u64;
+                (hits, t.elapsed().as_secs_f64())
+            });
+            (b, e)
+        };
+        let same = rays.iter().filter(|r| bvh.intersect(r).map(|h| h.tri) == embree.intersect(r).map(|h| h.tri)).count();
+        let mrays = |s: f64| rays.len() as f64 / s / 1e6;
+        writeln!(
+            out,
+            "{:>9} {:>9} {:>11.1} {:>10.1} {:>10.2} {:>12.2} {:>11.2}x {:>9} {:>9} {:>8.2}%",
+            tris.len(),
+            if k == 0 { "primary" } else { "incoh" },
+            bvh_build * 1e3,
+            emb_build * 1e3,
+            mrays(t_bvh),
+            mrays(t_emb),
+            t_bvh / t_emb,
+            bvh_hits,
+            emb_hits,
+            100.0 * same as f64 / rays.len() as f64
+        )?;
+    }
+    Ok(())
+}
+
+#[cfg(not(feature = "embree"))]
+fn against_embree(_: &[crate::geometry::Triangle], _: &Accel, _: f64, _: usize, _: &[&[Ray]], out: &mut String) -> Result<()> {
+    if out.is_empty() {
+        writeln!(out, "against Embree: not built in (apt-get install libembree-dev; cargo run --release --features embree -- bench interior)")?;
+    }
+    Ok(())
 }
 
 /// Relative RMSE of luminance: ||Y - Y_ref|| / ||Y_ref|| over all pixels.

@@ -4,6 +4,8 @@
 pub mod aabb;
 pub mod accel;
 pub mod bvh;
+#[cfg(feature = "embree")]
+pub mod embree;
 pub mod ray;
 pub mod triangle;
 
