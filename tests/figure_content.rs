@@ -237,3 +237,34 @@ fn the_glass_sphere_fringes_the_light_blue_inside_and_orange_red_outside() {
     cfg.scene.no_dispersion = true;
     assert_eq!(edges(&cfg), (false, false), "no fringes without dispersion");
 }
+
+#[test]
+fn the_sphere_before_the_metal_plate_runs_from_yellow_on_its_left_to_red_on_its_right() {
+    // cs348b-sphere-metal at a small size (report 001: "the far left corner
+    // of the sphere appears as a bright yellow, slowly fading to a bright
+    // red on the right side"): along the sphere's middle row, the hue
+    // (sRGB green over red) falls from yellow (G near R) at its left to
+    // red-orange (G under 0.6 R) at its right, bright on both sides.
+    let s = SceneFile::load(&repo("scenes/cs348b-sphere-metal.toml"), true).unwrap();
+    let mut cfg = refract::experiment::params::prism_config(&s.params).unwrap();
+    (cfg.scene.width, cfg.scene.height, cfg.spp) = (160, 120, 4);
+    let r = refract::spectral::render_config(&cfg, &refract::progress::Silent).unwrap();
+    let (w, h) = (r.render.image.width, r.render.image.height);
+    let img = r.render.image.to_srgb8(r.exposure, cfg.gamut);
+    let px = |x: usize, y: usize| [img[(y * w + x) * 3] as f64, img[(y * w + x) * 3 + 1] as f64, img[(y * w + x) * 3 + 2] as f64];
+    // The sphere spans about 45 % of the width, centred; sample its inner
+    // 60 % at the middle row, averaged over 5 rows.
+    let green_over_red = |fx: f64| -> (f64, f64) {
+        let x = (fx * w as f64) as usize;
+        let (mut g, mut r) = (0.0, 0.0);
+        for y in h / 2 - 2..=h / 2 + 2 {
+            let p = px(x, y);
+            (r, g) = (r + p[0], g + p[1]);
+        }
+        (g / r, r / 5.0)
+    };
+    let (left, left_r) = green_over_red(0.5 - 0.2);
+    let (right, right_r) = green_over_red(0.5 + 0.15);
+    assert!(left > 0.85 && left_r > 240.0, "yellow on the sphere's left: G/R {left:.2}, R {left_r:.0}");
+    assert!(right < 0.6 && right_r > 150.0, "red-orange on its right: G/R {right:.2}, R {right_r:.0}");
+}

@@ -213,8 +213,10 @@ fn direct_lighting_by_shadow_rays_matches_the_photon_map() {
     // Report 003's Cornell box lit by its point light: the eye pass's
     // shadow rays (direct light) plus the maps' caustic and bounced light
     // against the maps alone, which hold it all. The same brightness per
-    // wall, to within the photon noise.
-    for kind in [SceneKind::CornellPointlight, SceneKind::CornellLaser] {
+    // wall, to within the photon noise. Report 001's metal plate, lit by a
+    // spherical light (shadow rays sampled over the cone it fills), the same
+    // in three bands of the plate.
+    for kind in [SceneKind::CornellPointlight, SceneKind::CornellLaser, SceneKind::SphereMetal] {
         same_light_both_ways(kind);
     }
 }
@@ -229,11 +231,15 @@ fn same_light_both_ways(kind: SceneKind) {
     assert!(with.direct_lighting, "the Cornell scenes light directly");
     let mut without = with.clone();
     without.direct_lighting = false;
+    // The plate's far end is dim and grazed by the light: more photons
+    // there keep its band's noise under the tolerance (measured: 8 % off
+    // with 2 M photons, 1.9 % with 8 M).
+    let (photons, radius) = if kind == SceneKind::SphereMetal { (8_000_000, 0.03) } else { (2_000_000, 0.06) };
     let opts = RenderOptions {
-        photons: 2_000_000,
+        photons,
         map: refract::photon::map::MapKind::Kdtree,
         filter: Filter::Cone,
-        lookup: Lookup::Radius(0.06),
+        lookup: Lookup::Radius(radius),
         spp: 4,
         seed: 5,
         eye: EyeMode::Hero,

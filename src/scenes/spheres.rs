@@ -8,8 +8,11 @@
 //!   and orange-red on the outer one (blue bends more, so its image of the
 //!   light lies nearer the centre; the fringes are the spread of a ball's
 //!   deviation over the visible, at most about 2 % of its radius for N-SF11).
-//! - `sphere-metal`: the sphere before a polished metal plate that reflects
-//!   a warm black-body light: a yellow-to-red fringe.
+//! - `sphere-metal`: the sphere before a brass plate grazed from the right
+//!   by a warm (2000 K) black-body light out of view: the plate's glow falls
+//!   off from right to left, the sphere shows it inverted, and where the
+//!   display clips the bright end to yellow the sphere runs from yellow on
+//!   its left to red-orange on its right (report 001's description).
 //! - `spheres-final`: three flint spheres before two bright bar lights, where
 //!   the wavelength effects show clearly.
 
@@ -57,13 +60,28 @@ pub fn build(o: &SceneOptions) -> Result<World> {
             if !o.no_prism {
                 glass_sphere(&mut s, "glass sphere", DVec3::new(3.0, 0.0, 0.0), 0.5);
             }
-            // A metal plate at 45 degrees behind the sphere reflects a warm
-            // light standing off to the side.
-            let (c, n) = (DVec3::new(5.5, 0.0, 0.0), DVec3::new(-1.0, 1.0, 0.0).normalize());
-            let u = DVec3::Z.cross(n).normalize();
-            s.faces.push(Face::rect("metal plate", c - u * 2.0 - DVec3::Z * 2.0, u * 4.0, DVec3::Z * 4.0, Surface::Mirror { reflectance: 0.9 }));
-            // Out of the camera's view; the plate shows it behind the sphere.
-            sphere_light(&mut s, o, DVec3::new(5.5, 6.5, 0.0), 3.5, "blackbody:3200")?;
+            // A brass plate behind the sphere, grazed from the right by a
+            // warm lamp out of view: its light falls off from right to left
+            // (from 0.5 m to 5 m away), and the sphere shows it inverted.
+            let plate = crate::world::Albedo::new([0.95, 0.4, 0.15]);
+            s.faces.push(Face::rect(
+                "metal plate",
+                DVec3::new(5.5, 3.5, -2.5),
+                DVec3::new(0.0, -5.7, 0.0),
+                DVec3::new(0.0, 0.0, 5.0),
+                Surface::Diffuse { albedo: plate, map: 0 },
+            ));
+            s.maps.push(s.faces.len() - 1);
+            // A small warm lamp (a point: no highlight of it in the glass,
+            // and no sampling noise in the plate's light) 0.5 m in front of
+            // the plate's right end, out of the camera's view.
+            s.lights.push(Light {
+                name: "warm lamp".into(),
+                emission: Emission::Point { pos: DVec3::new(5.0, -2.6, 0.0) },
+                spectrum: light_spectrum(o, "blackbody:2000")?,
+                power: 1.0,
+            });
+            s.direct_lighting = true;
             s.camera = Camera::look_at(DVec3::ZERO, DVec3::new(3.0, 0.0, 0.0), DVec3::Z, 30.0, o.width, o.height);
         }
         _ => {
