@@ -260,3 +260,67 @@ fn same_light_both_ways(kind: SceneKind) {
         }
     }
 }
+
+#[test]
+fn the_glass_sphere_rings_the_card_with_a_rainbow() {
+    // Report 001's final image: a white beam through a hole in a card onto
+    // a glass sphere 2.5 m away. Photons that reflect once inside the
+    // sphere land on the card round the hole at Descartes's rainbow angle
+    // theta = 180 deg - D_min(n), cos^2 i = (n^2 - 1) / 3: at
+    // R sin i / cos theta + L tan theta from the hole's centre
+    // (docs/physics.md §21): the density peaks there, and red photons land
+    // farther out than blue ones.
+    use refract::photon::emit::light_pass;
+    let mut o = SceneOptions::new(SceneKind::SpheresFinal);
+    [o.width, o.height] = [64, 48];
+    o.crown = refract::optics::glass::by_name("N-SF11").unwrap();
+    let s = build(&o).unwrap();
+    let pass = light_pass(&s, 400_000, 3, ColorMap::Cie, &refract::progress::Silent);
+    // Radius from the hole's centre of every photon on the card's four
+    // pieces (each map's origin is its face's corner), with its colour.
+    let mut hits: Vec<(f64, [f32; 3])> = Vec::new();
+    for (slot, photons) in pass.photons.iter().enumerate() {
+        let f = &s.faces[s.slot_face(slot)];
+        let (c, eu, ev) = f.frame.unwrap();
+        for p in photons {
+            let q = c + eu.normalize() * p.pos[0] as f64 + ev.normalize() * p.pos[1] as f64;
+            hits.push((q.y.hypot(q.z), p.xyz()));
+        }
+    }
+    assert!(hits.len() > 20_000, "{} photons on the card", hits.len());
+    let glass = o.crown;
+    let radius = |nm: f64| {
+        let n = glass.sellmeier(nm);
+        let i = ((n * n - 1.0) / 3.0).sqrt().acos();
+        let r = (i.sin() / n).asin();
+        let theta = std::f64::consts::PI - (std::f64::consts::PI + 2.0 * i - 4.0 * r);
+        // The ray leaves along a line R sin i from the sphere's centre, on
+        // the far side of the axis, and tilts outward by theta on its way
+        // back to the card.
+        0.15 * i.sin() / theta.cos() + 2.5 * theta.tan()
+    };
+    // Photon density per unit area in 5 mm rings: its peak.
+    let mut bins = vec![0f64; 80];
+    for &(rho, xyz) in &hits {
+        let b = (rho / 0.005) as usize;
+        if b < bins.len() {
+            bins[b] += (xyz[1] as f64) / (2.0 * std::f64::consts::PI * (b as f64 + 0.5));
+        }
+    }
+    let peak = (0..bins.len()).max_by(|&a, &b| bins[a].total_cmp(&bins[b])).unwrap();
+    let peak_rho = (peak as f64 + 0.5) * 0.005;
+    let (r_red, r_blue, r_mid) = (radius(650.0), radius(450.0), radius(560.0));
+    assert!(r_red > r_blue, "{r_red} {r_blue}");
+    assert!(
+        peak_rho > r_blue - 0.005 && peak_rho < r_red + 0.005,
+        "density peaks at {peak_rho:.3} m; the rainbow runs {r_blue:.3}-{r_red:.3} m (560 nm: {r_mid:.3})"
+    );
+    // Colour order: in the ring, the redder photons (X over Z) land farther out.
+    let ring: Vec<&(f64, [f32; 3])> = hits.iter().filter(|h| h.0 > r_blue - 0.02 && h.0 < r_red + 0.02).collect();
+    let mean = |f: &dyn Fn(&[f32; 3]) -> bool| {
+        let v: Vec<f64> = ring.iter().filter(|h| f(&h.1)).map(|h| h.0).collect();
+        v.iter().sum::<f64>() / v.len().max(1) as f64
+    };
+    let (red, blue) = (mean(&|c| c[0] > 2.0 * c[2] && c[0] > c[1]), mean(&|c| c[2] > 2.0 * c[0]));
+    assert!(red > blue + 0.01, "red photons at {red:.3} m, blue at {blue:.3} m");
+}

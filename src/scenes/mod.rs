@@ -31,7 +31,7 @@ crate::named_enum! {
         SphereArealight = "sphere-arealight",
         /// Report 001: a glass sphere before a polished metal plate reflecting a warm light.
         SphereMetal = "sphere-metal",
-        /// Report 001's final image: glass spheres before a bright bar light.
+        /// Report 001's final image: a white beam through a hole in a card onto a glass sphere, which rings the hole with a rainbow.
         SpheresFinal = "spheres-final",
         /// Report 003: a point light and a glass prism in a Cornell box (a faint rainbow).
         CornellPointlight = "cornell-pointlight",

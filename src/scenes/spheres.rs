@@ -13,8 +13,10 @@
 //!   off from right to left, the sphere shows it inverted, and where the
 //!   display clips the bright end to yellow the sphere runs from yellow on
 //!   its left to red-orange on its right (report 001's description).
-//! - `spheres-final`: three flint spheres before two bright bar lights, where
-//!   the wavelength effects show clearly.
+//! - `spheres-final`: where the wavelength effects show at a glance: a
+//!   white beam through a hole in a card onto a glass sphere, which sends
+//!   back a rainbow ring round the hole (one reflection inside;
+//!   docs/physics.md §21), and shows the card and ring inverted in itself.
 
 use super::{glass_medium, light_spectrum, SceneKind, SceneOptions};
 use crate::world::{Camera, Emission, Face, Light, Sphere, Surface, World};
@@ -85,30 +87,73 @@ pub fn build(o: &SceneOptions) -> Result<World> {
             s.camera = Camera::look_at(DVec3::ZERO, DVec3::new(3.0, 0.0, 0.0), DVec3::Z, 30.0, o.width, o.height);
         }
         _ => {
+            // A white beam through a square hole in a white card onto a
+            // glass sphere 2.5 m away: light that reflects once inside the
+            // sphere comes back at the rainbow angle (about 4.7 degrees off
+            // the beam for N-SF11, 21 for N-BK7) and rings the hole with a
+            // rainbow, red outside (Descartes; docs/physics.md §21). The beam
+            // is 0.7 of the sphere's radius wide: the rainbow's rays enter
+            // at about half the radius.
+            let r = 0.15;
+            let centre = DVec3::new(2.5, 0.0, 0.0);
             if !o.no_prism {
-                glass_sphere(&mut s, "sphere 1", DVec3::new(3.0, -0.7, 0.1), 0.38);
-                glass_sphere(&mut s, "sphere 2", DVec3::new(3.6, 0.15, -0.15), 0.45);
-                glass_sphere(&mut s, "sphere 3", DVec3::new(3.2, 0.85, 0.2), 0.3);
+                glass_sphere(&mut s, "glass sphere", centre, r);
             }
-            // Two tall bright bars behind them: each sphere shows them
-            // inverted, with coloured edges.
-            for (k, y) in [-0.55, 0.35].into_iter().enumerate() {
-                let light = s.lights.len();
+            let (hole, beam) = (0.11, 0.7 * r);
+            let card = crate::world::Albedo::new([0.8; 3]);
+            // Four pieces round the hole, facing the sphere (+x).
+            for (name, y0, y1, z0, z1) in [
+                ("card left of the hole", -1.1, -hole, -0.85, 0.85),
+                ("card right of the hole", hole, 1.1, -0.85, 0.85),
+                ("card below the hole", -hole, hole, -0.85, -hole),
+                ("card above the hole", -hole, hole, hole, 0.85),
+            ] {
                 s.faces.push(Face::rect(
-                    &format!("bar light {k}"),
-                    DVec3::new(5.0, y, -1.5),
-                    DVec3::new(0.0, 0.0, 3.0),
-                    DVec3::new(0.0, 0.3, 0.0),
-                    Surface::Emitter { light },
+                    name,
+                    DVec3::new(0.0, y0, z0),
+                    DVec3::new(0.0, y1 - y0, 0.0),
+                    DVec3::new(0.0, 0.0, z1 - z0),
+                    Surface::Diffuse { albedo: card, map: s.maps.len() },
                 ));
-                s.lights.push(Light {
-                    name: format!("bar {k}"),
-                    emission: Emission::Area { face: s.faces.len() - 1 },
-                    spectrum: light_spectrum(o, "blackbody:5500")?,
-                    power: 1.0,
-                });
+                s.maps.push(s.faces.len() - 1);
             }
-            s.camera = Camera::look_at(DVec3::ZERO, DVec3::new(3.0, 0.0, 0.0), DVec3::Z, 32.0, o.width, o.height);
+            s.lights.push(Light {
+                name: "white beam".into(),
+                emission: Emission::Beam {
+                    centre: DVec3::new(-0.01, 0.0, 0.0),
+                    dir: DVec3::X,
+                    u: DVec3::Y,
+                    v: DVec3::Z,
+                    half: glam::DVec2::new(beam, beam),
+                    disc: true,
+                    polarisation: None,
+                },
+                spectrum: light_spectrum(o, "d65")?,
+                power: 1.0,
+            });
+            // A dim lamp in the ceiling over the card, so the card and the
+            // sphere show: its direct light by shadow rays (the sphere
+            // cannot shade the card from it), and no photons (the sphere
+            // meets about 0.2 % of its light and reflects a few per cent of
+            // that, over all directions: about 1e-4 of what the lamp gives
+            // the card directly).
+            let lamp = s.lights.len();
+            s.faces.push(Face::rect(
+                "ceiling lamp",
+                DVec3::new(0.3, -1.5, 3.0),
+                DVec3::new(0.0, 3.0, 0.0),
+                DVec3::new(1.5, 0.0, 0.0),
+                Surface::Emitter { light: lamp },
+            ));
+            s.lights.push(Light {
+                name: "ceiling lamp".into(),
+                emission: Emission::Area { face: s.faces.len() - 1 },
+                spectrum: light_spectrum(o, "d65")?,
+                power: 1.2,
+            });
+            s.photon_shares = Some(vec![1.0, 1e-9]);
+            s.direct_lighting = true;
+            s.camera = Camera::look_at(DVec3::new(4.6, 0.45, 0.3), DVec3::new(0.0, -0.15, 0.0), DVec3::Z, 20.0, o.width, o.height);
         }
     }
     s.probe = (DVec3::ZERO, DVec3::X);
