@@ -34,7 +34,7 @@ pub enum Command {
     /// redrawn from it. Delete results/<sweep>/ or run `refract sweep` to
     /// measure again.
     Figures {
-        /// Smaller images and fewer photons (about 20 s on 2 cores; the full set takes 2.5-5.5 minutes)
+        /// Smaller images and fewer photons (about 25 s on 2 cores; the full set takes about 7 minutes)
         #[arg(long)]
         quick: bool,
         /// Only these figure ids, comma-separated (then no sweeps run)
