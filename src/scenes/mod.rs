@@ -29,7 +29,7 @@ crate::named_enum! {
         SinglePrism = "single-prism",
         /// Report 001: a glass sphere before a spherical black-body light, off centre.
         SphereArealight = "sphere-arealight",
-        /// Report 001: a glass sphere before a polished metal plate reflecting a warm light.
+        /// Report 001: a glass sphere before a metal plate grazed by a warm lamp (yellow to red across the sphere).
         SphereMetal = "sphere-metal",
         /// Report 001's final image: a white beam through a hole in a card onto a glass sphere, which rings the hole with a rainbow.
         SpheresFinal = "spheres-final",
