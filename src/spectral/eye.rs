@@ -57,6 +57,9 @@ struct Path {
     weight: f64,
     pol: Polarisation,
     depth: usize,
+    /// Where on an area light the shadow ray aims, stratified over the
+    /// pixel's samples (every path of one camera sample shares it).
+    light_u: [f64; 2],
 }
 
 /// One component of the eye's wavelength mixture under `--eye lines`: its
@@ -95,7 +98,10 @@ impl Eye<'_> {
     /// XYZ radiance along a camera ray; `u_lambda` stratifies wavelengths.
     /// `sample` is the sample's index in its pixel: with `--eye lines`
     /// the pixel's samples alternate between the two polarisations.
-    pub fn radiance(&self, o: DVec3, d: DVec3, u_lambda: f64, sample: usize, rng: &mut Rng, rays: &mut u64) -> DVec3 {
+    /// `light_u` places the shadow ray on an area light (stratified by the
+    /// caller over the pixel's samples).
+    #[allow(clippy::too_many_arguments)]
+    pub fn radiance(&self, o: DVec3, d: DVec3, u_lambda: f64, light_u: [f64; 2], sample: usize, rng: &mut Rng, rays: &mut u64) -> DVec3 {
         let alternate = self.opts.eye == EyeMode::Lines && self.opts.spp > 1;
         let pol = match alternate {
             true if sample.is_multiple_of(2) => Polarisation::S,
@@ -103,7 +109,7 @@ impl Eye<'_> {
             false if rng.f64() < 0.5 => Polarisation::S,
             false => Polarisation::P,
         };
-        let mut stack = vec![Path { o, d, skip: None, nm: None, weight: 1.0, pol, depth: 0 }];
+        let mut stack = vec![Path { o, d, skip: None, nm: None, weight: 1.0, pol, depth: 0, light_u }];
         let mut sum = DVec3::ZERO;
         while let Some(mut p) = stack.pop() {
             while p.depth < MAX_DEPTH {
@@ -235,7 +241,7 @@ impl Eye<'_> {
             e += smooth.irradiance(pos, self.opts.filter, lookup);
         }
         if self.scene.direct_lighting {
-            e += self.direct_light(id, x, map, rng);
+            e += self.direct_light(id, x, map, p.light_u, rng);
         }
         let l = e / std::f64::consts::PI;
         match p.nm {
@@ -258,7 +264,7 @@ impl Eye<'_> {
     /// (four per eye sample at up to 4 samples a pixel, fewer above, so a
     /// pixel takes about 16 in all), and for a beam whether `x` lies in it,
     /// unshadowed (docs/physics.md §13).
-    fn direct_light(&self, id: usize, x: DVec3, map: usize, rng: &mut Rng) -> DVec3 {
+    fn direct_light(&self, id: usize, x: DVec3, map: usize, light_u: [f64; 2], rng: &mut Rng) -> DVec3 {
         use std::f64::consts::PI;
         let n = self.scene.faces[id].normal;
         // Whether the segment from x along unit w reaches distance `dist`
@@ -294,7 +300,12 @@ impl Eye<'_> {
                     let radiance = light.power / (PI * area);
                     let mut e = 0.0;
                     for &(i, j) in &grid {
-                        let q = c0 + eu * ((i + rng.f64()) / per_side as f64) + ev * ((j + rng.f64()) / per_side as f64);
+                        // One shadow ray a sample: at the point stratified
+                        // over the pixel's samples (the lamp's light on a
+                        // wall is smooth, so two seeds' difference falls
+                        // faster than with independent points).
+                        let (a, b) = if grid.len() == 1 { (light_u[0], light_u[1]) } else { (rng.f64(), rng.f64()) };
+                        let q = c0 + eu * ((i + a) / per_side as f64) + ev * ((j + b) / per_side as f64);
                         let d = q - x;
                         let r = d.length();
                         let w = d / r;

@@ -150,7 +150,10 @@ pub fn render_offset(scene: &World, opts: &RenderOptions, place: Option<PassPlac
                 // Positions and wavelengths stratified over the pixel's
                 // samples; one sample looks through the pixel's centre.
                 let pattern = multi_jittered(opts.spp as usize, &mut Rng::new(eye_seed, pixel, 0x0fff));
-                for (s, &[a, b, c]) in pattern.iter().enumerate() {
+                // Shadow rays' points on area lights, stratified the same
+                // way by a pattern of their own.
+                let on_lights = multi_jittered(opts.spp as usize, &mut Rng::new(eye_seed, pixel, 0x0ffe));
+                for (s, (&[a, b, c], &[la, lb, _])) in pattern.iter().zip(&on_lights).enumerate() {
                     // The multi-jittered pair is (x, y), or under `--eye
                     // lines` (x, wavelength): through a prism that
                     // disperses horizontally (the Amici scenes) a line's
@@ -166,7 +169,7 @@ pub fn render_offset(scene: &World, opts: &RenderOptions, place: Option<PassPlac
                         _ => (jx, jy),
                     };
                     let d = cam.ray(x as f64 + jx, y as f64 + jy);
-                    sum += eye.radiance(cam.pos, d, u_lambda, s, &mut rng, &mut rays);
+                    sum += eye.radiance(cam.pos, d, u_lambda, [la, lb], s, &mut rng, &mut rays);
                     if !haze.segments.is_empty() {
                         let t = scene.intersect(cam.pos, d, None).map_or(f64::INFINITY, |h| h.t);
                         sum += haze.radiance(cam.pos, d, t);
