@@ -8,19 +8,12 @@
 //!   standing on it, fanning into a spectrum, seen from above: the album
 //!   cover, with the prism level and its top edges glowing white.
 
-use super::{glass_medium, light_spectrum, rotate_z, SceneKind, SceneOptions};
+use super::{glass_medium, light_spectrum, matte, rotate_z, SceneKind, SceneOptions};
 use crate::spectrum::Spectrum;
 use crate::world::interface::Polarisation;
-use crate::world::{Albedo, Camera, Emission, Face, Light, Surface, World};
+use crate::world::{Camera, Emission, Face, Light, Surface, World};
 use anyhow::Result;
 use glam::{DVec2, DVec3};
-
-/// A matte parallelogram with its own photon map.
-fn matte(s: &mut World, name: &str, corner: DVec3, eu: DVec3, ev: DVec3, albedo: [f64; 3]) {
-    let map = s.maps.len();
-    s.faces.push(Face::rect(name, corner, eu, ev, Surface::Diffuse { albedo: Albedo::new(albedo), map }));
-    s.maps.push(s.faces.len() - 1);
-}
 
 /// An equilateral prism's cross-section centred at `c`, turned so that
 /// light of index `n` passing at minimum deviation leaves along `exit`

@@ -13,7 +13,7 @@ use crate::optics::glass::{self, Glass};
 use crate::optics::ior::{IorKind, IorModel};
 use crate::spectrum::spectra::NamedSpectrum;
 use crate::spectrum::Spectrum;
-use crate::world::{Emission, Face, Medium, Surface, World};
+use crate::world::{Albedo, Emission, Face, Medium, Surface, World};
 use anyhow::{bail, Result};
 use glam::DVec3;
 
@@ -101,6 +101,13 @@ pub(crate) fn glass_medium(g: &Glass, kind: IorKind, no_dispersion: bool) -> Med
 /// An empty world of air and one glass, of the options' image size.
 fn with_glass(o: &SceneOptions, glass: Medium) -> World {
     World::new(o.kind.name(), vec![Medium::Air, glass], o.width, o.height)
+}
+
+/// A matte parallelogram with its own photon map.
+pub(crate) fn matte(s: &mut World, name: &str, corner: DVec3, eu: DVec3, ev: DVec3, albedo: [f64; 3]) {
+    let map = s.maps.len();
+    s.faces.push(Face::rect(name, corner, eu, ev, Surface::Diffuse { albedo: Albedo::new(albedo), map }));
+    s.maps.push(s.faces.len() - 1);
 }
 
 pub(crate) fn rotate_z(v: DVec3, angle: f64) -> DVec3 {

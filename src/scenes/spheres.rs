@@ -18,7 +18,7 @@
 //!   back a rainbow ring round the hole (one reflection inside;
 //!   docs/physics.md §21), and shows the card and ring inverted in itself.
 
-use super::{glass_medium, light_spectrum, SceneKind, SceneOptions};
+use super::{glass_medium, light_spectrum, matte, SceneKind, SceneOptions};
 use crate::world::{Camera, Emission, Face, Light, Sphere, Surface, World};
 use anyhow::Result;
 use glam::DVec3;
@@ -65,15 +65,7 @@ pub fn build(o: &SceneOptions) -> Result<World> {
             // A brass plate behind the sphere, grazed from the right by a
             // warm lamp out of view: its light falls off from right to left
             // (from 0.5 m to 5 m away), and the sphere shows it inverted.
-            let plate = crate::world::Albedo::new([0.95, 0.4, 0.15]);
-            s.faces.push(Face::rect(
-                "metal plate",
-                DVec3::new(5.5, 3.5, -2.5),
-                DVec3::new(0.0, -5.7, 0.0),
-                DVec3::new(0.0, 0.0, 5.0),
-                Surface::Diffuse { albedo: plate, map: 0 },
-            ));
-            s.maps.push(s.faces.len() - 1);
+            matte(&mut s, "metal plate", DVec3::new(5.5, 3.5, -2.5), DVec3::new(0.0, -5.7, 0.0), DVec3::new(0.0, 0.0, 5.0), [0.95, 0.4, 0.15]);
             // A small warm lamp (a point: no highlight of it in the glass,
             // and no sampling noise in the plate's light) 0.5 m in front of
             // the plate's right end, out of the camera's view.
@@ -100,7 +92,6 @@ pub fn build(o: &SceneOptions) -> Result<World> {
                 glass_sphere(&mut s, "glass sphere", centre, r);
             }
             let (hole, beam) = (0.11, 0.7 * r);
-            let card = crate::world::Albedo::new([0.8; 3]);
             // Four pieces round the hole, facing the sphere (+x).
             for (name, y0, y1, z0, z1) in [
                 ("card left of the hole", -1.1, -hole, -0.85, 0.85),
@@ -108,14 +99,7 @@ pub fn build(o: &SceneOptions) -> Result<World> {
                 ("card below the hole", -hole, hole, -0.85, -hole),
                 ("card above the hole", -hole, hole, hole, 0.85),
             ] {
-                s.faces.push(Face::rect(
-                    name,
-                    DVec3::new(0.0, y0, z0),
-                    DVec3::new(0.0, y1 - y0, 0.0),
-                    DVec3::new(0.0, 0.0, z1 - z0),
-                    Surface::Diffuse { albedo: card, map: s.maps.len() },
-                ));
-                s.maps.push(s.faces.len() - 1);
+                matte(&mut s, name, DVec3::new(0.0, y0, z0), DVec3::new(0.0, y1 - y0, 0.0), DVec3::new(0.0, 0.0, z1 - z0), [0.8; 3]);
             }
             s.lights.push(Light {
                 name: "white beam".into(),
