@@ -123,6 +123,12 @@ impl Embree {
             let index = rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 12, n) as *mut u32;
             if scene.is_null() || geom.is_null() || verts.is_null() || index.is_null() {
                 let e = rtcGetDeviceError(device);
+                if !geom.is_null() {
+                    rtcReleaseGeometry(geom);
+                }
+                if !scene.is_null() {
+                    rtcReleaseScene(scene);
+                }
                 rtcReleaseDevice(device);
                 return Err(EmbreeError::Build(e));
             }
