@@ -295,7 +295,8 @@ pub fn prism(quick: bool, out_dir: &std::path::Path) -> Result<String> {
     let radius = crate::spectral::default_radius(&scene);
     let mut out = String::new();
     writeln!(out, "prism bench: single-prism, 320x240, 49.4 deg, D65 beam; radius {:.2} mm", radius * 1e3)?;
-    prism_throughput(&scene, quick, &mut out)?;
+    prism_throughput("single prism", &scene, quick, &mut out)?;
+    prism_throughput("Amici prism (amici-screen)", &build(&SceneOptions::new(SceneKind::AmiciScreen))?, quick, &mut out)?;
     let (csv, series) = prism_error_vs_time(&scene, radius, quick, &mut out)?;
     prism_strip_hue(quick, &mut out)?;
     std::fs::create_dir_all(out_dir)?;
@@ -311,7 +312,7 @@ fn prism_opts(photons: u64, map: MapKind, filter: Filter, r: f64) -> RenderOptio
 }
 
 /// The light pass alone on one thread: photons traced and stored per second.
-fn prism_throughput(scene: &crate::world::World, quick: bool, out: &mut String) -> Result<()> {
+fn prism_throughput(what: &str, scene: &crate::world::World, quick: bool, out: &mut String) -> Result<()> {
     let one = rayon::ThreadPoolBuilder::new().num_threads(1).build()?;
     let n = if quick { 200_000 } else { 2_000_000 };
     let (stats, secs) = one.install(|| {
@@ -321,7 +322,7 @@ fn prism_throughput(scene: &crate::world::World, quick: bool, out: &mut String) 
     });
     writeln!(
         out,
-        "light pass, 1 thread: {:.2} M photons traced/s, {:.2} M stored/s; kd-tree {} bytes per stored photon, buffer 0",
+        "light pass, 1 thread, {what}: {:.2} M photons traced/s, {:.2} M stored/s; kd-tree {} bytes per stored photon, buffer 0",
         stats.emitted as f64 / secs / 1e6,
         stats.stored as f64 / secs / 1e6,
         std::mem::size_of::<crate::photon::map::Photon>()

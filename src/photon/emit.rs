@@ -20,7 +20,7 @@ use crate::progress::Progress;
 use crate::sampling::{radical_inverse, rotate, Rng};
 use crate::spectrum::colormap::ColorMap;
 use crate::spectrum::sampler::WavelengthSampler;
-use crate::world::interface::{cross, Polarisation};
+use crate::world::interface::{cross, cross_with, Polarisation};
 use crate::world::{Emission, Surface, World};
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
@@ -358,6 +358,15 @@ impl Emitted<'_> {
     }
 }
 
+/// How many media's indices a photon keeps (the rest are computed at
+/// each crossing).
+const MEDIA: usize = 8;
+
+/// The first `MEDIA` media's indices at `nm`.
+fn media_indices(scene: &World, nm: f64) -> [f64; MEDIA] {
+    std::array::from_fn(|m| scene.media.get(m).and_then(|x| x.n(Some(nm))).unwrap_or(f64::NAN))
+}
+
 #[allow(clippy::too_many_arguments)]
 fn trace_photon(
     scene: &World,
@@ -382,6 +391,9 @@ fn trace_photon(
         None => Polarisation::P,
     };
     let mut nm: Option<f64> = None;
+    // The media's indices at `nm`, once it is chosen (so each glass's
+    // Sellmeier sum is evaluated once a photon, not twice a crossing).
+    let mut indices: Option<[f64; MEDIA]> = None;
     let mut xyz = white * power;
     let mut skip = None;
     let mut bounces = 0;
@@ -392,18 +404,24 @@ fn trace_photon(
     // while it has not bounced).
     let mut through_glass = false;
     let split = scene.split_maps();
+    let mut region = scene.cells.region_at(o);
     for _ in 0..MAX_BOUNCES {
-        let Some(hit) = scene.intersect(o, d, skip) else { return };
+        let Some(hit) = scene.intersect_in(o, d, skip, region) else { return };
         let p = o + hit.t * d;
         match *scene.surface(hit.face) {
             Surface::Interface { .. } => {
-                let c = match cross(scene, hit.face, p, d, nm) {
+                let index = |m: usize| match &indices {
+                    Some(n) if m < n.len() => Some(n[m]),
+                    _ => scene.media[m].n(nm),
+                };
+                let c = match cross_with(scene, hit.face, p, d, index) {
                     Ok(c) => c,
                     Err(_) => {
                         let (l, flux) = light.pick(u_lambda, colours);
                         nm = Some(l);
                         xyz = flux;
                         stats.dispersed += 1;
+                        indices = Some(media_indices(scene, l));
                         cross(scene, hit.face, p, d, nm).expect("a wavelength is set")
                     }
                 };
@@ -462,6 +480,7 @@ fn trace_photon(
                 let l = *nm.get_or_insert_with(|| {
                     let (l, flux) = light.pick(u_lambda, colours);
                     xyz = flux;
+                    indices = Some(media_indices(scene, l));
                     l
                 });
                 if !(rng.f64() < albedo.at(l)) {
@@ -474,6 +493,7 @@ fn trace_photon(
         }
         o = p;
         skip = Some(hit.face);
+        region = scene.region_after(hit.face, d);
     }
 }
 

@@ -30,6 +30,22 @@ fn pow2(k: i32) -> f32 {
     f32::from_bits((k.clamp(-126, 127) + 127) as u32 * (1 << 23)) * if k < -126 { 0.0 } else { 1.0 }
 }
 
+/// `x.round()` (halves away from zero) for |x| < 2^23, without the
+/// library call `round` is on baseline x86-64: the truncation is exact, and
+/// so is the fraction left.
+#[inline]
+fn round_half_away(x: f32) -> i32 {
+    let i = x as i32;
+    let frac = x - i as f32;
+    if frac >= 0.5 {
+        i + 1
+    } else if frac <= -0.5 {
+        i - 1
+    } else {
+        i
+    }
+}
+
 impl Photon {
     /// A photon at `pos` carrying `xyz` (finite).
     pub fn new(pos: [f32; 2], xyz: [f32; 3]) -> Photon {
@@ -37,13 +53,14 @@ impl Photon {
         if !(m > 0.0) || !m.is_finite() {
             return Photon { pos, mantissa: [0; 3], exponent: 0 };
         }
-        // The least e with m < 2^e, so every |x| 2^(15 - e) < 32768.
+        // An e with m < 2^e, so every |x| 2^(15 - e) < 32768 (the least but
+        // where log2 rounds up to a power of two just above m).
         let mut e = m.log2().floor() as i32 + 1;
         if m >= pow2(e) {
             e += 1;
         }
         let scale = pow2(15 - e);
-        let mantissa = xyz.map(|x| (x * scale).round().clamp(-32767.0, 32767.0) as i16);
+        let mantissa = xyz.map(|x| round_half_away((x * scale).clamp(-32767.0, 32767.0)) as i16);
         Photon { pos, mantissa, exponent: e as i16 }
     }
 
@@ -313,6 +330,41 @@ mod tests {
             assert_eq!(nn.len(), 20);
             assert!((rk - d[19].sqrt()).abs() < 1e-12);
         }
+    }
+
+    /// The rounding without the library call packs every photon exactly as
+    /// `f32::round` does: signs, halves and their neighbours, powers of two
+    /// and theirs, subnormals, the extremes.
+    #[test]
+    fn packing_matches_the_plain_formula() {
+        let plain = |xyz: [f32; 3]| {
+            let m = xyz.iter().fold(0f32, |m, x| m.max(x.abs()));
+            let mut e = m.log2().floor() as i32 + 1;
+            if m >= pow2(e) {
+                e += 1;
+            }
+            let scale = pow2(15 - e);
+            (xyz.map(|x| (x * scale).round().clamp(-32767.0, 32767.0) as i16), e as i16)
+        };
+        let mut r = Rng::new(3, 1, 4);
+        let mut tried = 0;
+        for k in -149..128 {
+            let p = 2f32.powi(k);
+            for m in [p, f32::from_bits(p.to_bits() + 1), f32::from_bits(p.to_bits().saturating_sub(1)).max(f32::from_bits(1)), p * (1.0 + r.f32())] {
+                for xyz in [[m, 0.0, 0.0], [-m, m * 0.5, m * 0.25], [m * r.f32(), -m, m * (0.5 + 2f32.powi(-16))], [m * 0.499_999_97, m, -m * 0.500_000_06]] {
+                    if !m.is_finite() || m == 0.0 {
+                        continue;
+                    }
+                    let got = Photon::new([0.0; 2], xyz);
+                    assert_eq!((got.mantissa, got.exponent), plain(xyz), "{xyz:?}");
+                    tried += 1;
+                }
+            }
+        }
+        assert!(tried > 4000, "{tried}");
+        assert_eq!(round_half_away(2.5), 3);
+        assert_eq!(round_half_away(-2.5), -3);
+        assert_eq!(round_half_away(0.499_999_97), 0);
     }
 
     /// A stored photon is 16 bytes, and its flux comes back within 2^-15

@@ -15,7 +15,7 @@ use crate::photon::map::SurfaceMap;
 use crate::sampling::Rng;
 use crate::spectrum::sampler::WavelengthSampler;
 use crate::world::interface::{cross, Polarisation};
-use crate::world::{Emission, Surface, World};
+use crate::world::{Emission, Region, Surface, World};
 use glam::{DVec2, DVec3};
 
 const MAX_DEPTH: usize = 64;
@@ -53,6 +53,8 @@ struct Path {
     o: DVec3,
     d: DVec3,
     skip: Option<usize>,
+    /// Where the path is among the prisms' cells (`world::cells`).
+    region: Region,
     nm: Option<f64>,
     weight: f64,
     pol: Polarisation,
@@ -109,12 +111,13 @@ impl Eye<'_> {
             false if rng.f64() < 0.5 => Polarisation::S,
             false => Polarisation::P,
         };
-        let mut stack = vec![Path { o, d, skip: None, nm: None, weight: 1.0, pol, depth: 0, light_u }];
+        let region = self.scene.cells.region_at(o);
+        let mut stack = vec![Path { o, d, skip: None, region, nm: None, weight: 1.0, pol, depth: 0, light_u }];
         let mut sum = DVec3::ZERO;
         while let Some(mut p) = stack.pop() {
             while p.depth < MAX_DEPTH {
                 *rays += 1;
-                let Some(hit) = self.scene.intersect(p.o, p.d, p.skip) else { break };
+                let Some(hit) = self.scene.intersect_in(p.o, p.d, p.skip, p.region) else { break };
                 let x = p.o + hit.t * p.d;
                 match self.step(&mut p, hit.face, x, u_lambda, rng, &mut stack) {
                     Step::Continue => {}
@@ -125,6 +128,7 @@ impl Eye<'_> {
                 }
                 p.o = x;
                 p.skip = Some(hit.face);
+                p.region = self.scene.region_after(hit.face, p.d);
                 p.depth += 1;
             }
         }
@@ -211,7 +215,8 @@ impl Eye<'_> {
             Some(t) if p.depth < SPLIT_DEPTH => {
                 let q = (4.0 * r).min(1.0);
                 if q > 0.0 && rng.f64() < q {
-                    stack.push(Path { o: x, d: c.reflected, skip: Some(id), weight: p.weight * r / q, depth: p.depth + 1, ..*p });
+                    let region = self.scene.region_after(id, c.reflected);
+                    stack.push(Path { o: x, d: c.reflected, skip: Some(id), region, weight: p.weight * r / q, depth: p.depth + 1, ..*p });
                 }
                 p.weight *= 1.0 - r;
                 t
@@ -270,7 +275,7 @@ impl Eye<'_> {
         // Whether the segment from x along unit w reaches distance `dist`
         // (or the face `target`) unblocked; glass blocks: light through it
         // is in the photon maps.
-        let clear = |w: DVec3, dist: f64, target: Option<usize>| match self.scene.intersect(x, w, Some(id)) {
+        let clear = |w: DVec3, dist: f64, target: Option<usize>| match self.scene.intersect_in(x, w, Some(id), self.scene.region_after(id, w)) {
             None => true,
             Some(h) => h.t >= dist * (1.0 - 1e-9) || Some(h.face) == target,
         };

@@ -75,7 +75,7 @@ impl<'a> Splat<'a> {
         let Some((ix, iy, z)) = self.pixels.project(p) else { return };
         // Seen directly: nothing between the point and the camera.
         let w = to_eye / dist;
-        if self.scene.intersect(p, w, Some(face)).is_some_and(|h| h.t < dist * (1.0 - 1e-9)) {
+        if self.scene.intersect_in(p, w, Some(face), self.scene.region_after(face, w)).is_some_and(|h| h.t < dist * (1.0 - 1e-9)) {
             return;
         }
         // The pixel's mean radiance over its area on the image plane one

@@ -64,14 +64,21 @@ pub struct NeedsWavelength;
 /// `d` at wavelength `nm` (`None` = white, allowed only where no medium
 /// here disperses).
 pub fn cross(scene: &World, id: usize, p: DVec3, d: DVec3, nm: Option<f64>) -> Result<Crossing, NeedsWavelength> {
+    cross_with(scene, id, p, d, |m| scene.media[m].n(nm))
+}
+
+/// The same, with the media's indices at the ray's wavelength given by
+/// `index` (`None` as in `Medium::n`): for a tracer that keeps them.
+#[inline]
+pub fn cross_with(scene: &World, id: usize, p: DVec3, d: DVec3, index: impl Fn(usize) -> Option<f64>) -> Result<Crossing, NeedsWavelength> {
     let Surface::Interface { front, back } = *scene.surface(id) else {
         panic!("cross() on a surface that is not an interface: {}", scene.name(id));
     };
     let normal = scene.normal(id, p);
     // Coming from the front side (against the normal) means entering `back`.
     let (from, to) = if d.dot(normal) < 0.0 { (front, back) } else { (back, front) };
-    let n1 = scene.media[from].n(nm).ok_or(NeedsWavelength)?;
-    let n2 = scene.media[to].n(nm).ok_or(NeedsWavelength)?;
+    let n1 = index(from).ok_or(NeedsWavelength)?;
+    let n2 = index(to).ok_or(NeedsWavelength)?;
     let cos_i = d.dot(normal).abs();
     Ok(Crossing {
         to,

@@ -9,6 +9,7 @@
 
 pub mod bvh;
 pub mod camera;
+pub mod cells;
 pub mod interface;
 pub mod light;
 pub mod medium;
@@ -16,6 +17,7 @@ pub mod probe;
 pub mod shape;
 
 pub use camera::Camera;
+pub use cells::{Cells, Region};
 pub use light::{Emission, Light};
 pub use medium::{Albedo, Medium, Surface};
 pub use shape::{Face, Sphere};
@@ -70,10 +72,14 @@ pub struct World {
     /// directly: set for `--map film`, which puts them on the film
     /// (`spectral::splat`).
     pub caustics_apart: bool,
+    /// The prisms' convex parts and convex outlines, for finding the next
+    /// surface faster (`cells`); rebuilt from the faces by `add_extruded`
+    /// and `build_accel`.
+    pub cells: Cells,
 }
 
 /// Nearest face hit by a ray.
-#[derive(Copy, Clone, Debug)]
+#[derive(Copy, Clone, Debug, PartialEq)]
 pub struct FaceHit {
     pub t: f64,
     pub face: usize,
@@ -125,12 +131,14 @@ impl World {
             haze: 0.0,
             indirect_gather: 1.0,
             caustics_apart: false,
+            cells: Cells::default(),
         }
     }
 
     /// Builds the BVH over the faces when there are enough of them for it
     /// to pay (a mesh prism); call once the faces are final.
     pub fn build_accel(&mut self) {
+        self.cells = Cells::index(&self.faces);
         self.accel = (self.faces.len() > 32).then(|| bvh::FaceBvh::build(&self.faces));
     }
 
@@ -138,18 +146,75 @@ impl World {
     /// face is ignored (a ray cannot meet its own plane again), a sphere
     /// only loses the root at the start.
     pub fn intersect(&self, o: DVec3, d: DVec3, skip: Option<usize>) -> Option<FaceHit> {
+        self.intersect_in(o, d, skip, Region::Unknown)
+    }
+
+    /// The same, for a ray in `region` (`cells`): inside a cell, where it
+    /// leaves the cell; outside them, the scan passes over the faces of
+    /// convex solids, which are met by one test each, and over cell faces
+    /// seen from inside. The same hit at the same distance as the scan.
+    pub fn intersect_in(&self, o: DVec3, d: DVec3, skip: Option<usize>, region: Region) -> Option<FaceHit> {
+        let region = if self.cells.valid(&self.faces) { region } else { Region::Unknown };
+        let left = match region {
+            Region::Cell(c) => {
+                // None: rounding put the ray outside its cell (on an edge).
+                return self.cells.leave(&self.faces, c as usize, o, d, skip).or_else(|| self.intersect_in(o, d, skip, Region::Unknown));
+            }
+            Region::Left(s) => Some(s),
+            _ => None,
+        };
+        let outside = region != Region::Unknown;
         let mut best: Option<FaceHit> = None;
         match &self.accel {
             Some(bvh) if bvh.faces == self.faces.len() => {
                 best = bvh.intersect(&self.faces, o, d, skip).map(|(t, face)| FaceHit { t, face });
             }
             _ => {
-                for (i, f) in self.faces.iter().enumerate() {
-                    if Some(i) == skip {
-                        continue;
+                if !outside {
+                    for (i, f) in self.faces.iter().enumerate() {
+                        if Some(i) != skip {
+                            if let Some(t) = f.intersect_before(o, d, best.map_or(f64::INFINITY, |b| b.t)) {
+                                best = Some(FaceHit { t, face: i });
+                            }
+                        }
                     }
-                    if let Some(t) = f.intersect_before(o, d, best.map_or(f64::INFINITY, |b| b.t)) {
-                        best = Some(FaceHit { t, face: i });
+                } else {
+                    // Faces of no convex solid one by one, then each solid whole.
+                    for &i in &self.cells.loose {
+                        let f = &self.faces[i];
+                        if Some(i) == skip {
+                            continue;
+                        }
+                        match f.cells {
+                            [Some(_), Some(_)] => continue,
+                            // From outside a cell, only its outer side is met.
+                            [Some(_), None] if d.dot(f.normal) < 0.0 => continue,
+                            [None, Some(_)] if d.dot(f.normal) > 0.0 => continue,
+                            _ => {}
+                        }
+                        if let Some(t) = f.intersect_before(o, d, best.map_or(f64::INFINITY, |b| b.t)) {
+                            best = Some(FaceHit { t, face: i });
+                        }
+                    }
+                    let from = skip.and_then(|k| self.faces.get(k)).and_then(|f| f.solid);
+                    for s in 0..self.cells.solids() as u32 {
+                        if Some(s) == left || Some(s) == from {
+                            continue;
+                        }
+                        let hit = match self.cells.enter(&self.faces, s as usize, o, d) {
+                            cells::Entry::Hit(h) => Some(h),
+                            cells::Entry::Miss => None,
+                            cells::Entry::InDoubt => {
+                                self.faces.iter().enumerate().filter(|(_, f)| f.solid == Some(s)).fold(None, |b: Option<FaceHit>, (i, f)| {
+                                    f.intersect_before(o, d, b.map_or(f64::INFINITY, |b| b.t)).map(|t| FaceHit { t, face: i }).or(b)
+                                })
+                            }
+                        };
+                        if let Some(h) = hit {
+                            if cells::before(h, best) {
+                                best = Some(h);
+                            }
+                        }
                     }
                 }
             }
@@ -163,6 +228,20 @@ impl World {
             }
         }
         best
+    }
+
+    /// The region a ray is in after leaving surface `id` in direction `d`
+    /// (refracted into the far side, or reflected back into the near one).
+    pub fn region_after(&self, id: usize, d: DVec3) -> Region {
+        match self.faces.get(id) {
+            Some(f) => match (f.cells[if d.dot(f.normal) > 0.0 { 0 } else { 1 }], f.solid) {
+                (Some(c), _) => Region::Cell(c),
+                // A convex solid lies wholly behind each of its outer faces.
+                (None, Some(s)) => Region::Left(s),
+                (None, None) => Region::Outside,
+            },
+            None => Region::Outside,
+        }
     }
 
     /// What one watt of a light (its spectrum's `sampler`) leaves each
@@ -211,7 +290,10 @@ impl World {
         let at = |p: DVec2, z: f64| DVec3::new(p.x, p.y, z);
         let same = |a: DVec2, b: DVec2| (a - b).length() < 1e-12;
         let mut done: Vec<(usize, usize)> = Vec::new();
+        let first_cell = self.faces.iter().flat_map(|f| f.cells).flatten().map(|c| c as usize + 1).max().unwrap_or(0);
+        let first_face = self.faces.len();
         for (k, (tri, medium)) in parts.iter().enumerate() {
+            let cell = (first_cell + k) as u32;
             for e in 0..3 {
                 if done.contains(&(k, e)) {
                     continue;
@@ -223,27 +305,41 @@ impl World {
                     .iter()
                     .enumerate()
                     .find_map(|(j, (t2, m2))| (j != k).then(|| (0..3).find(|&f| same(t2[f], b) && same(t2[(f + 1) % 3], a)).map(|f| (j, f, *m2))).flatten());
-                let front = match twin {
+                let (front, front_cell) = match twin {
                     Some((j, f, m2)) => {
                         done.push((j, f));
-                        m2
+                        (m2, Some((first_cell + j) as u32))
                     }
-                    None => 0,
+                    None => (0, None),
                 };
                 let verts = vec![at(a, z0), at(b, z0), at(b, z1), at(a, z1)];
                 let n = DVec3::new(outward.x, outward.y, 0.0);
-                self.faces.push(Face::polygon(&format!("{name} part {k} side {e}"), verts, n, Surface::Interface { front, back: *medium }));
+                let mut face = Face::polygon(&format!("{name} part {k} side {e}"), verts, n, Surface::Interface { front, back: *medium });
+                face.cells = [front_cell, Some(cell)];
+                self.faces.push(face);
             }
             for (z, nz) in [(z0, -1.0), (z1, 1.0)] {
                 let verts = tri.iter().map(|&p| at(p, z)).collect();
-                self.faces.push(Face::polygon(
-                    &format!("{name} part {k} cap"),
-                    verts,
-                    DVec3::new(0.0, 0.0, nz),
-                    Surface::Interface { front: 0, back: *medium },
-                ));
+                let mut face = Face::polygon(&format!("{name} part {k} cap"), verts, DVec3::new(0.0, 0.0, nz), Surface::Interface { front: 0, back: *medium });
+                face.cells = [None, Some(cell)];
+                self.faces.push(face);
             }
         }
+        // The solid is convex if every vertex lies behind every outer face.
+        let solid = self.faces.iter().filter_map(|f| f.solid).map(|s| s + 1).max().unwrap_or(0);
+        let faces = first_face..self.faces.len();
+        let scale = self.faces[faces.clone()].iter().flat_map(|f| f.verts.iter()).map(|v| v.abs().max_element()).fold(1e-3, f64::max);
+        let convex = faces.clone().filter(|&i| self.faces[i].cells.contains(&None)).all(|i| {
+            let f = &self.faces[i];
+            let out = if f.cells[1].is_some() { f.normal } else { -f.normal };
+            self.faces[faces.clone()].iter().flat_map(|g| g.verts.iter()).all(|&v| (v - f.verts[0]).dot(out) <= 1e-12 * scale)
+        });
+        if convex {
+            for f in &mut self.faces[faces] {
+                f.solid = Some(solid);
+            }
+        }
+        self.cells = Cells::index(&self.faces);
     }
 }
 

@@ -16,6 +16,12 @@ pub struct Face {
     /// For parallelogram faces: corner and edge vectors, the (u, v) frame
     /// of the report's per-object photon buffer.
     pub frame: Option<(DVec3, DVec3, DVec3)>,
+    /// The convex glass cells (`World::cells`) on the face's front and
+    /// back sides, where it bounds one; set by `World::add_extruded`.
+    pub cells: [Option<u32>; 2],
+    /// The convex solid (an extruded prism whose whole outline is convex)
+    /// the face bounds, if any.
+    pub solid: Option<u32>,
     /// A sphere around the vertices (centre, radius squared): rays that
     /// pass outside it skip the plane and polygon tests.
     bound: (DVec3, f64),
@@ -43,7 +49,7 @@ impl Face {
                 (m, a.dot(m), 1e-12 * (b - a).length_squared().max(1e-30))
             })
             .collect();
-        Face { name: name.into(), verts, normal: n, surface, frame: None, bound: (centre, r2 * (1.0 + 1e-9) + 1e-18), edges }
+        Face { name: name.into(), verts, normal: n, surface, frame: None, cells: [None, None], solid: None, bound: (centre, r2 * (1.0 + 1e-9) + 1e-18), edges }
     }
 
     /// Parallelogram from a corner and two edges; normal eu x ev.
@@ -74,12 +80,19 @@ impl Face {
         if denom == 0.0 || !denom.is_finite() {
             return None;
         }
-        let t = (self.verts[0] - o).dot(self.normal) / denom;
+        let t = self.plane_distance(o, denom);
         if !(t > 0.0 && t < t_max) {
             return None;
         }
         let p = o + t * d;
         self.edges.iter().all(|&(m, c, tol)| p.dot(m) - c >= -tol).then_some(t)
+    }
+
+    /// Distance along a ray from `o` to the face's plane, given the ray's
+    /// direction's component along the normal (`denom`, not 0).
+    #[inline]
+    pub fn plane_distance(&self, o: DVec3, denom: f64) -> f64 {
+        (self.verts[0] - o).dot(self.normal) / denom
     }
 
     /// Whether a point of the face's plane lies inside its polygon.
