@@ -44,6 +44,9 @@ pub struct Cells {
     /// Per convex solid: its outer planes, and the faces lying in each
     /// (coplanar faces of neighbouring parts share one).
     solids: Vec<Vec<(Plane, Vec<usize>)>>,
+    /// Per convex solid, a sphere around it (centre, radius squared): a
+    /// line that passes outside misses it.
+    bounds: Vec<(DVec3, f64)>,
 }
 
 /// The faces other than `id` that lie in its plane.
@@ -116,7 +119,15 @@ impl Cells {
             }
         }
         let loose = (0..faces.len()).filter(|&i| faces[i].solid.is_none()).collect();
-        Cells { faces: faces.len(), loose, cells, solids }
+        let bounds = (0..solids.len() as u32)
+            .map(|s| {
+                let verts: Vec<DVec3> = faces.iter().filter(|f| f.solid == Some(s)).flat_map(|f| f.verts.iter().copied()).collect();
+                let centre = verts.iter().sum::<DVec3>() / verts.len() as f64;
+                let r2 = verts.iter().map(|v| v.distance_squared(centre)).fold(0.0, f64::max);
+                (centre, r2 * (1.0 + 1e-6) + 1e-18)
+            })
+            .collect();
+        Cells { faces: faces.len(), loose, cells, solids, bounds }
     }
 
     /// Whether the index still describes these faces.
@@ -171,6 +182,13 @@ impl Cells {
 
     /// Where a ray from outside every cell enters convex solid `s`.
     pub fn enter(&self, faces: &[Face], s: usize, o: DVec3, d: DVec3) -> Entry {
+        // The bounding sphere first (d need not be unit: compare scaled).
+        let (c, r2) = self.bounds[s];
+        let oc = c - o;
+        let (b, dd) = (oc.dot(d), d.length_squared());
+        if oc.length_squared() * dd - b * b > r2 * dd {
+            return Entry::Miss;
+        }
         let (mut t_in, mut t_out, mut entry) = (f64::NEG_INFINITY, f64::INFINITY, None);
         for (p, faces) in &self.solids[s] {
             // The normal points out (`out` is 1).
@@ -197,15 +215,16 @@ impl Cells {
             // The ray starts on the solid (from a floor it stands on).
             return Entry::InDoubt;
         }
-        // The face of the entry plane the scan would find there, tested as
-        // the scan tests it (polygon and all); none where rounding put the
+        // The face of the entry plane the scan would find there: at its own
+        // distance, computed as the scan does, and inside its polygon (then
+        // inside its bounding sphere too); none where rounding put the
         // entry on an edge.
         let mut hit = None;
         for &k in if coplanar.len() == 1 { std::slice::from_ref(&first) } else { coplanar } {
-            if let Some(t) = faces[k].intersect(o, d) {
-                if before(FaceHit { t, face: k }, hit) {
-                    hit = Some(FaceHit { t, face: k });
-                }
+            let f = &faces[k];
+            let t = f.plane_distance(o, d.dot(f.normal));
+            if t > 0.0 && f.contains(o + t * d) && before(FaceHit { t, face: k }, hit) {
+                hit = Some(FaceHit { t, face: k });
             }
         }
         hit.map_or(Entry::InDoubt, Entry::Hit)
