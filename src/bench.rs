@@ -315,14 +315,21 @@ fn prism_opts(photons: u64, map: MapKind, filter: Filter, r: f64) -> RenderOptio
 fn prism_throughput(what: &str, scene: &crate::world::World, quick: bool, out: &mut String) -> Result<()> {
     let one = rayon::ThreadPoolBuilder::new().num_threads(1).build()?;
     let n = if quick { 200_000 } else { 2_000_000 };
-    let (stats, secs) = one.install(|| {
-        let t = Instant::now();
-        let p = crate::photon::emit::light_pass(scene, n, 1, ColorMap::Cie, &crate::progress::Silent);
-        (p.stats, t.elapsed().as_secs_f64())
-    });
+    // The median of three runs (the machines are shared and noisy).
+    let mut runs: Vec<_> = (0..3)
+        .map(|_| {
+            one.install(|| {
+                let t = Instant::now();
+                let p = crate::photon::emit::light_pass(scene, n, 1, ColorMap::Cie, &crate::progress::Silent);
+                (p.stats, t.elapsed().as_secs_f64())
+            })
+        })
+        .collect();
+    runs.sort_by(|a, b| a.1.total_cmp(&b.1));
+    let (stats, secs) = runs.swap_remove(1);
     writeln!(
         out,
-        "light pass, 1 thread, {what}: {:.2} M photons traced/s, {:.2} M stored/s; kd-tree {} bytes per stored photon, buffer 0",
+        "light pass, 1 thread, {what}, median of 3: {:.2} M photons traced/s, {:.2} M stored/s; kd-tree {} bytes per stored photon, buffer 0",
         stats.emitted as f64 / secs / 1e6,
         stats.stored as f64 / secs / 1e6,
         std::mem::size_of::<crate::photon::map::Photon>()
@@ -336,6 +343,13 @@ type Runs = Vec<(f64, f64)>;
 /// Mitsuba 3.9's particle tracer on the same scene against the same kind
 /// of analytic reference (the anchor): time in seconds to each error.
 const MITSUBA: [(f64, f64); 4] = [(0.20, 0.10), (1.09, 0.05), (4.97, 0.02), (11.4, 0.013)];
+
+/// Mitsuba's time to 0.01, not measured: its last point carried on as its
+/// error falls, one over the square root of the time (about 19.3 s).
+fn mitsuba_at_001() -> f64 {
+    let (t, e) = MITSUBA[3];
+    t * (e / 0.01) * (e / 0.01)
+}
 
 /// The errors the table reports times for.
 const TARGETS: [f64; 4] = [0.10, 0.05, 0.02, 0.01];
@@ -419,13 +433,14 @@ fn prism_error_vs_time(scene: &crate::world::World, radius: f64, quick: bool, ou
             let t = time_to_error(runs, e);
             let ratio = match (t, MITSUBA.get(k).filter(|m| m.1 == e)) {
                 (Some(t), Some(m)) => format!("{:.1}", m.0 / t),
+                (Some(t), None) if e == 0.01 => format!("~{:.1}", mitsuba_at_001() / t),
                 _ => "-".into(),
             };
             write!(out, " {:>8} {:>6}", fmt(t), ratio)?;
         }
         writeln!(out, " {:>12}", floor(runs).map_or("still falls".to_string(), |f| format!("{f:.4}")))?;
     }
-    writeln!(out, "t(e): seconds to reach relative error e (log-log interpolation); xMi: Mitsuba 3.9's time to e over ours (it reaches 0.10 in 0.20 s, 0.05 in 1.09 s, 0.02 in 4.97 s; 0.01: not measured)")?;
+    writeln!(out, "t(e): seconds to reach relative error e (log-log interpolation); xMi: Mitsuba 3.9's time to e over ours (it reaches 0.10 in 0.20 s, 0.05 in 1.09 s, 0.02 in 4.97 s, 0.013 in 11.4 s; ~: 0.01 not measured, carried on as t^-0.5 to {:.1} s)", mitsuba_at_001())?;
     writeln!(out, "floor: the error where a method stops improving (its last doubling of time gains under 5 %), or 'still falls'")?;
     Ok((csv, series))
 }
