@@ -204,7 +204,9 @@ impl Bvh {
         if self.packets.is_empty() {
             return None;
         }
-        let inv4 = ray.inv_dir().to_array().map(Vec4::splat);
+        let inv = ray.inv_dir();
+        let down = inv.to_array().map(f32::is_sign_negative);
+        let inv4 = inv.to_array().map(Vec4::splat);
         let o4 = ray.origin.to_array().map(Vec4::splat);
         let tmin4 = Vec4::splat(ray.t_min);
         let d4 = ray.dir.to_array().map(Vec4::splat);
@@ -221,20 +223,19 @@ impl Bvh {
             // SSE's min and max return their second operand when either is
             // NaN, so a NaN ray's NaN distances reach `near` and `far` and
             // fail the comparison.
+            // The near side of each slab is the low bound where the ray
+            // runs up that axis, the high where it runs down (Williams et
+            // al.'s ordered slabs): no min and max of the two. An unused
+            // slot's empty box (low +inf, high -inf) is never entered.
             let mut near = tmin4;
             let mut far = Vec4::INFINITY;
             for a in 0..3 {
-                let t0 = (Vec4::from_array(node.lo[a]) - o4[a]) * inv4[a];
-                let t1 = (Vec4::from_array(node.hi[a]) - o4[a]) * inv4[a];
-                near = near.max(t0.min(t1));
-                far = far.min(t0.max(t1));
+                let (n, f) = if down[a] { (&node.hi[a], &node.lo[a]) } else { (&node.lo[a], &node.hi[a]) };
+                near = near.max((Vec4::from_array(*n) - o4[a]) * inv4[a]);
+                far = far.min((Vec4::from_array(*f) - o4[a]) * inv4[a]);
             }
             let slack = 1.0 + 2.0 * GAMMA3;
-            let used = (node.child[0] != EMPTY) as u32
-                | ((node.child[1] != EMPTY) as u32) << 1
-                | ((node.child[2] != EMPTY) as u32) << 2
-                | ((node.child[3] != EMPTY) as u32) << 3;
-            let mut mask = (near.cmple(far * slack) & near.cmple(Vec4::splat(t_max * slack))).bitmask() & used;
+            let mut mask = (near.cmple(far * slack) & near.cmple(Vec4::splat(t_max * slack))).bitmask();
             let near = near.to_array();
             // Leaves first (their hits shorten the ray), then the inner
             // children nearest first.
