@@ -130,9 +130,10 @@ impl Cells {
         Cells { faces: faces.len(), loose, cells, solids, bounds }
     }
 
-    /// Whether the index still describes these faces.
+    /// Whether the index still describes these faces and has a cell to
+    /// offer (without one, the plain scan is the quicker).
     pub fn valid(&self, faces: &[Face]) -> bool {
-        self.faces == faces.len()
+        self.faces == faces.len() && !self.cells.is_empty()
     }
 
     /// How many convex solids there are.

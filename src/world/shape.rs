@@ -66,8 +66,9 @@ impl Face {
     }
 
     /// The same, for hits nearer than `t_max` only (the polygon test is
-    /// skipped for farther planes).
-    #[inline]
+    /// skipped for farther planes). Always inlined: in a scan over faces
+    /// the ray's own terms are then worked out once, not once a face.
+    #[inline(always)]
     pub fn intersect_before(&self, o: DVec3, d: DVec3, t_max: f64) -> Option<f64> {
         // The bounding sphere first (d need not be unit: compare scaled).
         let (c, r2) = self.bound;
