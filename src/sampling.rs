@@ -73,17 +73,28 @@ pub fn rotate(u: f64, offset: f64) -> f64 {
 /// paired with the points in random order. A straight edge across the
 /// pixel is then estimated to within about 1/n, not 1/sqrt(n).
 pub fn multi_jittered(n: usize, rng: &mut Rng) -> Vec<[f64; 3]> {
+    let mut out = Vec::new();
+    multi_jittered_into(n, rng, &mut out, &mut Vec::new());
+    out
+}
+
+/// The same points into `out` (cleared first), with `scratch` for the
+/// shuffle: a caller that makes a pattern per pixel keeps both and
+/// allocates nothing per pixel.
+pub fn multi_jittered_into(n: usize, rng: &mut Rng, out: &mut Vec<[f64; 3]>, scratch: &mut Vec<usize>) {
     let n = n.max(1);
     // The grid: m the largest divisor of n not above its square root.
     let m = (1..=n).take_while(|d| d * d <= n).filter(|d| n.is_multiple_of(*d)).last().unwrap_or(1);
     let k = n / m;
     let (ox, oy) = (rng.f64(), rng.f64());
-    let mut third: Vec<usize> = (0..n).collect();
+    let third = scratch;
+    third.clear();
+    third.extend(0..n);
     for i in (1..n).rev() {
         third.swap(i, (rng.next_u64() % (i as u64 + 1)) as usize);
     }
     let nf = n as f64;
-    let mut out = Vec::with_capacity(n);
+    out.clear();
     for i in 0..m {
         for j in 0..k {
             let x = ((i * k + j) as f64 + rng.f64()) / nf;
@@ -92,7 +103,6 @@ pub fn multi_jittered(n: usize, rng: &mut Rng) -> Vec<[f64; 3]> {
             out.push([rotate(x, ox).min(1.0 - 1e-12), rotate(y, oy).min(1.0 - 1e-12), w]);
         }
     }
-    out
 }
 
 #[cfg(test)]

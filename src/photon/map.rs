@@ -88,11 +88,28 @@ crate::named_enum! {
 impl MapKind {}
 
 pub enum SurfaceMap {
-    Buffer { size: DVec2, nu: usize, nv: usize, flux: Vec<[f32; 3]> },
-    Kd { size: DVec2, photons: Vec<Photon> },
+    /// `lit`: whether any texel holds flux (a map with none reads zero
+    /// everywhere, with no texels to visit).
+    Buffer {
+        size: DVec2,
+        nu: usize,
+        nv: usize,
+        flux: Vec<[f32; 3]>,
+        lit: bool,
+    },
+    Kd {
+        size: DVec2,
+        photons: Vec<Photon>,
+    },
 }
 
 impl SurfaceMap {
+    /// A buffer map of `nu` x `nv` texels of XYZ flux over `size` metres.
+    pub fn buffer(size: DVec2, nu: usize, nv: usize, flux: Vec<[f32; 3]>) -> SurfaceMap {
+        let lit = flux.iter().any(|f| f.iter().any(|&x| x != 0.0));
+        SurfaceMap::Buffer { size, nu, nv, flux, lit }
+    }
+
     /// Builds a map of the surface of `size` (m) from its photons. The
     /// buffer's texels are `texel` metres wide (at most 4096 per side).
     pub fn build(kind: MapKind, size: DVec2, photons: Vec<Photon>, texel: f64) -> SurfaceMap {
@@ -109,7 +126,7 @@ impl SurfaceMap {
                         *t += x;
                     }
                 }
-                SurfaceMap::Buffer { size, nu, nv, flux }
+                SurfaceMap::buffer(size, nu, nv, flux)
             }
             MapKind::Kdtree => {
                 let mut photons = photons;
@@ -130,7 +147,8 @@ impl SurfaceMap {
     /// Irradiance (XYZ per m^2) at `x` (m, in the surface's frame).
     pub fn irradiance(&self, x: DVec2, filter: Filter, lookup: Lookup) -> DVec3 {
         match self {
-            SurfaceMap::Buffer { size, nu, nv, flux } => {
+            SurfaceMap::Buffer { lit: false, .. } => DVec3::ZERO,
+            SurfaceMap::Buffer { size, nu, nv, flux, .. } => {
                 let r = lookup.radius();
                 let (tu, tv) = (size.x / *nu as f64, size.y / *nv as f64);
                 let (u0, u1) = (((x.x - r) / tu).floor().max(0.0) as usize, (((x.x + r) / tu).ceil().max(0.0) as usize).min(*nu));

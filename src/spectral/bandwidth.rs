@@ -11,6 +11,7 @@
 //! shrinks to none, and the film keeps converging.
 
 use glam::DVec3;
+use rayon::prelude::*;
 
 /// The kernels tried: tents of these radii in pixels along each axis
 /// (their product, separable); 0 is no kernel.
@@ -43,7 +44,8 @@ pub fn smooth(img: &[DVec3], g: Grid, r: f64) -> Vec<DVec3> {
     let pass = |src: &[DVec3], along_rows: bool| -> Vec<DVec3> {
         let mut out = vec![DVec3::ZERO; src.len()];
         let (n, step) = if along_rows { (g.width, 1) } else { (g.height, g.width) };
-        out.chunks_mut(g.width).enumerate().for_each(|(y, row)| {
+        // Rows in parallel: each output pixel is its own sum.
+        out.par_chunks_mut(g.width).enumerate().for_each(|(y, row)| {
             for (x, px) in row.iter_mut().enumerate() {
                 let (at, i) = if along_rows { (y * g.width, x) } else { (x, y) };
                 let (lo, hi) = (k.saturating_sub(i), (n + k - i).min(w.len()));

@@ -11,7 +11,7 @@ use crate::photon::emit::{light_pass_from, light_pass_into, light_pass_with, Gri
 use crate::photon::map::MapKind;
 use crate::photon::map::SurfaceMap;
 use crate::progress::Progress;
-use crate::sampling::{multi_jittered, Rng};
+use crate::sampling::{multi_jittered_into, Rng};
 use crate::spectrum::sampler::WavelengthSampler;
 use crate::spectrum::Spectrum;
 use crate::world::{Emission, World};
@@ -95,7 +95,7 @@ pub fn render_offset(scene: &World, opts: &RenderOptions, place: Option<PassPlac
             let (img, r) = super::bandwidth::film_image(&halves, g, opts.film_kernel);
             (film, film_kernel) = (Some(img), Some(r));
         }
-        let maps = grids.grids.iter().enumerate().map(|(m, g)| SurfaceMap::Buffer { size: g.size, nu: g.nu, nv: g.nv, flux: grids.flux(m) }).collect();
+        let maps = grids.grids.iter().enumerate().map(|(m, g)| SurfaceMap::buffer(g.size, g.nu, g.nv, grids.flux(m))).collect();
         (stats, maps, trace_s, t.elapsed().as_secs_f64())
     } else {
         let pass = light_pass_from(scene, opts.photons, opts.seed, index, opts.colours, progress);
@@ -144,15 +144,16 @@ pub fn render_offset(scene: &World, opts: &RenderOptions, place: Option<PassPlac
         .enumerate()
         .map(|(y, row)| {
             let mut rays = 0;
+            let (mut pattern, mut on_lights, mut scratch) = (Vec::new(), Vec::new(), Vec::new());
             for (x, px) in row.iter_mut().enumerate() {
                 let mut sum = DVec3::ZERO;
                 let pixel = (y * cam.width + x) as u64;
                 // Positions and wavelengths stratified over the pixel's
                 // samples; one sample looks through the pixel's centre.
-                let pattern = multi_jittered(opts.spp as usize, &mut Rng::new(eye_seed, pixel, 0x0fff));
+                multi_jittered_into(opts.spp as usize, &mut Rng::new(eye_seed, pixel, 0x0fff), &mut pattern, &mut scratch);
                 // Shadow rays' points on area lights, stratified the same
                 // way by a pattern of their own.
-                let on_lights = multi_jittered(opts.spp as usize, &mut Rng::new(eye_seed, pixel, 0x0ffe));
+                multi_jittered_into(opts.spp as usize, &mut Rng::new(eye_seed, pixel, 0x0ffe), &mut on_lights, &mut scratch);
                 for (s, (&[a, b, c], &[la, lb, _])) in pattern.iter().zip(&on_lights).enumerate() {
                     // The multi-jittered pair is (x, y), or under `--eye
                     // lines` (x, wavelength): through a prism that
