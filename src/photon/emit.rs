@@ -94,6 +94,12 @@ pub fn sum_copies(cells: u64, threads: usize) -> usize {
     }
 }
 
+/// `n` fixed-point XYZ sums at zero, made on every thread (a render's
+/// fixed cost: a buffer map or film has a few hundred thousand).
+pub fn zeroed_sums(n: usize) -> Vec<[std::sync::atomic::AtomicI64; 3]> {
+    (0..n).into_par_iter().map(|_| Default::default()).collect()
+}
+
 /// `v.round() as i64` (halves away from zero, saturating, NaN to 0)
 /// without the library call `round` is on baseline x86-64: below 2^52 the
 /// truncation and the fraction left are exact; above, v is whole.
@@ -141,7 +147,7 @@ impl Grids {
             })
             .collect();
         let copies = sum_copies(sizes.iter().map(|&(_, nu, nv)| (nu * nv) as u64).sum(), rayon::current_num_threads());
-        let grids = sizes.into_iter().map(|(size, nu, nv)| Grid { size, nu, nv, cells: (0..copies * nu * nv).map(|_| Default::default()).collect() }).collect();
+        let grids = sizes.into_iter().map(|(size, nu, nv)| Grid { size, nu, nv, cells: zeroed_sums(copies * nu * nv) }).collect();
         // 2^61 units for the most flux there can be: no sum overflows, and
         // a photon of 1e-10 of it still has about 2e8 units.
         let scale = if max_flux > 0.0 && max_flux.is_finite() { (1u64 << 61) as f64 / max_flux } else { 1.0 };
@@ -154,7 +160,10 @@ impl Grids {
         use std::sync::atomic::Ordering::Relaxed;
         let g = &self.grids[map];
         let n = g.nu * g.nv;
-        (0..n).map(|i| [0, 1, 2].map(|k| ((0..self.copies).map(|c| g.cells[c * n + i][k].load(Relaxed)).sum::<i64>() as f64 / self.scale) as f32)).collect()
+        (0..n)
+            .into_par_iter()
+            .map(|i| [0, 1, 2].map(|k| ((0..self.copies).map(|c| g.cells[c * n + i][k].load(Relaxed)).sum::<i64>() as f64 / self.scale) as f32))
+            .collect()
     }
 }
 

@@ -12,6 +12,7 @@
 use crate::photon::emit::{Deposit, Grids};
 use crate::world::World;
 use glam::DVec3;
+use rayon::prelude::*;
 use std::sync::atomic::{AtomicI64, Ordering::Relaxed};
 
 /// The film's pixels as fixed-point XYZ sums (atomic adds: the same
@@ -57,7 +58,7 @@ impl<'a> Splat<'a> {
         let scale = if most > 0.0 && most.is_finite() { (1u64 << 61) as f64 / most } else { 1.0 };
         let n = 2 * cam.width * cam.height;
         let copies = crate::photon::emit::sum_copies(n as u64, rayon::current_num_threads());
-        Splat { scene, pixels, cells: (0..copies * n).map(|_| Default::default()).collect(), scale, copies }
+        Splat { scene, pixels, cells: crate::photon::emit::zeroed_sums(copies * n), scale, copies }
     }
 
     /// A photon of half `half` carrying reflected XYZ flux `xyz` lands at
@@ -98,6 +99,7 @@ impl<'a> Splat<'a> {
         let n = self.pixels.width * self.pixels.height;
         let half = |h: usize| {
             (0..n)
+                .into_par_iter()
                 .map(|i| {
                     let sum = |k: usize| (0..self.copies).map(|c| self.cells[(2 * c + h) * n + i][k].load(Relaxed)).sum::<i64>() as f64;
                     DVec3::new(sum(0), sum(1), sum(2)) / self.scale
