@@ -12,7 +12,7 @@
 //! computed the same way to the bit (`World::intersect_in`; a test checks
 //! it on random rays).
 
-use super::{Face, FaceHit};
+use super::{Face, FaceHit, Sphere};
 use glam::DVec3;
 
 /// Where a ray is, as far as the tracer knows. It only makes the search
@@ -93,7 +93,7 @@ struct Plane {
 
 impl Cells {
     /// Reads the cells and solids off the faces.
-    pub fn index(faces: &[Face]) -> Cells {
+    pub fn index(faces: &[Face], spheres: &[Sphere]) -> Cells {
         let count = |f: &dyn Fn(&Face) -> Option<u32>| faces.iter().filter_map(f).map(|c| c as usize + 1).max().unwrap_or(0);
         let mut cells = vec![Vec::new(); count(&|f| f.cells.iter().flatten().max().copied())];
         let mut solids: Vec<Vec<(Plane, Vec<usize>)>> = vec![Vec::new(); count(&|f| f.solid)];
@@ -116,6 +116,25 @@ impl Cells {
                     Some((_, faces)) => faces.push(id),
                     None => planes.push((Plane { normal: f.normal * out, out: 1.0, at: f.verts[0], face: id, ties: Vec::new() }, vec![id])),
                 }
+            }
+        }
+        // A cell something else reaches into (a face with a corner inside,
+        // or whose plane cuts it, or a sphere near it) is not walked.
+        for (c, planes) in cells.iter_mut().enumerate() {
+            let own = |f: &Face| f.cells.contains(&Some(c as u32));
+            let verts: Vec<DVec3> = faces.iter().filter(|f| own(f)).flat_map(|f| f.verts.iter().copied()).collect();
+            let (lo, hi) = verts.iter().fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(l, h), v| (l.min(*v), h.max(*v)));
+            let eps = 1e-9 * (hi - lo).max_element().max(1e-9);
+            let inside = |p: DVec3| planes.iter().all(|q| (p - q.at).dot(q.normal) * q.out < -eps);
+            let crowded = faces.iter().filter(|f| !own(f)).any(|f| {
+                let (flo, fhi) = f.verts.iter().fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(l, h), v| (l.min(*v), h.max(*v)));
+                let overlap = flo.cmplt(hi - eps).all() && fhi.cmpgt(lo + eps).all();
+                let side = |v: &DVec3| (*v - f.verts[0]).dot(f.normal);
+                let cuts = verts.iter().any(|v| side(v) > eps) && verts.iter().any(|v| side(v) < -eps);
+                f.verts.iter().any(|&v| inside(v)) || (overlap && cuts)
+            }) || spheres.iter().any(|s| (s.centre.cmpgt(lo - s.radius) & s.centre.cmplt(hi + s.radius)).all());
+            if crowded {
+                planes.clear();
             }
         }
         let loose = (0..faces.len()).filter(|&i| faces[i].solid.is_none()).collect();
@@ -143,12 +162,15 @@ impl Cells {
 
     /// The region of a point: the cell it lies in, or outside them all.
     pub fn region_at(&self, p: DVec3) -> Region {
-        self.cells.iter().position(|planes| planes.iter().all(|q| (p - q.at).dot(q.normal) * q.out < 0.0)).map_or(Region::Outside, |c| Region::Cell(c as u32))
+        self.cells
+            .iter()
+            .position(|planes| !planes.is_empty() && planes.iter().all(|q| (p - q.at).dot(q.normal) * q.out < 0.0))
+            .map_or(Region::Outside, |c| Region::Cell(c as u32))
     }
 
     /// Where a ray inside cell `c` leaves it: the nearest plane ahead that
     /// it heads out through (not `skip`). `None` if rounding left no such
-    /// plane ahead (then scan).
+    /// plane ahead, or the cell is not walked (then scan).
     pub fn leave(&self, faces: &[Face], c: usize, o: DVec3, d: DVec3, skip: Option<usize>) -> Option<FaceHit> {
         let mut best: Option<(FaceHit, &Plane)> = None;
         let mut from: Option<&Plane> = None;
@@ -246,11 +268,21 @@ mod tests {
     #[test]
     fn every_region_finds_what_the_scan_finds() {
         let mut tried = [0usize; 4];
-        for kind in [SceneKind::AmiciScreen, SceneKind::AmiciLamp, SceneKind::SinglePrism, SceneKind::CornellPointlight, SceneKind::DarkSide] {
+        for kind in [
+            SceneKind::AmiciScreen,
+            SceneKind::AmiciLamp,
+            SceneKind::AmiciBench,
+            SceneKind::SinglePrism,
+            SceneKind::CornellPointlight,
+            SceneKind::CornellMirrorTube,
+            SceneKind::CornellLaser,
+            SceneKind::DarkSide,
+        ] {
             let mut o = SceneOptions::new(kind);
             (o.width, o.height) = (8, 8);
             let w = build(&o).unwrap();
             assert!(w.cells.valid(&w.faces) && !w.cells.cells.is_empty(), "{kind:?} has cells");
+            assert!(w.cells.cells.iter().all(|p| !p.is_empty()), "{kind:?}: every cell is walked");
             let mut rng = Rng::new(11, kind as u64, 0);
             let (lo, hi) = w.faces.iter().flat_map(|f| f.verts.iter()).fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(l, h), v| (l.min(*v), h.max(*v)));
             for i in 0..30_000 {
@@ -336,5 +368,39 @@ mod tests {
         w.add_extruded("dart", &[([v(0.0, 0.0), v(1.0, 0.5), v(0.0, 1.0)], 0), ([v(0.0, 1.0), v(1.0, 0.5), v(2.0, 0.3)], 0)], 0.0, 1.0);
         assert_eq!(w.cells.solids(), 0, "a notched train is not");
         assert_eq!(w.cells.cells.len(), 2);
+        // A card through a prism, or a ball in it, and its cell is not
+        // walked: rays in it find the card or the ball by the scan.
+        for crowd in 0..2 {
+            let mut w = build(&SceneOptions::new(SceneKind::SinglePrism)).unwrap();
+            let (lo, hi) = w
+                .faces
+                .iter()
+                .filter(|f| f.cells != [None, None])
+                .flat_map(|f| f.verts.iter())
+                .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(l, h), v| (l.min(*v), h.max(*v)));
+            let mid = (lo + hi) / 2.0;
+            if crowd == 0 {
+                w.faces.push(Face::rect(
+                    "card",
+                    DVec3::new(mid.x + 2e-3, lo.y - 1.0, lo.z - 1.0),
+                    DVec3::Y * 10.0,
+                    DVec3::Z * 10.0,
+                    crate::world::Surface::Mirror { reflectance: 1.0 },
+                ));
+            } else {
+                w.spheres.push(crate::world::Sphere {
+                    name: "ball".into(),
+                    centre: mid,
+                    radius: 1e-3,
+                    surface: crate::world::Surface::Mirror { reflectance: 1.0 },
+                });
+            }
+            w.build_accel();
+            assert!(w.cells.cells[0].is_empty(), "case {crowd}");
+            let inside = mid + DVec3::new(0.0, 0.0, 1e-4);
+            let (a, b) = (w.intersect_in(inside, DVec3::X, None, Region::Cell(0)), w.intersect(inside, DVec3::X, None));
+            assert_eq!(a, b);
+            assert!(a.is_some_and(|h| h.face >= 5), "the card or the ball: {a:?}");
+        }
     }
 }

@@ -138,7 +138,7 @@ impl World {
     /// Builds the BVH over the faces when there are enough of them for it
     /// to pay (a mesh prism); call once the faces are final.
     pub fn build_accel(&mut self) {
-        self.cells = Cells::index(&self.faces);
+        self.cells = Cells::index(&self.faces, &self.spheres);
         self.accel = (self.faces.len() > 32).then(|| bvh::FaceBvh::build(&self.faces));
     }
 
@@ -339,7 +339,7 @@ impl World {
                 f.solid = Some(solid);
             }
         }
-        self.cells = Cells::index(&self.faces);
+        self.cells = Cells::index(&self.faces, &self.spheres);
     }
 }
 
