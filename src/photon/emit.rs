@@ -100,22 +100,6 @@ pub fn zeroed_sums(n: usize) -> Vec<[std::sync::atomic::AtomicI64; 3]> {
     (0..n).into_par_iter().map(|_| Default::default()).collect()
 }
 
-/// `v.round() as i64` (halves away from zero, saturating, NaN to 0)
-/// without the library call `round` is on baseline x86-64: below 2^52 the
-/// truncation and the fraction left are exact; above, v is whole.
-#[inline]
-pub fn round_to_i64(v: f64) -> i64 {
-    let i = v as i64;
-    let frac = v - i as f64;
-    if frac >= 0.5 {
-        i.saturating_add(1)
-    } else if frac <= -0.5 {
-        i.saturating_sub(1)
-    } else {
-        i
-    }
-}
-
 /// The copy the calling thread adds into.
 pub fn copy_index(copies: usize) -> usize {
     rayon::current_thread_index().unwrap_or(0) % copies.max(1)
@@ -175,7 +159,7 @@ impl Deposit for &Grids {
         let iv = ((pos[1] as f64 / g.size.y * g.nv as f64) as usize).min(g.nv - 1);
         let copy = copy_index(self.copies) * g.nu * g.nv;
         for (cell, x) in g.cells[copy + iv * g.nu + iu].iter().zip(xyz) {
-            cell.fetch_add(round_to_i64(x as f64 * self.scale), Relaxed);
+            cell.fetch_add(super::map::round_to_i64(x as f64 * self.scale), Relaxed);
         }
     }
 }
@@ -527,24 +511,6 @@ mod tests {
     use super::*;
     use crate::spectrum::Spectrum;
     use crate::world::{Face, Light, Medium};
-
-    /// The rounding without the library call gives what `round() as i64`
-    /// gives: halves and their neighbours, both signs, around 2^52 and
-    /// 2^63, infinities and NaN.
-    #[test]
-    fn rounding_to_integers_matches_the_library() {
-        let mut rng = Rng::new(2, 7, 1);
-        let mut values = vec![0.5, -0.5, 1.5, -2.5, 0.49999999999999994, -0.49999999999999994, f64::INFINITY, f64::NEG_INFINITY, f64::NAN, 9.3e18, -9.3e18];
-        for k in 0..64 {
-            let p = 2f64.powi(k);
-            for v in [p, p + 0.5, p - 0.5, f64::from_bits(p.to_bits() + 1), f64::from_bits(p.to_bits() - 1), p * (1.0 + rng.f64())] {
-                values.extend([v, -v, v + 0.5, v - 0.5]);
-            }
-        }
-        for v in values {
-            assert_eq!(round_to_i64(v), v.round() as i64, "{v:e}");
-        }
-    }
 
     /// Wavelengths drawn by importance (spectrum x colour weight) and
     /// weighted back carry, on average, exactly the light's XYZ: for D65,

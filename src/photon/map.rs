@@ -30,17 +30,17 @@ fn pow2(k: i32) -> f32 {
     f32::from_bits((k.clamp(-126, 127) + 127) as u32 * (1 << 23)) * if k < -126 { 0.0 } else { 1.0 }
 }
 
-/// `x.round()` (halves away from zero) for |x| < 2^23, without the
-/// library call `round` is on baseline x86-64: the truncation is exact, and
-/// so is the fraction left.
+/// `v.round() as i64` (halves away from zero, saturating, NaN to 0)
+/// without the library call `round` is on baseline x86-64: below 2^52 the
+/// truncation and the fraction left are exact; above, v is whole.
 #[inline]
-fn round_half_away(x: f32) -> i32 {
-    let i = x as i32;
-    let frac = x - i as f32;
+pub fn round_to_i64(v: f64) -> i64 {
+    let i = v as i64;
+    let frac = v - i as f64;
     if frac >= 0.5 {
-        i + 1
+        i.saturating_add(1)
     } else if frac <= -0.5 {
-        i - 1
+        i.saturating_sub(1)
     } else {
         i
     }
@@ -60,7 +60,7 @@ impl Photon {
             e += 1;
         }
         let scale = pow2(15 - e);
-        let mantissa = xyz.map(|x| round_half_away((x * scale).clamp(-32767.0, 32767.0)) as i16);
+        let mantissa = xyz.map(|x| round_to_i64((x * scale).clamp(-32767.0, 32767.0) as f64) as i16);
         Photon { pos, mantissa, exponent: e as i16 }
     }
 
@@ -350,9 +350,27 @@ mod tests {
         }
     }
 
-    /// The rounding without the library call packs every photon exactly as
-    /// `f32::round` does: signs, halves and their neighbours, powers of two
-    /// and theirs, subnormals, the extremes.
+    /// The rounding without the library call gives what `round() as i64`
+    /// gives: halves and their neighbours, both signs, around 2^52 and
+    /// 2^63, infinities and NaN.
+    #[test]
+    fn rounding_to_integers_matches_the_library() {
+        let mut rng = crate::sampling::Rng::new(2, 7, 1);
+        let mut values = vec![0.5, -0.5, 1.5, -2.5, 0.49999999999999994, -0.49999999999999994, f64::INFINITY, f64::NEG_INFINITY, f64::NAN, 9.3e18, -9.3e18];
+        for k in 0..64 {
+            let p = 2f64.powi(k);
+            for v in [p, p + 0.5, p - 0.5, f64::from_bits(p.to_bits() + 1), f64::from_bits(p.to_bits() - 1), p * (1.0 + rng.f64())] {
+                values.extend([v, -v, v + 0.5, v - 0.5]);
+            }
+        }
+        for v in values {
+            assert_eq!(round_to_i64(v), v.round() as i64, "{v:e}");
+        }
+    }
+
+    /// `round_to_i64` packs every photon exactly as `f32::round` does:
+    /// signs, halves and their neighbours, powers of two and theirs,
+    /// subnormals, the extremes.
     #[test]
     fn packing_matches_the_plain_formula() {
         let plain = |xyz: [f32; 3]| {
@@ -380,9 +398,6 @@ mod tests {
             }
         }
         assert!(tried > 4000, "{tried}");
-        assert_eq!(round_half_away(2.5), 3);
-        assert_eq!(round_half_away(-2.5), -3);
-        assert_eq!(round_half_away(0.499_999_97), 0);
     }
 
     /// A stored photon is 16 bytes, and its flux comes back within 2^-15

@@ -89,7 +89,7 @@ impl<'a> Splat<'a> {
         let n = self.pixels.width * self.pixels.height;
         let at = (2 * crate::photon::emit::copy_index(self.copies) + half) * n + iy * self.pixels.width + ix;
         for (cell, x) in self.cells[at].iter().zip(xyz) {
-            cell.fetch_add(crate::photon::emit::round_to_i64(x as f64 * k), Relaxed);
+            cell.fetch_add(crate::photon::map::round_to_i64(x as f64 * k), Relaxed);
         }
     }
 
