@@ -1,8 +1,10 @@
 //! A bounding-volume hierarchy built with the surface-area heuristic over
-//! binned centroids, then collapsed into a 4-wide tree: each node holds
-//! its four children's boxes side by side (one array per axis and bound),
-//! so one ray meets all four boxes in a few vector instructions (SSE
-//! lanes, no AVX-512 needed), and the nearer children are visited first.
+//! binned centroids, then collapsed into an 8-wide tree: each node holds
+//! its eight children's boxes side by side (one array per axis and bound),
+//! so one ray meets all eight boxes in a few vector instructions (one AVX2
+//! register a bound where the processor has it, two SSE halves where it
+//! has not, the same bits either way; no AVX-512 needed), and the nearer
+//! children are visited first (as Embree's BVH8 on AVX2).
 //! A leaf's triangles are stored four to a packet, one array per
 //! coordinate, and a ray meets the four in one pass of vector
 //! instructions (as Embree's Triangle4 leaves; Wald et al. 2014).
@@ -10,6 +12,7 @@
 use super::aabb::GAMMA3;
 use super::{Aabb, Hit, Ray, Triangle};
 use glam::{Vec3, Vec3A, Vec4};
+use std::mem::MaybeUninit;
 
 /// A node of the binary build: an interior node's children sit at `first`
 /// and `first + 1`; a leaf (`count > 0`) holds triangles
@@ -23,25 +26,118 @@ struct Node {
     count: u32,
 }
 
-/// A node of the 4-wide tree: per child slot its box (`lo`/`hi`, one
+/// Children of a node of the wide tree.
+const WIDTH: usize = 8;
+
+/// A node of the 8-wide tree: per child slot its box (`lo`/`hi`, one
 /// array per axis), and either a node index (`count` 0) or a leaf's first
-/// packet and packet count. Unused slots hold `EMPTY`.
+/// packet and packet count. Unused slots hold `EMPTY` and an empty box.
+/// 256 bytes: four cache lines.
 #[derive(Copy, Clone, Debug)]
-#[repr(C, align(32))]
+#[repr(C, align(64))]
 struct Wide {
-    lo: [[f32; 4]; 3],
-    hi: [[f32; 4]; 3],
-    child: [u32; 4],
-    count: [u32; 4],
+    lo: [[f32; WIDTH]; 3],
+    hi: [[f32; WIDTH]; 3],
+    child: [u32; WIDTH],
+    count: [u32; WIDTH],
+}
+
+impl Wide {
+    const EMPTY: Wide = Wide { lo: [[f32::INFINITY; WIDTH]; 3], hi: [[f32::NEG_INFINITY; WIDTH]; 3], child: [EMPTY; WIDTH], count: [0; WIDTH] };
 }
 
 /// The child index of an unused slot.
 const EMPTY: u32 = u32::MAX;
 
+/// How a ray meets a node's eight boxes: one AVX2 register per bound, or
+/// two SSE halves. Both do the same operations in the same order.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub enum BoxTest {
+    Avx2,
+    Portable,
+}
+
+impl BoxTest {
+    /// AVX2 where the processor has it.
+    pub fn detect() -> BoxTest {
+        #[cfg(target_arch = "x86_64")]
+        if std::arch::is_x86_feature_detected!("avx2") {
+            return BoxTest::Avx2;
+        }
+        BoxTest::Portable
+    }
+}
+
 pub struct Bvh {
     nodes: Vec<Wide>,
     bounds: Aabb,
     packets: Vec<Tri4>,
+    boxes: BoxTest,
+}
+
+/// A ray's values the box tests use, made once a ray.
+struct RayBoxes {
+    /// Per axis, whether the ray runs down it (its near side is `hi`).
+    down: [bool; 3],
+    o: [f32; 3],
+    inv: [f32; 3],
+    t_min: f32,
+}
+
+/// The slab test on eight boxes as two SSE halves (as `Aabb::hit`).
+/// SSE's min and max return their second operand when either is NaN, so a
+/// NaN ray's NaN distances reach `near` and `far` and fail the comparison.
+/// The near side of each slab is the low bound where the ray runs up that
+/// axis, the high where it runs down (Williams et al.'s ordered slabs): no
+/// min and max of the two. An unused slot's empty box (low +inf, high
+/// -inf) is never entered. Returns the slots entered before `t_max` (a
+/// bit each) and the distances where the ray enters each box.
+#[inline(always)]
+fn boxes_portable(node: &Wide, r: &RayBoxes, t_max: f32) -> (u32, [f32; WIDTH]) {
+    let slack = 1.0 + 2.0 * GAMMA3;
+    let mut mask = 0;
+    let mut out = [0.0f32; WIDTH];
+    for half in 0..2 {
+        let lanes = half * 4..half * 4 + 4;
+        let mut near = Vec4::splat(r.t_min);
+        let mut far = Vec4::INFINITY;
+        for a in 0..3 {
+            let (n, f) = if r.down[a] { (&node.hi[a], &node.lo[a]) } else { (&node.lo[a], &node.hi[a]) };
+            let (o, inv) = (Vec4::splat(r.o[a]), Vec4::splat(r.inv[a]));
+            near = near.max((Vec4::from_slice(&n[lanes.clone()]) - o) * inv);
+            far = far.min((Vec4::from_slice(&f[lanes.clone()]) - o) * inv);
+        }
+        mask |= (near.cmple(far * slack) & near.cmple(Vec4::splat(t_max * slack))).bitmask() << (4 * half);
+        out[lanes].copy_from_slice(&near.to_array());
+    }
+    (mask, out)
+}
+
+/// `boxes_portable` in one AVX2 register a bound: the same operations on
+/// the same values (AVX's min and max treat NaN as SSE's do).
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+#[inline]
+fn boxes_avx2(node: &Wide, r: &RayBoxes, t_max: f32) -> (u32, [f32; WIDTH]) {
+    use std::arch::x86_64::*;
+    let slack = 1.0 + 2.0 * GAMMA3;
+    let mut near = _mm256_set1_ps(r.t_min);
+    let mut far = _mm256_set1_ps(f32::INFINITY);
+    for a in 0..3 {
+        let (n, f) = if r.down[a] { (&node.hi[a], &node.lo[a]) } else { (&node.lo[a], &node.hi[a]) };
+        let (o, inv) = (_mm256_set1_ps(r.o[a]), _mm256_set1_ps(r.inv[a]));
+        // SAFETY: `n` and `f` are eight f32s (alignment not required).
+        let (n, f) = unsafe { (_mm256_loadu_ps(n.as_ptr()), _mm256_loadu_ps(f.as_ptr())) };
+        near = _mm256_max_ps(near, _mm256_mul_ps(_mm256_sub_ps(n, o), inv));
+        far = _mm256_min_ps(far, _mm256_mul_ps(_mm256_sub_ps(f, o), inv));
+    }
+    let in_box = _mm256_cmp_ps::<_CMP_LE_OQ>(near, _mm256_mul_ps(far, _mm256_set1_ps(slack)));
+    let before = _mm256_cmp_ps::<_CMP_LE_OQ>(near, _mm256_set1_ps(t_max * slack));
+    let mask = _mm256_movemask_ps(_mm256_and_ps(in_box, before)) as u32;
+    let mut out = [0.0f32; WIDTH];
+    // SAFETY: `out` holds eight f32s.
+    unsafe { _mm256_storeu_ps(out.as_mut_ptr(), near) };
+    (mask, out)
 }
 
 /// Four triangles side by side, one lane each (vertex 0 and the two
@@ -56,22 +152,20 @@ struct Tri4 {
 }
 
 impl Tri4 {
-    /// Up to four triangles (with their ids) in one packet.
-    fn new(tris: &[(Triangle, u32)]) -> Tri4 {
-        debug_assert!(!tris.is_empty() && tris.len() <= 4);
+    /// Up to four triangles of `tris`, by id, in one packet.
+    fn new(ids: &[u32], tris: &[Triangle]) -> Tri4 {
+        debug_assert!(!ids.is_empty() && ids.len() <= 4);
         let lane = |f: &dyn Fn(&Triangle) -> Vec3| -> [Vec4; 3] {
             let mut c = [[0.0f32; 4]; 3];
-            for (k, (t, _)) in tris.iter().enumerate() {
-                let v = f(t);
+            for (k, &id) in ids.iter().enumerate() {
+                let v = f(&tris[id as usize]);
                 (c[0][k], c[1][k], c[2][k]) = (v.x, v.y, v.z);
             }
             c.map(Vec4::from_array)
         };
-        let mut ids = [EMPTY; 4];
-        for (k, &(_, id)) in tris.iter().enumerate() {
-            ids[k] = id;
-        }
-        Tri4 { v0: lane(&|t| t.v0), e1: lane(&|t| t.e1), e2: lane(&|t| t.e2), ids }
+        let mut lanes = [EMPTY; 4];
+        lanes[..ids.len()].copy_from_slice(ids);
+        Tri4 { v0: lane(&|t| t.v0), e1: lane(&|t| t.e1), e2: lane(&|t| t.e2), ids: lanes }
     }
 
     /// Moller-Trumbore on the four lanes at once, each step the same
@@ -86,13 +180,16 @@ impl Tri4 {
         // p = d x e2; det = e1 . p.
         let (px, py, pz) = (dy * e2z - e2y * dz, dz * e2x - e2z * dx, dx * e2y - e2x * dy);
         let det = e1x * px + e1y * py + e1z * pz;
-        let inv_det = Vec4::ONE / det;
         let (sx, sy, sz) = (o[0] - self.v0[0], o[1] - self.v0[1], o[2] - self.v0[2]);
-        let u = (sx * px + sy * py + sz * pz) * inv_det;
+        let u_num = sx * px + sy * py + sz * pz;
         // q = s x e1.
         let (qx, qy, qz) = (sy * e1z - e1y * sz, sz * e1x - e1z * sx, sx * e1y - e1x * sy);
-        let v = (dx * qx + dy * qy + dz * qz) * inv_det;
-        let t = (e2x * qx + e2y * qy + e2z * qz) * inv_det;
+        let v_num = dx * qx + dy * qy + dz * qz;
+        let t_num = e2x * qx + e2y * qy + e2z * qz;
+        let inv_det = Vec4::ONE / det;
+        let u = u_num * inv_det;
+        let v = v_num * inv_det;
+        let t = t_num * inv_det;
         let ok = det.cmpne(Vec4::ZERO)
             & u.cmpge(Vec4::ZERO)
             & u.cmple(Vec4::ONE)
@@ -122,10 +219,46 @@ const MAX_DEPTH: usize = 60;
 /// Cost of visiting a node relative to one packet test (four triangles).
 const TRAVERSAL_COST: f32 = 1.0;
 
+/// A triangle's box in the build: 32 bytes, so partitions move half as
+/// much as with the centroid and id beside it (Embree's PrimRef is as
+/// small); the ids move in their own array alongside.
+#[derive(Clone, Copy)]
 struct BuildPrim {
+    lo: Vec3A,
+    hi: Vec3A,
+}
+
+impl BuildPrim {
+    /// The box's centre, as `Aabb::center`.
+    #[inline]
+    fn centroid(&self) -> Vec3A {
+        (self.lo + self.hi) * 0.5
+    }
+
+    #[inline]
+    fn bounds(&self) -> BuildBox {
+        BuildBox { lo: self.lo, hi: self.hi }
+    }
+}
+
+/// A run of prims' box and their centroids' box.
+#[derive(Clone, Copy)]
+struct Extent {
     bounds: BuildBox,
-    centroid: Vec3A,
-    id: u32,
+    centroids: BuildBox,
+}
+
+impl Extent {
+    const EMPTY: Extent = Extent { bounds: BuildBox::EMPTY, centroids: BuildBox::EMPTY };
+
+    #[inline]
+    fn add(self, p: &BuildPrim) -> Extent {
+        Extent { bounds: self.bounds.union(p.bounds()), centroids: self.centroids.grow(p.centroid()) }
+    }
+
+    fn of(prims: &[BuildPrim]) -> Extent {
+        prims.iter().fold(Extent::EMPTY, |e, p| e.add(p))
+    }
 }
 
 /// A box in SIMD lanes for the build's inner loops (min and max of four
@@ -160,37 +293,52 @@ impl Bvh {
     pub fn build(tris: &[Triangle]) -> Self {
         let mut prims: Vec<BuildPrim> = tris
             .iter()
-            .enumerate()
-            .map(|(i, t)| {
+            .map(|t| {
                 let b = Aabb::from_points(t.vertices());
-                BuildPrim { bounds: BuildBox { lo: b.min.into(), hi: b.max.into() }, centroid: b.center().into(), id: i as u32 }
+                BuildPrim { lo: b.min.into(), hi: b.max.into() }
             })
             .collect();
+        let mut ids: Vec<u32> = (0..tris.len() as u32).collect();
         let mut binary = Vec::with_capacity(2 * tris.len().max(1));
         binary.push(Node { min: Vec3::ZERO, first: 0, max: Vec3::ZERO, count: 0 });
         let mut nodes = Vec::with_capacity(tris.len() / 2 + 1);
         let mut packets = Vec::with_capacity(tris.len() / 2 + 1);
         let bounds = if !prims.is_empty() {
-            let n = prims.len();
-            build_rec(&mut binary, 0, &mut prims, 0, n, 0);
+            let extent = Extent::of(&prims);
+            build_rec(&mut binary, 0, &mut prims, &mut ids, 0, 0, extent);
             // Each leaf's triangles, in leaf order, four to a packet.
             let mut pack = |first: u32, count: u32| -> (u32, u32) {
                 let start = packets.len() as u32;
-                let leaf: Vec<(Triangle, u32)> = prims[first as usize..(first + count) as usize].iter().map(|p| (tris[p.id as usize], p.id)).collect();
-                packets.extend(leaf.chunks(4).map(Tri4::new));
+                for chunk in ids[first as usize..(first + count) as usize].chunks(4) {
+                    packets.push(Tri4::new(chunk, tris));
+                }
                 (start, packets.len() as u32 - start)
             };
             collapse(&binary, 0, &mut nodes, &mut pack);
             Aabb { min: binary[0].min, max: binary[0].max }
         } else {
             // An empty hierarchy: one node with no children.
-            nodes.push(Wide { lo: [[0.0; 4]; 3], hi: [[0.0; 4]; 3], child: [EMPTY; 4], count: [0; 4] });
+            nodes.push(Wide::EMPTY);
             Aabb { min: Vec3::splat(f32::INFINITY), max: Vec3::splat(f32::NEG_INFINITY) }
         };
-        Bvh { nodes, bounds, packets }
+        Bvh { nodes, bounds, packets, boxes: BoxTest::detect() }
     }
 
-    /// Nodes of the 4-wide tree.
+    /// The same tree, its boxes met by `boxes` (AVX2 only where the
+    /// processor has it).
+    pub fn with_box_test(mut self, boxes: BoxTest) -> Self {
+        if boxes == BoxTest::Portable || BoxTest::detect() == BoxTest::Avx2 {
+            self.boxes = boxes;
+        }
+        self
+    }
+
+    /// How this tree's boxes are met.
+    pub fn box_test(&self) -> BoxTest {
+        self.boxes
+    }
+
+    /// Nodes of the 8-wide tree.
     pub fn node_count(&self) -> usize {
         self.nodes.len()
     }
@@ -204,101 +352,116 @@ impl Bvh {
         if self.packets.is_empty() {
             return None;
         }
+        match self.boxes {
+            #[cfg(target_arch = "x86_64")]
+            // SAFETY: `Avx2` is only chosen where the processor has AVX2.
+            BoxTest::Avx2 => unsafe { self.intersect_avx2(ray) },
+            _ => self.walk(ray, boxes_portable),
+        }
+    }
+
+    /// `walk` compiled for AVX2, its box test in AVX2 registers.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    fn intersect_avx2(&self, ray: &Ray) -> Option<Hit> {
+        self.walk(ray, |n, r, t| boxes_avx2(n, r, t))
+    }
+
+    /// The traversal: children entered nearest first, leaves' packets met
+    /// as soon as their box is entered.
+    #[inline(always)]
+    fn walk(&self, ray: &Ray, boxes: impl Fn(&Wide, &RayBoxes, f32) -> (u32, [f32; WIDTH])) -> Option<Hit> {
         let inv = ray.inv_dir();
-        let down = inv.to_array().map(f32::is_sign_negative);
-        let inv4 = inv.to_array().map(Vec4::splat);
+        let r = RayBoxes { down: inv.to_array().map(f32::is_sign_negative), o: ray.origin.to_array(), inv: inv.to_array(), t_min: ray.t_min };
         let o4 = ray.origin.to_array().map(Vec4::splat);
-        let tmin4 = Vec4::splat(ray.t_min);
         let d4 = ray.dir.to_array().map(Vec4::splat);
         let mut best: Option<Hit> = None;
         let mut t_max = ray.t_max;
-        // Nodes still to visit, with the distance where the ray enters
-        // their box: at most 3 pushed per level.
-        let mut stack = [(0u32, 0f32); 3 * MAX_DEPTH + 4];
+        // Children still to visit, with the distance where the ray enters
+        // their box: at most WIDTH - 1 pushed per level. Left
+        // uninitialised (zeroing it cost 4 % of the time): only entries
+        // below `sp`, each written before, are read.
+        let mut stack = [const { MaybeUninit::<Slot>::uninit() }; (WIDTH - 1) * MAX_DEPTH + WIDTH];
         let mut sp = 0usize;
-        let mut index = 0usize;
+        let slack = 1.0 + 2.0 * GAMMA3;
+        let mut at = Slot { child: 0, count: 0, near: ray.t_min };
         loop {
-            let node = &self.nodes[index];
-            // The slab test on all four boxes at once (as `Aabb::hit`).
-            // SSE's min and max return their second operand when either is
-            // NaN, so a NaN ray's NaN distances reach `near` and `far` and
-            // fail the comparison.
-            // The near side of each slab is the low bound where the ray
-            // runs up that axis, the high where it runs down (Williams et
-            // al.'s ordered slabs): no min and max of the two. An unused
-            // slot's empty box (low +inf, high -inf) is never entered.
-            let mut near = tmin4;
-            let mut far = Vec4::INFINITY;
-            for a in 0..3 {
-                let (n, f) = if down[a] { (&node.hi[a], &node.lo[a]) } else { (&node.lo[a], &node.hi[a]) };
-                near = near.max((Vec4::from_array(*n) - o4[a]) * inv4[a]);
-                far = far.min((Vec4::from_array(*f) - o4[a]) * inv4[a]);
-            }
-            let slack = 1.0 + 2.0 * GAMMA3;
-            let mut mask = (near.cmple(far * slack) & near.cmple(Vec4::splat(t_max * slack))).bitmask();
-            let near = near.to_array();
-            // Leaves first (their hits shorten the ray), then the inner
-            // children nearest first.
-            let mut inner = [(0u32, 0f32); 4];
-            let mut n_inner = 0;
-            while mask != 0 {
-                let k = mask.trailing_zeros() as usize;
-                mask &= mask - 1;
-                if node.count[k] > 0 {
-                    let first = node.child[k] as usize;
-                    for p in &self.packets[first..first + node.count[k] as usize] {
-                        p.intersect(&o4, &d4, ray.t_min, t_max, &mut best);
-                        t_max = best.map_or(t_max, |b| b.t);
+            if at.count > 0 {
+                let first = at.child as usize;
+                for p in &self.packets[first..first + at.count as usize] {
+                    p.intersect(&o4, &d4, ray.t_min, t_max, &mut best);
+                    t_max = best.map_or(t_max, |b| b.t);
+                }
+            } else {
+                let node = &self.nodes[at.child as usize];
+                let (mut mask, near) = boxes(node, &r, t_max);
+                // The children entered, leaves and nodes alike, sorted far
+                // to near (at most 8: insertion sort); the nearest is
+                // visited next, the others wait on the stack.
+                let mut entered = [Slot { child: 0, count: 0, near: 0.0 }; WIDTH];
+                let mut n = 0;
+                while mask != 0 {
+                    let k = mask.trailing_zeros() as usize;
+                    mask &= mask - 1;
+                    entered[n] = Slot { child: node.child[k], count: node.count[k], near: near[k] };
+                    n += 1;
+                }
+                let entered = &mut entered[..n];
+                for i in 1..n {
+                    let mut j = i;
+                    while j > 0 && entered[j - 1].near < entered[j].near {
+                        entered.swap(j - 1, j);
+                        j -= 1;
                     }
-                } else {
-                    inner[n_inner] = (node.child[k], near[k]);
-                    n_inner += 1;
                 }
-            }
-            // Sorted far to near (at most 4: insertion sort); the nearest
-            // is visited next, the others wait on the stack.
-            let inner = &mut inner[..n_inner];
-            for i in 1..inner.len() {
-                let mut j = i;
-                while j > 0 && inner[j - 1].1 < inner[j].1 {
-                    inner.swap(j - 1, j);
-                    j -= 1;
+                if let Some((&last, rest)) = entered.split_last() {
+                    for &e in rest {
+                        stack[sp].write(e);
+                        sp += 1;
+                    }
+                    // Entered before `t_max`: the box test checked.
+                    at = last;
+                    continue;
                 }
-            }
-            let mut next = None;
-            if let Some((&last, rest)) = inner.split_last() {
-                for &e in rest {
-                    stack[sp] = e;
-                    sp += 1;
-                }
-                next = Some(last);
             }
             // A waiting box the ray now enters past its nearest hit is
             // skipped. Both tests leave the hit distance the same slack
             // as the box's far side: a triangle that ties the nearest hit
             // (the same t, on a shared edge) is still met, so the lower id
             // wins as in the linear scan, in whatever order boxes come.
-            while next.is_none_or(|(_, d)| d > t_max * (1.0 + 2.0 * GAMMA3)) {
+            loop {
                 if sp == 0 {
                     return best;
                 }
                 sp -= 1;
-                next = Some(stack[sp]);
+                // SAFETY: every entry below the old `sp` was written above.
+                at = unsafe { stack[sp].assume_init() };
+                if at.near <= t_max * slack {
+                    break;
+                }
             }
-            index = next.map_or(0, |(i, _)| i as usize);
         }
     }
 }
 
+/// A child waiting to be visited: a node (`count` 0) or a leaf's first
+/// packet and count, and the distance where the ray enters its box.
+#[derive(Copy, Clone)]
+struct Slot {
+    child: u32,
+    count: u32,
+    near: f32,
+}
+
 /// Turns the binary subtree under `at` (an inner node, or the root leaf)
-/// into 4-wide nodes appended to `wide`; returns its node's index. A slot
+/// into 8-wide nodes appended to `wide`; returns its node's index. A slot
 /// takes the child with the largest surface area apart into its two
-/// children until four slots are full or only leaves are left. `pack`
+/// children until eight slots are full or only leaves are left. `pack`
 /// stores a leaf's triangles and returns its first packet and count.
 fn collapse(binary: &[Node], at: usize, wide: &mut Vec<Wide>, pack: &mut impl FnMut(u32, u32) -> (u32, u32)) -> u32 {
     let node = binary[at];
     let mut slots: Vec<usize> = if node.count > 0 { vec![at] } else { vec![node.first as usize, node.first as usize + 1] };
-    while slots.len() < 4 {
+    while slots.len() < WIDTH {
         let area = |i: usize| Aabb { min: binary[i].min, max: binary[i].max }.area();
         let Some(k) = (0..slots.len()).filter(|&k| binary[slots[k]].count == 0).max_by(|&a, &b| area(slots[a]).total_cmp(&area(slots[b]))) else {
             break;
@@ -308,7 +471,7 @@ fn collapse(binary: &[Node], at: usize, wide: &mut Vec<Wide>, pack: &mut impl Fn
         slots.insert(k + 1, inner.first as usize + 1);
     }
     let me = wide.len();
-    wide.push(Wide { lo: [[f32::INFINITY; 4]; 3], hi: [[f32::NEG_INFINITY; 4]; 3], child: [EMPTY; 4], count: [0; 4] });
+    wide.push(Wide::EMPTY);
     for (k, &c) in slots.iter().enumerate() {
         let b = binary[c];
         for a in 0..3 {
@@ -325,17 +488,18 @@ fn collapse(binary: &[Node], at: usize, wide: &mut Vec<Wide>, pack: &mut impl Fn
     me as u32
 }
 
-/// Fills `nodes[at]` for prims `lo..hi` and recurses. Depth stays below
-/// `MAX_DEPTH` (a split always leaves both sides non-empty), so the
-/// traversal stack of 64 entries cannot overflow.
-fn build_rec(nodes: &mut Vec<Node>, at: usize, prims: &mut [BuildPrim], lo: usize, hi: usize, depth: usize) {
-    let bounds = prims[lo..hi].iter().fold(BuildBox::EMPTY, |b, p| b.union(p.bounds)).aabb();
-    let cbounds = prims[lo..hi].iter().fold(BuildBox::EMPTY, |b, p| b.grow(p.centroid)).aabb();
-    let n = hi - lo;
+/// Fills `nodes[at]` for `prims` (with their `ids`; the first is the
+/// `first`-th of the whole build), whose boxes and centroids span
+/// `extent`, and recurses. Depth stays below `MAX_DEPTH` (a split always
+/// leaves both sides non-empty), so the traversal stack (`WIDTH - 1`
+/// entries a level) cannot overflow.
+fn build_rec(nodes: &mut Vec<Node>, at: usize, prims: &mut [BuildPrim], ids: &mut [u32], first: usize, depth: usize, extent: Extent) {
+    let (bounds, cbounds) = (extent.bounds.aabb(), extent.centroids.aabb());
+    let n = prims.len();
     let make_leaf = |nodes: &mut Vec<Node>| {
-        nodes[at] = Node { min: bounds.min, first: lo as u32, max: bounds.max, count: n as u32 };
+        nodes[at] = Node { min: bounds.min, first: first as u32, max: bounds.max, count: n as u32 };
     };
-    let extent = cbounds.extent();
+    let spread = cbounds.extent();
     if n == 1 || depth >= MAX_DEPTH {
         return make_leaf(nodes);
     }
@@ -345,16 +509,16 @@ fn build_rec(nodes: &mut Vec<Node>, at: usize, prims: &mut [BuildPrim], lo: usiz
     let nb = n.min(BINS);
     let mut best = (f32::INFINITY, 0usize, 0usize); // cost, axis, split bin
     for axis in 0..3 {
-        if extent[axis] <= 0.0 {
+        if spread[axis] <= 0.0 {
             continue;
         }
         let mut counts = [0usize; BINS];
         let mut boxes = [BuildBox::EMPTY; BINS];
-        let scale = nb as f32 / extent[axis];
-        for p in &prims[lo..hi] {
-            let b = bin_of(p.centroid[axis], cbounds.min[axis], scale, nb);
+        let scale = nb as f32 / spread[axis];
+        for p in prims.iter() {
+            let b = bin_of(p.centroid()[axis], cbounds.min[axis], scale, nb);
             counts[b] += 1;
-            boxes[b] = boxes[b].union(p.bounds);
+            boxes[b] = boxes[b].union(p.bounds());
         }
         let mut right_area = [0.0f32; BINS];
         let mut right_count = [0usize; BINS];
@@ -379,27 +543,29 @@ fn build_rec(nodes: &mut Vec<Node>, at: usize, prims: &mut [BuildPrim], lo: usiz
             }
         }
     }
-    let mid = if best.0.is_finite() {
+    let (mid, left_extent, right_extent) = if best.0.is_finite() {
         let split_cost = TRAVERSAL_COST + best.0 / bounds.area().max(f32::MIN_POSITIVE);
         if n <= MAX_LEAF && split_cost >= packets_of(n) {
             return make_leaf(nodes);
         }
         let (axis, split) = (best.1, best.2);
-        let scale = nb as f32 / extent[axis];
+        let scale = nb as f32 / spread[axis];
         let min = cbounds.min[axis];
-        lo + partition(&mut prims[lo..hi], |p| bin_of(p.centroid[axis], min, scale, nb) <= split)
+        partition(prims, ids, |p| bin_of(p.centroid()[axis], min, scale, nb) <= split)
     } else if n <= MAX_LEAF {
         return make_leaf(nodes);
     } else {
         // All centroids coincide: split by count so leaves stay small.
-        lo + n / 2
+        (n / 2, Extent::of(&prims[..n / 2]), Extent::of(&prims[n / 2..]))
     };
     let left = nodes.len();
     nodes.push(Node { min: Vec3::ZERO, first: 0, max: Vec3::ZERO, count: 0 });
     nodes.push(Node { min: Vec3::ZERO, first: 0, max: Vec3::ZERO, count: 0 });
     nodes[at] = Node { min: bounds.min, first: left as u32, max: bounds.max, count: 0 };
-    build_rec(nodes, left, prims, lo, mid, depth + 1);
-    build_rec(nodes, left + 1, prims, mid, hi, depth + 1);
+    let (lp, rp) = prims.split_at_mut(mid);
+    let (li, ri) = ids.split_at_mut(mid);
+    build_rec(nodes, left, lp, li, first, depth + 1, left_extent);
+    build_rec(nodes, left + 1, rp, ri, first + mid, depth + 1, right_extent);
 }
 
 /// The cost of testing `n` triangles: one per packet of four.
@@ -417,16 +583,24 @@ fn bin_of(c: f32, min: f32, scale: f32, bins: usize) -> usize {
     x as i32 as usize
 }
 
-/// In-place partition; returns the number of elements for which `pred` holds.
-fn partition<T>(items: &mut [T], pred: impl Fn(&T) -> bool) -> usize {
+/// In-place partition of `prims` (and their `ids` alongside): those for
+/// which `pred` holds first. Returns how many they are, and the extents
+/// of the two runs, gathered in the same pass.
+fn partition(prims: &mut [BuildPrim], ids: &mut [u32], pred: impl Fn(&BuildPrim) -> bool) -> (usize, Extent, Extent) {
+    let (mut left, mut right) = (Extent::EMPTY, Extent::EMPTY);
     let mut i = 0;
-    for j in 0..items.len() {
-        if pred(&items[j]) {
-            items.swap(i, j);
+    for j in 0..prims.len() {
+        let p = prims[j];
+        if pred(&p) {
+            left = left.add(&p);
+            prims.swap(i, j);
+            ids.swap(i, j);
             i += 1;
+        } else {
+            right = right.add(&p);
         }
     }
-    i
+    (i, left, right)
 }
 
 #[cfg(test)]
@@ -448,11 +622,11 @@ mod tests {
         }
     }
 
-    /// The shapes the collapse into 4-wide nodes must survive: one
+    /// The shapes the collapse into 8-wide nodes must survive: one
     /// triangle (the root is a leaf), 200 copies of one triangle (no split
     /// separates them: leaves by count), and a fan of 3 (a node with
-    /// fewer than four children); every ray finds what the scan finds,
-    /// ties going to the lower id.
+    /// fewer than eight children); every ray finds what the scan finds,
+    /// ties going to the lower id, with either box test.
     #[test]
     fn the_wide_tree_finds_what_the_scan_finds_in_awkward_shapes() {
         let tri = Triangle::new(Vec3::ZERO, Vec3::X, Vec3::Y);
@@ -463,17 +637,50 @@ mod tests {
         ];
         let mut rng = crate::sampling::Rng::new(3, 1, 4);
         for tris in shapes {
-            let bvh = Bvh::build(&tris);
-            let mut hits = 0;
-            for _ in 0..2000 {
-                let o = Vec3::new(rng.f32() * 2.0 - 0.5, rng.f32() * 2.0 - 0.5, 1.0 + rng.f32());
-                let d = Vec3::new(rng.f32() - 0.5, rng.f32() - 0.5, -1.0).normalize();
-                let ray = Ray::new(o, d);
-                let (a, b) = (bvh.intersect(&ray), linear_intersect(&tris, &ray));
-                assert_eq!(a, b, "{} triangles, ray {o} {d}", tris.len());
-                hits += a.is_some() as usize;
+            for boxes in [BoxTest::detect(), BoxTest::Portable] {
+                let bvh = Bvh::build(&tris).with_box_test(boxes);
+                let mut hits = 0;
+                for _ in 0..2000 {
+                    let o = Vec3::new(rng.f32() * 2.0 - 0.5, rng.f32() * 2.0 - 0.5, 1.0 + rng.f32());
+                    let d = Vec3::new(rng.f32() - 0.5, rng.f32() - 0.5, -1.0).normalize();
+                    let ray = Ray::new(o, d);
+                    let (a, b) = (bvh.intersect(&ray), linear_intersect(&tris, &ray));
+                    assert_eq!(a, b, "{} triangles, {boxes:?}, ray {o} {d}", tris.len());
+                    hits += a.is_some() as usize;
+                }
+                assert!(hits > 100, "{} triangles: only {hits} rays hit", tris.len());
             }
-            assert!(hits > 100, "{} triangles: only {hits} rays hit", tris.len());
         }
+    }
+
+    /// A deep tree (a soup of 20 000 small triangles, several levels of
+    /// eight) met by rays from everywhere, some along the axes (infinite
+    /// inverse directions), some with a NaN direction: the AVX2 and the
+    /// portable box tests give the same hits, and both the scan's.
+    #[test]
+    fn both_box_tests_find_what_the_scan_finds() {
+        let mut rng = crate::sampling::Rng::new(5, 2, 7);
+        let mut rnd = || Vec3::new(rng.f32(), rng.f32(), rng.f32()) * 2.0 - 1.0;
+        let tris: Vec<Triangle> = (0..20_000)
+            .map(|_| {
+                let c = rnd();
+                Triangle::new(c, c + 0.05 * rnd(), c + 0.05 * rnd())
+            })
+            .collect();
+        let fast = Bvh::build(&tris);
+        let portable = Bvh::build(&tris).with_box_test(BoxTest::Portable);
+        assert!(fast.node_count() > 1 + WIDTH, "the tree must have several levels: {} nodes", fast.node_count());
+        let axes = [Vec3::X, Vec3::NEG_Y, Vec3::Z, Vec3::new(f32::NAN, 0.0, 1.0)];
+        let mut hits = 0;
+        for i in 0..3000 {
+            let o = 1.5 * rnd();
+            let d = if i % 10 == 0 { axes[i / 10 % 4] } else { (rnd() - 0.5 * o).normalize_or(Vec3::X) };
+            let ray = Ray::new(o, d);
+            let (a, b, c) = (fast.intersect(&ray), portable.intersect(&ray), linear_intersect(&tris, &ray));
+            assert_eq!(a, b, "{:?} against portable, ray {o} {d}", fast.box_test());
+            assert_eq!(b, c, "portable against the scan, ray {o} {d}");
+            hits += a.is_some() as usize;
+        }
+        assert!(hits > 1000, "the test must exercise hits, got {hits}");
     }
 }
