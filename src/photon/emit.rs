@@ -119,12 +119,21 @@ impl Grids {
     /// surface of the scene (times `slot_scale` for the second set of split
     /// maps), for at most `max_flux` of XYZ flux in all.
     pub fn new(scene: &World, texel: f64, max_flux: f64) -> Grids {
+        Grids::new_except(scene, texel, max_flux, |_| false)
+    }
+
+    /// The same, with no texels for the slots `unused` names: photons
+    /// landing there are not kept, and their maps read zero.
+    pub fn new_except(scene: &World, texel: f64, max_flux: f64, unused: impl Fn(usize) -> bool) -> Grids {
         let sizes: Vec<(DVec2, usize, usize)> = (0..scene.map_slots())
             .map(|slot| {
                 let f = scene.slot_face(slot);
                 let texel = texel * scene.slot_scale(slot);
                 let (_, eu, ev) = scene.faces[f].frame.expect("matte surfaces are parallelograms");
                 let size = DVec2::new(eu.length(), ev.length());
+                if unused(slot) {
+                    return (size, 0, 0);
+                }
                 let nu = ((size.x / texel).ceil() as usize).clamp(1, 4096);
                 let nv = ((size.y / texel).ceil() as usize).clamp(1, 4096);
                 (size, nu, nv)
@@ -155,6 +164,9 @@ impl Deposit for &Grids {
     fn deposit(&mut self, map: usize, pos: [f32; 2], xyz: [f32; 3]) {
         use std::sync::atomic::Ordering::Relaxed;
         let g = &self.grids[map];
+        if g.cells.is_empty() {
+            return;
+        }
         let iu = ((pos[0] as f64 / g.size.x * g.nu as f64) as usize).min(g.nu - 1);
         let iv = ((pos[1] as f64 / g.size.y * g.nv as f64) as usize).min(g.nv - 1);
         let copy = copy_index(self.copies) * g.nu * g.nv;

@@ -136,6 +136,14 @@ impl SurfaceMap {
         }
     }
 
+    /// Whether the map holds no light at all (reads zero everywhere).
+    pub fn is_dark(&self) -> bool {
+        match self {
+            SurfaceMap::Buffer { lit, .. } => !lit,
+            SurfaceMap::Kd { photons, .. } => photons.is_empty(),
+        }
+    }
+
     /// Bytes held per stored photon (the buffer holds texels, not photons).
     pub fn bytes(&self) -> usize {
         match self {

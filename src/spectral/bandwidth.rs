@@ -44,8 +44,7 @@ pub fn smooth(img: &[DVec3], g: Grid, r: f64) -> Vec<DVec3> {
     let pass = |src: &[DVec3], along_rows: bool| -> Vec<DVec3> {
         let mut out = vec![DVec3::ZERO; src.len()];
         let (n, step) = if along_rows { (g.width, 1) } else { (g.height, g.width) };
-        // Rows in parallel: each output pixel is its own sum.
-        out.par_chunks_mut(g.width).enumerate().for_each(|(y, row)| {
+        let row = |(y, row): (usize, &mut [DVec3])| {
             for (x, px) in row.iter_mut().enumerate() {
                 let (at, i) = if along_rows { (y * g.width, x) } else { (x, y) };
                 let (lo, hi) = (k.saturating_sub(i), (n + k - i).min(w.len()));
@@ -57,7 +56,14 @@ pub fn smooth(img: &[DVec3], g: Grid, r: f64) -> Vec<DVec3> {
                 }
                 *px = sum / norm;
             }
-        });
+        };
+        // Rows in parallel where there are enough to pay for it: each
+        // output pixel is its own sum, the same either way.
+        if src.len() * w.len() >= 1 << 18 {
+            out.par_chunks_mut(g.width).enumerate().for_each(row);
+        } else {
+            out.chunks_mut(g.width).enumerate().for_each(row);
+        }
         out
     };
     pass(&pass(img, true), false)

@@ -51,6 +51,13 @@ pub struct PassPlace {
 
 /// `render`, as pass `place` of a progressive render.
 pub fn render_offset(scene: &World, opts: &RenderOptions, place: Option<PassPlace>, progress: &dyn Progress) -> SpectralRender {
+    render_with(scene, opts, place, progress, true)
+}
+
+/// `render_offset`; `may_skip_eye`: whether an eye pass that can gather
+/// nothing may be left out (false only in the test that checks it adds
+/// nothing).
+fn render_with(scene: &World, opts: &RenderOptions, place: Option<PassPlace>, progress: &dyn Progress, may_skip_eye: bool) -> SpectralRender {
     // The film takes the caustics, kept apart from the rest.
     let film_world;
     let scene = if opts.map == MapKind::Film && !scene.caustics_apart {
@@ -78,9 +85,13 @@ pub fn render_offset(scene: &World, opts: &RenderOptions, place: Option<PassPlac
         (LightStats::default(), Vec::new(), 0.0, 0.0)
     } else if opts.map != MapKind::Kdtree {
         let most = max_flux(scene, opts.colours);
-        let grids = Grids::new(scene, texel, most);
+        // Under --map film the first maps (the caustics, on the film too)
+        // are read only by eye paths through glass or off a mirror: with
+        // none in view they are not kept.
+        let unused_first = opts.map == MapKind::Film && !scene.camera_may_see_specular();
+        let grids = Grids::new_except(scene, texel, most, |slot| unused_first && slot < scene.maps.len());
         let stats = if opts.map == MapKind::Film {
-            let splat = Splat::new(scene, most);
+            let splat = Splat::new(scene, most, opts.photons);
             let stats =
                 light_pass_with(scene, opts.photons, opts.seed, index, opts.colours, progress, || FilmAndBuffer { grids: &grids, splat: &splat, half: 0 });
             halves = Some(splat.halves());
@@ -138,6 +149,34 @@ pub fn render_offset(scene: &World, opts: &RenderOptions, place: Option<PassPlac
     let cam = &scene.camera;
     progress.start("eye", cam.height as u64);
     let t = Instant::now();
+    // An eye path gathers light only from the maps, from lights by shadow
+    // rays, from emitting surfaces and from haze; under --map film the
+    // first maps (the caustics, on the film already) only where it looks
+    // through glass or a mirror first. With none of them in reach the eye
+    // pass would add zero to every pixel: the image is the film's, the
+    // same bytes, without it (most of a small film render's time).
+    let first = scene.maps.len();
+    let nothing_to_gather = eye.maps[first.min(eye.maps.len())..].iter().all(SurfaceMap::is_dark)
+        && (eye.maps[..first.min(eye.maps.len())].iter().all(SurfaceMap::is_dark) || !scene.camera_may_see_specular())
+        && !scene.direct_lighting
+        && !scene.has_emitting_surface()
+        && haze.segments.is_empty();
+    if let (Some(f), true) = (&film, nothing_to_gather && may_skip_eye) {
+        progress.advance("eye", cam.height as u64);
+        progress.finish("eye");
+        let xyz = f.iter().map(|v| DVec3::ZERO + *v).collect();
+        let render_s = t.elapsed().as_secs_f64();
+        return SpectralRender {
+            image: XyzImage { width: cam.width, height: cam.height, xyz },
+            stats,
+            trace_s,
+            build_s,
+            render_s,
+            map_bytes,
+            film_kernel,
+            eye_rays: 0,
+        };
+    }
     let mut xyz = vec![DVec3::ZERO; cam.width * cam.height];
     let rays: u64 = xyz
         .par_chunks_mut(cam.width)
@@ -249,6 +288,46 @@ fn mixture(s: &Spectrum, total: f64, colours: crate::spectrum::colormap::ColorMa
 mod tests {
     use super::*;
     use crate::spectrum::colormap::ColorMap;
+
+    /// Light traced onto the film with nothing for the eye to gather (the
+    /// single prism: a beam, no lamp, the prism out of the camera's view):
+    /// the image without the eye pass is the one with it, to the bit. With
+    /// the prism in view (the Amici screen's camera sees the prism) the
+    /// eye pass is kept.
+    #[test]
+    fn the_eye_pass_left_out_adds_nothing() {
+        use crate::photon::gather::{Filter, Lookup};
+        use crate::scenes::{build, SceneKind, SceneOptions};
+        let mut so = SceneOptions::new(SceneKind::SinglePrism);
+        (so.width, so.height) = (80, 60);
+        let scene = build(&so).unwrap();
+        let opts = RenderOptions {
+            photons: 20_000,
+            map: MapKind::Film,
+            filter: Filter::Box,
+            lookup: Lookup::Radius(super::super::default_radius(&scene)),
+            spp: 2,
+            seed: 3,
+            eye: EyeMode::Hero,
+            split: 8,
+            colours: ColorMap::Cie,
+            film_kernel: None,
+        };
+        let silent = &crate::progress::Silent;
+        let (skipped, full) = (render_with(&scene, &opts, None, silent, true), render_with(&scene, &opts, None, silent, false));
+        assert_eq!(skipped.eye_rays, 0, "the eye pass is left out");
+        assert!(full.eye_rays > 0);
+        let bits = |r: &SpectralRender| r.image.xyz.iter().flat_map(|v| v.to_array().map(f64::to_bits)).collect::<Vec<_>>();
+        assert_eq!(bits(&skipped), bits(&full));
+        assert!(full.image.xyz.iter().any(|v| v.y > 0.0), "the film shows the strip");
+        // The same scene with the camera turned to the prism.
+        let mut facing = scene.clone();
+        let (prism, _) = facing.faces.iter().find(|f| matches!(f.surface, crate::world::Surface::Interface { .. })).unwrap().bounding_ball();
+        let cam = &facing.camera;
+        facing.camera = crate::world::Camera::look_at(cam.pos, prism, DVec3::Z, 30.0, cam.width, cam.height);
+        assert!(facing.camera_may_see_specular() && !scene.camera_may_see_specular());
+        assert!(render_with(&facing, &opts, None, silent, true).eye_rays > 0, "the prism in view keeps the eye pass");
+    }
 
     /// The `--eye lines` mixture is unbiased: one draw per component, each
     /// weighted by its share, by its own pdf over the one it is drawn from

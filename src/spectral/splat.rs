@@ -32,8 +32,8 @@ pub struct Splat<'a> {
 
 impl<'a> Splat<'a> {
     /// An empty film for `scene`'s camera, for at most `max_flux` of XYZ
-    /// flux reaching the matte surfaces in all.
-    pub fn new(scene: &'a World, max_flux: f64) -> Splat<'a> {
+    /// flux reaching the matte surfaces in all, from `photons` photons.
+    pub fn new(scene: &'a World, max_flux: f64, photons: u64) -> Splat<'a> {
         let cam = &scene.camera;
         let pixels = Pixels::new(cam);
         // The smallest footprint any pixel can have: a corner pixel's
@@ -57,7 +57,9 @@ impl<'a> Splat<'a> {
         // 2^61 units for the most a pixel can receive: no sum overflows.
         let scale = if most > 0.0 && most.is_finite() { (1u64 << 61) as f64 / most } else { 1.0 };
         let n = 2 * cam.width * cam.height;
-        let copies = crate::photon::emit::sum_copies(n as u64, rayon::current_num_threads());
+        // Fewer photons than pixels seldom meet on one cache line: one
+        // copy, half the film's fixed cost to clear and read back.
+        let copies = if photons < n as u64 { 1 } else { crate::photon::emit::sum_copies(n as u64, rayon::current_num_threads()) };
         Splat { scene, pixels, cells: crate::photon::emit::zeroed_sums(copies * n), scale, copies }
     }
 

@@ -258,6 +258,23 @@ impl World {
     }
 
     /// What happens at surface `id` (a face or a sphere).
+    /// Whether a surface of the scene emits light (the eye sees lights
+    /// only there).
+    pub fn has_emitting_surface(&self) -> bool {
+        let emits = |s: &Surface| matches!(s, Surface::Emitter { .. });
+        self.faces.iter().any(|f| emits(&f.surface)) || self.spheres.iter().any(|s| emits(&s.surface))
+    }
+
+    /// Whether the camera may see a surface that turns light (glass or a
+    /// mirror): false only when every such surface lies outside its view.
+    pub fn camera_may_see_specular(&self) -> bool {
+        let turns = |s: &Surface| matches!(s, Surface::Interface { .. } | Surface::Mirror { .. });
+        self.faces.iter().filter(|f| turns(&f.surface)).any(|f| {
+            let (c, r) = f.bounding_ball();
+            self.camera.may_see(c, r)
+        }) || self.spheres.iter().filter(|s| turns(&s.surface)).any(|s| self.camera.may_see(s.centre, s.radius))
+    }
+
     pub fn surface(&self, id: usize) -> &Surface {
         match self.faces.get(id) {
             Some(f) => &f.surface,

@@ -89,6 +89,11 @@ impl Face {
         self.edges.iter().all(|&(m, c, tol)| p.dot(m) - c >= -tol).then_some(t)
     }
 
+    /// A ball holding the whole face: its centre and radius.
+    pub fn bounding_ball(&self) -> (DVec3, f64) {
+        (self.bound.0, self.bound.1.sqrt())
+    }
+
     /// Distance along a ray from `o` to the face's plane, given the ray's
     /// direction's component along the normal (`denom`, not 0).
     #[inline]
