@@ -2,12 +2,13 @@
 //! default in its figures) before black-body lights. Light travels along
 //! +x; z is up.
 //!
-//! - `sphere-arealight`: a glass sphere hanging before a large spherical
+//! - `sphere-arealight`: a glass sphere hanging before a spherical
 //!   black-body light off centre: the sphere shows the light as an
 //!   off-centre patch, blue-fringed on the edge toward the sphere's centre
 //!   and orange-red on the outer one (blue bends more, so its image of the
 //!   light lies nearer the centre; the fringes are the spread of a ball's
-//!   deviation over the visible, at most about 2 % of its radius for N-SF11).
+//!   deviation over the visible, at most about 2 % of its radius for N-SF11,
+//!   so the sphere is seen large: it fills the frame's height).
 //! - `sphere-metal`: the sphere before a brass plate grazed from the right
 //!   by a warm (2000 K) black-body light out of view: the plate's glow falls
 //!   off from right to left, the sphere shows it inverted, and where the
@@ -51,12 +52,19 @@ pub fn build(o: &SceneOptions) -> Result<World> {
             if !o.no_prism {
                 glass_sphere(&mut s, "glass sphere", DVec3::new(3.0, 0.0, 0.0), 0.5);
             }
-            // Seen from the sphere the light spans 6-56 degrees off the axis,
-            // clear of it, so the sphere shows it as an off-centre patch with
-            // a blue inner and an orange-red outer edge; from the camera the
-            // sphere stands dark against the light's edge.
-            sphere_light(&mut s, o, DVec3::new(6.0, 1.8, 0.3), 1.5, "blackbody:6500")?;
-            s.camera = Camera::look_at(DVec3::ZERO, DVec3::new(3.0, 0.0, 0.0), DVec3::Z, 20.0, o.width, o.height);
+            // A light 1.5 m behind the sphere, 25 degrees up and to the
+            // left of the axis as seen from the sphere, 10 degrees in
+            // radius: through the sphere it shows as a patch down and to
+            // the right, whose edges (about 15 and 35 degrees off the axis,
+            // where a ball's colour fringes are near their widest,
+            // docs/physics.md §22) are fringed blue inside and orange-red
+            // outside. The camera's 15 degree field makes the sphere's
+            // image 231 px in radius, filling the frame's height, so the
+            // fringes are 3-5 px wide; the light itself shows in the
+            // corner beside the sphere, which stands dark against it.
+            let dir = DVec3::new(25f64.to_radians().cos(), 25f64.to_radians().sin() * 0.8, 25f64.to_radians().sin() * 0.6);
+            sphere_light(&mut s, o, DVec3::new(3.0, 0.0, 0.0) + 1.5 * dir, 1.5 * 10f64.to_radians().sin(), "blackbody:6500")?;
+            s.camera = Camera::look_at(DVec3::ZERO, DVec3::new(3.0, 0.0, 0.0), DVec3::Z, 15.0, o.width, o.height);
         }
         SceneKind::SphereMetal => {
             if !o.no_prism {

@@ -98,13 +98,15 @@ enum Step {
 
 impl Eye<'_> {
     /// XYZ radiance along a camera ray; `u_lambda` stratifies wavelengths.
-    /// `sample` is the sample's index in its pixel: with `--eye lines`
-    /// the pixel's samples alternate between the two polarisations.
+    /// `sample` is the sample's index in its pixel: with an even number of
+    /// samples a pixel they alternate between the two polarisations (half
+    /// s, half p: unpolarised light's two halves, with no noise from
+    /// drawing them); with an odd number each draws one.
     /// `light_u` places the shadow ray on an area light (stratified by the
     /// caller over the pixel's samples).
     #[allow(clippy::too_many_arguments)]
     pub fn radiance(&self, o: DVec3, d: DVec3, u_lambda: f64, light_u: [f64; 2], sample: usize, rng: &mut Rng, rays: &mut u64) -> DVec3 {
-        let alternate = self.opts.eye == EyeMode::Lines && self.opts.spp > 1;
+        let alternate = self.opts.spp > 1 && self.opts.spp.is_multiple_of(2);
         let pol = match alternate {
             true if sample.is_multiple_of(2) => Polarisation::S,
             true => Polarisation::P,
