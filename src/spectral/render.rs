@@ -292,8 +292,7 @@ mod tests {
     /// Light traced onto the film with nothing for the eye to gather (the
     /// single prism: a beam, no lamp, the prism out of the camera's view):
     /// the image without the eye pass is the one with it, to the bit. With
-    /// the prism in view (the Amici screen's camera sees the prism) the
-    /// eye pass is kept.
+    /// the camera turned to the prism the eye pass is kept.
     #[test]
     fn the_eye_pass_left_out_adds_nothing() {
         use crate::photon::gather::{Filter, Lookup};

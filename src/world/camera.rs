@@ -69,10 +69,11 @@ impl Camera {
 mod tests {
     use super::*;
 
-    /// A ball is seen exactly when some ray through the image meets it:
-    /// checked against rays through a fine grid of image points, for balls
-    /// in front of, beside and behind the camera. Where a ray meets the
-    /// ball `may_see` must say so; where it says not, no ray may meet it.
+    /// A ball that some ray through the image meets is never said to be
+    /// out of view: checked against rays through a fine grid of image
+    /// points, for balls in front of, beside and behind the camera (and
+    /// enough of them out of view that the test is not passed by saying
+    /// every ball may be seen).
     #[test]
     fn a_ball_out_of_view_is_never_met_by_a_camera_ray() {
         let cam = Camera::look_at(DVec3::new(0.1, -0.2, 0.3), DVec3::new(3.0, 0.5, 0.0), DVec3::Z, 30.0, 64, 48);
