@@ -114,7 +114,10 @@ impl Eye<'_> {
             false => Polarisation::P,
         };
         let region = self.scene.cells.region_at(o);
-        let mut stack = vec![Path { o, d, skip: None, region, nm: None, weight: 1.0, pol, depth: 0, light_u }];
+        // Room for a split's wavelengths and a few reflections, so the
+        // stack is allocated once a sample, not grown.
+        let mut stack = Vec::with_capacity(2 * self.opts.split.max(1) as usize + 8);
+        stack.push(Path { o, d, skip: None, region, nm: None, weight: 1.0, pol, depth: 0, light_u });
         let mut sum = DVec3::ZERO;
         while let Some(mut p) = stack.pop() {
             while p.depth < MAX_DEPTH {

@@ -148,7 +148,13 @@ impl Sphere {
         }
         let q = disc.sqrt();
         let eps = if leaving { 1e-7 * self.radius } else { 0.0 };
-        [-b - q, -b + q].into_iter().find(|&t| t > eps)
+        // The nearer root if it lies beyond the start, else the farther.
+        let (near, far) = (-b - q, -b + q);
+        if near > eps {
+            Some(near)
+        } else {
+            (far > eps).then_some(far)
+        }
     }
 }
 
