@@ -117,14 +117,10 @@ pub struct Grid {
 impl Grids {
     /// Texels `texel` metres wide (at most 4096 a side) on every matte
     /// surface of the scene (times `slot_scale` for the second set of split
-    /// maps), for at most `max_flux` of XYZ flux in all.
-    pub fn new(scene: &World, texel: f64, max_flux: f64) -> Grids {
-        Grids::new_except(scene, texel, max_flux, |_| false)
-    }
-
-    /// The same, with no texels for the slots `unused` names: photons
-    /// landing there are not kept, and their maps read zero.
-    pub fn new_except(scene: &World, texel: f64, max_flux: f64, unused: impl Fn(usize) -> bool) -> Grids {
+    /// maps), for at most `max_flux` of XYZ flux in all; none for the
+    /// slots `unused` names (photons landing there are not kept, and their
+    /// maps read zero).
+    pub fn new(scene: &World, texel: f64, max_flux: f64, unused: impl Fn(usize) -> bool) -> Grids {
         let sizes: Vec<(DVec2, usize, usize)> = (0..scene.map_slots())
             .map(|slot| {
                 let f = scene.slot_face(slot);

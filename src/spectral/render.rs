@@ -89,7 +89,7 @@ fn render_with(scene: &World, opts: &RenderOptions, place: Option<PassPlace>, pr
         // are read only by eye paths through glass or off a mirror: with
         // none in view they are not kept.
         let unused_first = opts.map == MapKind::Film && !scene.camera_may_see_specular();
-        let grids = Grids::new_except(scene, texel, most, |slot| unused_first && slot < scene.maps.len());
+        let grids = Grids::new(scene, texel, most, |slot| unused_first && slot < scene.maps.len());
         let stats = if opts.map == MapKind::Film {
             let splat = Splat::new(scene, most, opts.photons);
             let stats =
