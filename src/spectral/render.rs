@@ -150,17 +150,12 @@ fn render_with(scene: &World, opts: &RenderOptions, place: Option<PassPlace>, pr
     progress.start("eye", cam.height as u64);
     let t = Instant::now();
     // An eye path gathers light only from the maps, from lights by shadow
-    // rays, from emitting surfaces and from haze; under --map film the
-    // first maps (the caustics, on the film already) only where it looks
-    // through glass or a mirror first. With none of them in reach the eye
-    // pass would add zero to every pixel: the image is the film's, the
-    // same bytes, without it (most of a small film render's time).
-    let first = scene.maps.len();
-    let nothing_to_gather = eye.maps[first.min(eye.maps.len())..].iter().all(SurfaceMap::is_dark)
-        && (eye.maps[..first.min(eye.maps.len())].iter().all(SurfaceMap::is_dark) || !scene.camera_may_see_specular())
-        && !scene.direct_lighting
-        && !scene.has_emitting_surface()
-        && haze.segments.is_empty();
+    // rays, from emitting surfaces and from haze (under --map film the
+    // first maps, the caustics, are empty when the camera sees no glass or
+    // mirror: see `unused_first`). With none of them lit the eye pass
+    // would add zero to every pixel: the image is the film's, the same
+    // bytes, without it (most of a small film render's time).
+    let nothing_to_gather = eye.maps.iter().all(SurfaceMap::is_dark) && !scene.direct_lighting && !scene.has_emitting_surface() && haze.segments.is_empty();
     if let (Some(f), true) = (&film, nothing_to_gather && may_skip_eye) {
         progress.advance("eye", cam.height as u64);
         progress.finish("eye");

@@ -154,10 +154,6 @@ impl World {
     /// convex solids, which are met by one test each, and over cell faces
     /// seen from inside. The same hit at the same distance as the scan.
     pub fn intersect_in(&self, o: DVec3, d: DVec3, skip: Option<usize>, region: Region) -> Option<FaceHit> {
-        if self.faces.is_empty() {
-            // Balls alone (report 001's sphere scenes).
-            return self.nearest_sphere(o, d, skip, None);
-        }
         let region = if self.cells.valid(&self.faces) { region } else { Region::Unknown };
         let left = match region {
             Region::Cell(c) => {
@@ -223,12 +219,6 @@ impl World {
                 }
             }
         }
-        self.nearest_sphere(o, d, skip, best)
-    }
-
-    /// `best`, or the nearest sphere the ray meets if nearer.
-    #[inline]
-    fn nearest_sphere(&self, o: DVec3, d: DVec3, skip: Option<usize>, mut best: Option<FaceHit>) -> Option<FaceHit> {
         let n = self.faces.len();
         for (k, s) in self.spheres.iter().enumerate() {
             if let Some(t) = s.intersect(o, d, skip == Some(n + k)) {
