@@ -54,6 +54,71 @@ pub fn radical_inverse(mut i: u64, base: u64) -> f64 {
     r
 }
 
+/// The radical inverses of i, i + 1, i + 2, ... in one base, one step at
+/// a time: the digits of i are kept and counted up (a carry every `base`
+/// steps), and each term `f_k d_k` of `radical_inverse`'s loop is read from
+/// a table built by that loop's own products, then added in the loop's
+/// order, so every value is `radical_inverse`'s to the bit, without a
+/// division per digit.
+#[derive(Clone, Debug)]
+pub struct RadicalInverses {
+    base: u32,
+    /// The digits of the current index, least significant first; `len`
+    /// of them up to its highest non-zero one.
+    digits: [u8; 64],
+    len: usize,
+    /// `terms[k][d]`: the loop's `f * d` at digit k (f = base^-(k+1) as
+    /// its repeated products round it).
+    terms: Box<[[f64; 8]; 64]>,
+}
+
+impl RadicalInverses {
+    /// Starting at index `i`, in `base` (2 to 8).
+    pub fn new(base: u64, mut i: u64) -> RadicalInverses {
+        assert!((2..=8).contains(&base), "radical inverse base {base}");
+        let inv = 1.0 / base as f64;
+        let mut terms = Box::new([[0.0; 8]; 64]);
+        let mut f = 1.0;
+        for row in terms.iter_mut() {
+            f *= inv;
+            for (d, t) in row.iter_mut().enumerate().take(base as usize) {
+                *t = f * d as f64;
+            }
+        }
+        let (mut digits, mut len) = ([0u8; 64], 0);
+        while i > 0 {
+            digits[len] = (i % base) as u8;
+            i /= base;
+            len += 1;
+        }
+        RadicalInverses { base: base as u32, digits, len, terms }
+    }
+
+    /// The radical inverse of the current index.
+    #[inline]
+    pub fn value(&self) -> f64 {
+        let mut r = 0.0;
+        for (row, &d) in self.terms.iter().zip(&self.digits[..self.len]) {
+            r += row[d as usize & 7];
+        }
+        r
+    }
+
+    /// On to the next index.
+    #[inline]
+    pub fn advance(&mut self) {
+        for k in 0..64 {
+            let d = &mut self.digits[k];
+            *d += 1;
+            if u32::from(*d) < self.base {
+                self.len = self.len.max(k + 1);
+                return;
+            }
+            *d = 0;
+        }
+    }
+}
+
 /// `u` shifted by `offset` modulo 1 (Cranley-Patterson rotation): a
 /// randomised low-discrepancy point keeps its stratification.
 pub fn rotate(u: f64, offset: f64) -> f64 {
@@ -153,6 +218,22 @@ mod tests {
         }
         assert_eq!((radical_inverse(1, 2), radical_inverse(6, 2)), (0.5, 0.375));
         assert!((radical_inverse(5, 3) - 7.0 / 9.0).abs() < 1e-15, "5 = 12 in base 3 reads 0.21");
+    }
+
+    /// Counting up the digits gives `radical_inverse` to the bit, in
+    /// bases 2, 3, 5 and 7, from 0 and from large starts, across carries.
+    #[test]
+    fn radical_inverses_counted_up_are_the_loops_to_the_bit() {
+        let mut rng = Rng::new(8, 9, 10);
+        for base in [2, 3, 5, 7] {
+            for start in [0, 1, base - 1, base * base - 2, 3_000_000, rng.next_u64() >> 14, u64::MAX - 20_000] {
+                let mut seq = RadicalInverses::new(base, start);
+                for i in start..start.saturating_add(20_000) {
+                    assert_eq!(seq.value().to_bits(), radical_inverse(i, base).to_bits(), "base {base}, index {i}");
+                    seq.advance();
+                }
+            }
+        }
     }
 
     #[test]

@@ -17,10 +17,10 @@
 
 use super::map::Photon;
 use crate::progress::Progress;
-use crate::sampling::{radical_inverse, rotate, Rng};
+use crate::sampling::{radical_inverse, rotate, RadicalInverses, Rng};
 use crate::spectrum::colormap::ColorMap;
 use crate::spectrum::sampler::WavelengthSampler;
-use crate::world::interface::{cross, cross_with, Polarisation};
+use crate::world::interface::{cross_with, Polarisation};
 use crate::world::{Emission, Surface, World};
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
@@ -277,8 +277,10 @@ fn trace_lights<D: Deposit + Send>(
             .map(|&(a, b)| {
                 let mut maps = sink();
                 let mut stats = LightStats::default();
+                let (mut by3, mut by5) = (RadicalInverses::new(3, a + pass * n), RadicalInverses::new(5, a + pass * n));
                 for i in (a + pass * n)..(b + pass * n) {
-                    let u = [rotate(radical_inverse(i, 3), offsets[0]), rotate(radical_inverse(i, 5), offsets[1]), rotate(radical_inverse(i, 2), offsets[2])];
+                    let u = [rotate(by3.value(), offsets[0]), rotate(by5.value(), offsets[1]), rotate(radical_inverse(i, 2), offsets[2])];
+                    (by3.advance(), by5.advance());
                     let mut rng = Rng::new(seed, i, 1 + li as u64);
                     // Beams take stratified positions; lights that emit in all
                     // directions take random ones (a Halton lattice folded by
@@ -438,8 +440,9 @@ fn trace_photon(
                         nm = Some(l);
                         xyz = flux;
                         stats.dispersed += 1;
-                        indices = Some(media_indices(scene, l));
-                        cross(scene, hit.face, p, d, nm).expect("a wavelength is set")
+                        let n = media_indices(scene, l);
+                        indices = Some(n);
+                        cross_with(scene, hit.face, p, d, |m| if m < MEDIA { Some(n[m]) } else { scene.media[m].n(nm) }).expect("a wavelength is set")
                     }
                 };
                 if c.refracted.is_none() {

@@ -53,9 +53,17 @@ impl Photon {
         if !(m > 0.0) || !m.is_finite() {
             return Photon { pos, mantissa: [0; 3], exponent: 0 };
         }
-        // An e with m < 2^e, so every |x| 2^(15 - e) < 32768 (the least but
-        // where log2 rounds up to a power of two just above m).
-        let mut e = m.log2().floor() as i32 + 1;
+        // An e with m < 2^e, so every |x| 2^(15 - e) < 32768: the least,
+        // but where log2 rounds up to a power of two just above m.
+        let bits = m.to_bits();
+        let mut e = if bits >> 23 != 0 && bits & 0x7f_ffff < 0x7f_f000 {
+            // A normal m = 2^k (1 + f) with f < 1 - 2^-11: log2(m) lies
+            // 7e-4 or more below k + 1, far beyond log2's rounding (under
+            // 8e-6 up to 2^127), so floor(log2(m)) is k, read off the bits.
+            (bits >> 23) as i32 - 127 + 1
+        } else {
+            m.log2().floor() as i32 + 1
+        };
         if m >= pow2(e) {
             e += 1;
         }
@@ -376,9 +384,10 @@ mod tests {
         }
     }
 
-    /// `round_to_i64` packs every photon exactly as `f32::round` does:
-    /// signs, halves and their neighbours, powers of two and theirs,
-    /// subnormals, the extremes.
+    /// `round_to_i64` packs every photon exactly as `f32::round` does, and
+    /// the exponent read off the bits is the one log2 gives: signs, halves
+    /// and their neighbours, powers of two and theirs, the edge of the
+    /// bits' shortcut, subnormals, the extremes.
     #[test]
     fn packing_matches_the_plain_formula() {
         let plain = |xyz: [f32; 3]| {
@@ -394,7 +403,19 @@ mod tests {
         let mut tried = 0;
         for k in -149..128 {
             let p = 2f32.powi(k);
-            for m in [p, f32::from_bits(p.to_bits() + 1), f32::from_bits(p.to_bits().saturating_sub(1)).max(f32::from_bits(1)), p * (1.0 + r.f32())] {
+            // Where the exponent is read off the bits and where log2 is
+            // asked (the top 2^-11 of each binade) on either side.
+            let edge = |mant: u32| f32::from_bits((p.to_bits() & !0x7f_ffff) | mant);
+            for m in [
+                p,
+                f32::from_bits(p.to_bits() + 1),
+                f32::from_bits(p.to_bits().saturating_sub(1)).max(f32::from_bits(1)),
+                p * (1.0 + r.f32()),
+                edge(0x7f_efff),
+                edge(0x7f_f000),
+                edge(0x7f_ffff),
+                edge(r.next_u64() as u32 & 0x7f_ffff),
+            ] {
                 for xyz in [[m, 0.0, 0.0], [-m, m * 0.5, m * 0.25], [m * r.f32(), -m, m * (0.5 + 2f32.powi(-16))], [m * 0.499_999_97, m, -m * 0.500_000_06]] {
                     if !m.is_finite() || m == 0.0 {
                         continue;
@@ -405,7 +426,7 @@ mod tests {
                 }
             }
         }
-        assert!(tried > 4000, "{tried}");
+        assert!(tried > 8000, "{tried}");
     }
 
     /// A stored photon is 16 bytes, and its flux comes back within 2^-15
