@@ -280,7 +280,8 @@ fn trace_lights<D: Deposit + Send>(
                 let (mut by3, mut by5) = (RadicalInverses::new(3, a + pass * n), RadicalInverses::new(5, a + pass * n));
                 for i in (a + pass * n)..(b + pass * n) {
                     let u = [rotate(by3.value(), offsets[0]), rotate(by5.value(), offsets[1]), rotate(radical_inverse(i, 2), offsets[2])];
-                    (by3.advance(), by5.advance());
+                    by3.advance();
+                    by5.advance();
                     let mut rng = Rng::new(seed, i, 1 + li as u64);
                     // Beams take stratified positions; lights that emit in all
                     // directions take random ones (a Halton lattice folded by
