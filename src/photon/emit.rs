@@ -21,7 +21,7 @@ use crate::sampling::{radical_inverse, rotate, RadicalInverses, Rng};
 use crate::spectrum::colormap::ColorMap;
 use crate::spectrum::sampler::WavelengthSampler;
 use crate::world::interface::{cross_with, Polarisation};
-use crate::world::{Emission, Surface, World};
+use crate::world::{Emission, Indices, Surface, World};
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 
@@ -378,15 +378,6 @@ impl Emitted<'_> {
     }
 }
 
-/// How many media's indices a photon keeps (the rest are computed at
-/// each crossing).
-const MEDIA: usize = 8;
-
-/// The first `MEDIA` media's indices at `nm`.
-fn media_indices(scene: &World, nm: f64) -> [f64; MEDIA] {
-    std::array::from_fn(|m| scene.media.get(m).and_then(|x| x.n(Some(nm))).unwrap_or(f64::NAN))
-}
-
 #[allow(clippy::too_many_arguments)]
 fn trace_photon(
     scene: &World,
@@ -413,7 +404,7 @@ fn trace_photon(
     let mut nm: Option<f64> = None;
     // The media's indices at `nm`, once it is chosen (so each glass's
     // Sellmeier sum is evaluated once a photon, not twice a crossing).
-    let mut indices: Option<[f64; MEDIA]> = None;
+    let mut indices = Indices::default();
     let mut xyz = white * power;
     let mut skip = None;
     let mut bounces = 0;
@@ -430,20 +421,15 @@ fn trace_photon(
         let p = o + hit.t * d;
         match *scene.surface(hit.face) {
             Surface::Interface { .. } => {
-                let index = |m: usize| match &indices {
-                    Some(n) if m < n.len() => Some(n[m]),
-                    _ => scene.media[m].n(nm),
-                };
-                let c = match cross_with(scene, hit.face, p, d, index) {
+                let c = match cross_with(scene, hit.face, p, d, |m| indices.n(&scene.media, m, nm)) {
                     Ok(c) => c,
                     Err(_) => {
                         let (l, flux) = light.pick(u_lambda, colours);
                         nm = Some(l);
                         xyz = flux;
                         stats.dispersed += 1;
-                        let n = media_indices(scene, l);
-                        indices = Some(n);
-                        cross_with(scene, hit.face, p, d, |m| if m < MEDIA { Some(n[m]) } else { scene.media[m].n(nm) }).expect("a wavelength is set")
+                        indices.keep(&scene.media, nm);
+                        cross_with(scene, hit.face, p, d, |m| indices.n(&scene.media, m, nm)).expect("a wavelength is set")
                     }
                 };
                 if c.refracted.is_none() {
@@ -501,7 +487,7 @@ fn trace_photon(
                 let l = *nm.get_or_insert_with(|| {
                     let (l, flux) = light.pick(u_lambda, colours);
                     xyz = flux;
-                    indices = Some(media_indices(scene, l));
+                    indices.keep(&scene.media, Some(l));
                     l
                 });
                 if !(rng.f64() < albedo.at(l)) {

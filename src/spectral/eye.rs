@@ -14,8 +14,8 @@ use crate::photon::gather::Lookup;
 use crate::photon::map::SurfaceMap;
 use crate::sampling::Rng;
 use crate::spectrum::sampler::WavelengthSampler;
-use crate::world::interface::{cross, Polarisation};
-use crate::world::{Emission, Region, Surface, World};
+use crate::world::interface::{cross_with, Polarisation};
+use crate::world::{Emission, Indices, Region, Surface, World};
 use glam::{DVec2, DVec3};
 
 const MAX_DEPTH: usize = 64;
@@ -119,12 +119,15 @@ impl Eye<'_> {
         let mut stack = Vec::with_capacity(2 * self.opts.split.max(1) as usize + 8);
         stack.push(Path { o, d, skip: None, region, nm: None, weight: 1.0, pol, depth: 0, light_u });
         let mut sum = DVec3::ZERO;
+        // The media's indices at the wavelength of the path last traced:
+        // each path crosses several faces at its own wavelength.
+        let mut indices = Indices::default();
         while let Some(mut p) = stack.pop() {
             while p.depth < MAX_DEPTH {
                 *rays += 1;
                 let Some(hit) = self.scene.intersect_in(p.o, p.d, p.skip, p.region) else { break };
                 let x = p.o + hit.t * p.d;
-                match self.step(&mut p, hit.face, x, u_lambda, rng, &mut stack) {
+                match self.step(&mut p, hit.face, x, u_lambda, rng, &mut stack, &mut indices) {
                     Step::Continue => {}
                     Step::End(l) => {
                         sum += l;
@@ -141,11 +144,12 @@ impl Eye<'_> {
     }
 
     /// The path meets surface `id` at `x`.
-    fn step(&self, p: &mut Path, id: usize, x: DVec3, u_lambda: f64, rng: &mut Rng, stack: &mut Vec<Path>) -> Step {
+    #[allow(clippy::too_many_arguments)]
+    fn step(&self, p: &mut Path, id: usize, x: DVec3, u_lambda: f64, rng: &mut Rng, stack: &mut Vec<Path>, indices: &mut Indices) -> Step {
         let normal = self.scene.normal(id, x);
         match *self.scene.surface(id) {
             Surface::Interface { .. } => {
-                self.cross_interface(p, id, x, u_lambda, rng, stack);
+                self.cross_interface(p, id, x, u_lambda, rng, stack, indices);
                 Step::Continue
             }
             Surface::Mirror { reflectance } => {
@@ -202,12 +206,16 @@ impl Eye<'_> {
     }
 
     /// Refraction or reflection at a smooth interface (Fresnel, TIR).
-    fn cross_interface(&self, p: &mut Path, id: usize, x: DVec3, u_lambda: f64, rng: &mut Rng, stack: &mut Vec<Path>) {
-        let c = match cross(self.scene, id, x, p.d, p.nm) {
+    #[allow(clippy::too_many_arguments)]
+    fn cross_interface(&self, p: &mut Path, id: usize, x: DVec3, u_lambda: f64, rng: &mut Rng, stack: &mut Vec<Path>, indices: &mut Indices) {
+        let media = &self.scene.media;
+        indices.keep(media, p.nm);
+        let c = match cross_with(self.scene, id, x, p.d, |m| indices.n(media, m, p.nm)) {
             Ok(c) => c,
             Err(_) => {
                 self.pick_wavelength(p, u_lambda, stack);
-                cross(self.scene, id, x, p.d, p.nm).expect("a wavelength is set")
+                indices.keep(media, p.nm);
+                cross_with(self.scene, id, x, p.d, |m| indices.n(media, m, p.nm)).expect("a wavelength is set")
             }
         };
         let r = c.reflectance(p.pol);

@@ -31,6 +31,54 @@ impl Medium {
     }
 }
 
+/// How many media's indices `Indices` keeps (the rest are worked out at
+/// each crossing).
+const KEPT: usize = 8;
+
+/// The indices of a world's first media at one wavelength, worked out once
+/// (each glass's dispersion formula evaluated once) and read at every
+/// crossing of a ray of that wavelength: a photon keeps one from the face
+/// where it takes its wavelength; an eye path's wavelengths come one after
+/// another, each path crossing several faces in its own.
+#[derive(Clone, Copy, Debug)]
+pub struct Indices {
+    /// The wavelength they are for (NaN: none yet).
+    nm: f64,
+    n: [f64; KEPT],
+}
+
+impl Default for Indices {
+    fn default() -> Indices {
+        Indices { nm: f64::NAN, n: [f64::NAN; KEPT] }
+    }
+}
+
+impl Indices {
+    /// The indices of `media` at `nm`.
+    pub fn at(media: &[Medium], nm: f64) -> Indices {
+        Indices { nm, n: std::array::from_fn(|m| media.get(m).and_then(|x| x.n(Some(nm))).unwrap_or(f64::NAN)) }
+    }
+
+    /// Keeps the indices at `nm` (worked out again only when `nm` changed).
+    pub fn keep(&mut self, media: &[Medium], nm: Option<f64>) {
+        if let Some(l) = nm {
+            if l.to_bits() != self.nm.to_bits() {
+                *self = Indices::at(media, l);
+            }
+        }
+    }
+
+    /// Medium `m`'s index at `nm`, as `Medium::n` gives it: from the kept
+    /// ones when they are for `nm`.
+    #[inline]
+    pub fn n(&self, media: &[Medium], m: usize, nm: Option<f64>) -> Option<f64> {
+        match nm {
+            Some(l) if m < KEPT && l.to_bits() == self.nm.to_bits() => Some(self.n[m]),
+            _ => media[m].n(nm),
+        }
+    }
+}
+
 /// What happens at a face.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Surface {

@@ -19,7 +19,7 @@ pub mod shape;
 pub use camera::Camera;
 pub use cells::{Cells, Region};
 pub use light::{Emission, Light};
-pub use medium::{Albedo, Medium, Surface};
+pub use medium::{Albedo, Indices, Medium, Surface};
 pub use shape::{Face, Sphere};
 
 use glam::{DVec2, DVec3};
