@@ -123,6 +123,32 @@ impl Albedo {
 mod tests {
     use super::*;
 
+    /// The kept indices are `Medium::n`'s to the bit at the wavelength
+    /// kept; asked at another wavelength (or white) they are worked out
+    /// afresh, not read from the table; and keeping a new wavelength
+    /// replaces them. More media than are kept are worked out each time.
+    #[test]
+    fn kept_indices_are_the_mediums_own_at_their_wavelength() {
+        let glass = |name: &str| Medium::Glass { name: name.into(), ior: IorModel::Sellmeier(crate::optics::glass::by_name(name).unwrap().clone()) };
+        let mut media = vec![Medium::Air, glass("N-BK7"), glass("N-SF11"), Medium::Glass { name: "flat".into(), ior: IorModel::Constant(1.5) }];
+        media.extend((0..KEPT).map(|_| glass("N-SF11")));
+        let bits = |n: Option<f64>| n.map(f64::to_bits);
+        let mut kept = Indices::default();
+        for m in 0..media.len() {
+            assert_eq!(bits(kept.n(&media, m, Some(550.0))), bits(media[m].n(Some(550.0))), "nothing kept yet: medium {m}");
+        }
+        for (l, other) in [(404.7, 656.3), (589.3, 486.1), (700.0, 404.7)] {
+            kept.keep(&media, Some(l));
+            kept.keep(&media, None);
+            for m in 0..media.len() {
+                assert_eq!(bits(kept.n(&media, m, Some(l))), bits(media[m].n(Some(l))), "kept at {l}: medium {m}");
+                assert_eq!(bits(kept.n(&media, m, Some(other))), bits(media[m].n(Some(other))), "kept at {l}, asked at {other}: medium {m}");
+                assert_eq!(bits(kept.n(&media, m, None)), bits(media[m].n(None)), "white: medium {m}");
+            }
+        }
+        assert!(kept.n(&media, 1, Some(404.7)) > kept.n(&media, 1, Some(700.0)), "normal dispersion");
+    }
+
     #[test]
     fn a_coloured_albedo_is_a_spectrum_of_its_colour() {
         // Green paint reflects green light and little red or blue.
