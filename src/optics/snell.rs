@@ -67,6 +67,36 @@ mod tests {
         }
     }
 
+    /// The refracted direction is unit to rounding, and stays so when it
+    /// is refracted again and again without being normalised (as a path
+    /// through a prism train is, `world::interface::cross_with`): over
+    /// 2000 paths of 100 crossings (the most a photon makes) at random
+    /// faces, glasses and angles, reflecting where the light is totally
+    /// reflected, no direction drifts 1e-11 from unit length (1.4e-12
+    /// measured: grazing refractions add the most), and one path of 100 000
+    /// crossings drifts under 1e-10 (7e-12): the error does not grow
+    /// from crossing to crossing.
+    #[test]
+    fn directions_stay_unit_through_many_crossings_unnormalised() {
+        let mut rng = crate::sampling::Rng::new(3, 5, 8);
+        let unit = |rng: &mut crate::sampling::Rng| crate::photon::emit::uniform_sphere(rng.f64(), rng.f64());
+        let mut follow = |steps: usize, rng: &mut crate::sampling::Rng| {
+            let mut d = unit(rng);
+            let mut worst: f64 = 0.0;
+            for _ in 0..steps {
+                let n = unit(rng);
+                let eta = 0.55 + 1.2 * rng.f64();
+                d = refract_f64(d, n, eta).unwrap_or_else(|| reflect_f64(d, n));
+                worst = worst.max((d.length() - 1.0).abs());
+            }
+            worst
+        };
+        let short = (0..2000).map(|_| follow(100, &mut rng)).fold(0.0, f64::max);
+        assert!(short < 1e-11 && short > 0.0, "drift over 100 crossings {short:e}");
+        let long = follow(100_000, &mut rng);
+        assert!(long < 1e-10, "drift over 100 000 crossings {long:e}");
+    }
+
     #[test]
     fn tir_starts_exactly_at_the_critical_angle() {
         let (n1, n2) = (1.5168, 1.0);
