@@ -80,7 +80,7 @@ mod tests {
     fn directions_stay_unit_through_many_crossings_unnormalised() {
         let mut rng = crate::sampling::Rng::new(3, 5, 8);
         let unit = |rng: &mut crate::sampling::Rng| crate::photon::emit::uniform_sphere(rng.f64(), rng.f64());
-        let mut follow = |steps: usize, rng: &mut crate::sampling::Rng| {
+        let follow = |steps: usize, rng: &mut crate::sampling::Rng| {
             let mut d = unit(rng);
             let mut worst: f64 = 0.0;
             for _ in 0..steps {
