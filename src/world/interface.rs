@@ -88,8 +88,8 @@ pub fn cross_with(scene: &World, id: usize, p: DVec3, d: DVec3, index: impl Fn(u
         fresnel: Fresnel::dielectric(cos_i, n1, n2),
         // Snell's vector form is unit to rounding (docs/physics.md §1), so
         // it is not normalised again, which put a square root and a
-        // division on every crossing's chain; over the 100 crossings a
-        // photon makes at most it drifts under 1e-11 (`optics::snell`'s test).
+        // division on every crossing's chain; its length error is scaled,
+        // not compounded, from crossing to crossing (`optics::snell`'s test).
         refracted: refract_f64(d, normal, n1 / n2),
         reflected: reflect_f64(d, normal),
     })
