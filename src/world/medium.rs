@@ -55,7 +55,7 @@ impl Default for Indices {
 
 impl Indices {
     /// The indices of `media` at `nm`.
-    pub fn at(media: &[Medium], nm: f64) -> Indices {
+    fn at(media: &[Medium], nm: f64) -> Indices {
         Indices { nm, n: std::array::from_fn(|m| media.get(m).and_then(|x| x.n(Some(nm))).unwrap_or(f64::NAN)) }
     }
 
