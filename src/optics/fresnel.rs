@@ -17,7 +17,14 @@ impl Fresnel {
         if sin_t >= 1.0 {
             return Fresnel { rs: 1.0, rp: 1.0 };
         }
-        let cos_t = (1.0 - sin_t * sin_t).sqrt();
+        Fresnel::from_cosines(cos_i, (1.0 - sin_t * sin_t).sqrt(), n1, n2)
+    }
+
+    /// From the cosines of the angles of incidence and refraction (both
+    /// in [0, 1]), `n1 -> n2`: for a tracer that has just refracted and
+    /// knows both (`snell::refract_cos_f64`).
+    #[inline]
+    pub fn from_cosines(cos_i: f64, cos_t: f64, n1: f64, n2: f64) -> Fresnel {
         let rs = (n1 * cos_i - n2 * cos_t) / (n1 * cos_i + n2 * cos_t);
         let rp = (n2 * cos_i - n1 * cos_t) / (n2 * cos_i + n1 * cos_t);
         Fresnel { rs: rs * rs, rp: rp * rp }
@@ -62,6 +69,36 @@ mod tests {
         assert!(Fresnel::dielectric(brewster.cos(), n1, n2).rp < 1e-20);
         // Glass to air: total internal reflection past the critical angle.
         assert_eq!(Fresnel::dielectric(0.2, n2, n1).reflectance(), 1.0);
+    }
+
+    #[test]
+    fn from_refractions_cosines_as_from_the_incidence_angle_alone() {
+        // The tracer's route (Snell's k, one square root) against
+        // `dielectric`'s (sin theta_t, then cos theta_t), air to glass and
+        // glass to air, up to just short of the critical angle.
+        use crate::optics::snell::refract_cos_f64;
+        use glam::DVec3;
+        let normal = DVec3::Z;
+        let mut worst: f64 = 0.0;
+        for (n1, n2) in [(1.0, 1.5168), (1.5168, 1.0), (1.7847, 1.5168), (1.0, 3.0)] {
+            for i in 0..=4000 {
+                let cos_i = i as f64 / 4000.0;
+                let d = DVec3::new((1.0 - cos_i * cos_i).sqrt(), 0.0, -cos_i);
+                let whole = Fresnel::dielectric(cos_i, n1, n2);
+                match refract_cos_f64(d, normal, n1 / n2) {
+                    Some((_, ci, ct)) => {
+                        let f = Fresnel::from_cosines(ci, ct, n1, n2);
+                        // Within 1e-7 of cos theta_t = 0, cos theta_t's own
+                        // rounding is amplified; past it both must agree.
+                        if ct > 1e-4 {
+                            worst = worst.max((f.rs - whole.rs).abs()).max((f.rp - whole.rp).abs());
+                        }
+                    }
+                    None => assert_eq!(whole, Fresnel { rs: 1.0, rp: 1.0 }, "TIR at cos_i {cos_i} for {n1} -> {n2}"),
+                }
+            }
+        }
+        assert!(worst < 1e-12, "worst difference {worst:e}");
     }
 
     #[test]

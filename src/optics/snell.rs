@@ -4,12 +4,20 @@
 //! (report 004's mirror-like "low IOR") and for grazing rays.
 
 macro_rules! snell_impl {
-    ($v:ty, $f:ty, $refract:ident, $reflect:ident) => {
+    ($v:ty, $f:ty, $refract:ident, $refract_cos:ident, $reflect:ident) => {
         /// Refracts unit direction `d` at a surface with unit normal `n`
         /// (either orientation), from index `n1` into `n2` (`eta = n1/n2`).
         /// `None` under total internal reflection (`k = cos^2 theta_t < 0`).
         #[inline]
         pub fn $refract(d: $v, n: $v, eta: $f) -> Option<$v> {
+            $refract_cos(d, n, eta).map(|(t, _, _)| t)
+        }
+
+        /// The same, with the cosines of the angles of incidence and
+        /// refraction it found on the way (for Fresnel's equations, which
+        /// need both: `Fresnel::from_cosines`).
+        #[inline]
+        pub fn $refract_cos(d: $v, n: $v, eta: $f) -> Option<($v, $f, $f)> {
             // docs/physics.md §1: n must point into the second medium, d.n > 0.
             let n = if d.dot(n) < 0.0 { -n } else { n };
             let cos_i = d.dot(n).min(1.0);
@@ -17,7 +25,8 @@ macro_rules! snell_impl {
             if !(k >= 0.0) {
                 return None;
             }
-            Some(eta * d + (k.sqrt() - eta * cos_i) * n)
+            let cos_t = k.sqrt();
+            Some((eta * d + (cos_t - eta * cos_i) * n, cos_i, cos_t))
         }
 
         /// Mirror direction `r = d - 2 (d.n) n`.
@@ -28,8 +37,8 @@ macro_rules! snell_impl {
     };
 }
 
-snell_impl!(glam::Vec3, f32, refract, reflect);
-snell_impl!(glam::DVec3, f64, refract_f64, reflect_f64);
+snell_impl!(glam::Vec3, f32, refract, refract_cos, reflect);
+snell_impl!(glam::DVec3, f64, refract_f64, refract_cos_f64, reflect_f64);
 
 /// Critical angle `asin(n2/n1)` for light going from `n1` into `n2 < n1`;
 /// `None` when there is no total internal reflection.

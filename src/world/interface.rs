@@ -4,7 +4,7 @@
 //! so all three follow the same optics.
 
 use super::{Surface, World};
-use crate::optics::{snell::reflect_f64, snell::refract_f64, Fresnel};
+use crate::optics::{snell::reflect_f64, snell::refract_cos_f64, Fresnel};
 use glam::DVec3;
 
 /// Polarisation a path keeps from light to screen: through a prism train
@@ -79,18 +79,14 @@ pub fn cross_with(scene: &World, id: usize, p: DVec3, d: DVec3, index: impl Fn(u
     let (from, to) = if d.dot(normal) < 0.0 { (front, back) } else { (back, front) };
     let n1 = index(from).ok_or(NeedsWavelength)?;
     let n2 = index(to).ok_or(NeedsWavelength)?;
-    let cos_i = d.dot(normal).abs();
-    Ok(Crossing {
-        to,
-        from,
-        n1,
-        n2,
-        fresnel: Fresnel::dielectric(cos_i, n1, n2),
-        // Snell's vector form is unit to rounding (docs/physics.md §1), so
-        // it is not normalised again, which put a square root and a
-        // division on every crossing's chain; its length error is scaled,
-        // not compounded, from crossing to crossing (`optics::snell`'s test).
-        refracted: refract_f64(d, normal, n1 / n2),
-        reflected: reflect_f64(d, normal),
-    })
+    // One square root gives both the refracted direction and Fresnel's
+    // cos theta_t (docs/physics.md §1, §2). Snell's vector form is unit to
+    // rounding, so it is not normalised again, which put a square root and
+    // a division on every crossing's chain; its length error is scaled,
+    // not compounded, from crossing to crossing (`optics::snell`'s test).
+    let (refracted, fresnel) = match refract_cos_f64(d, normal, n1 / n2) {
+        Some((t, cos_i, cos_t)) => (Some(t), Fresnel::from_cosines(cos_i, cos_t, n1, n2)),
+        None => (None, Fresnel { rs: 1.0, rp: 1.0 }),
+    };
+    Ok(Crossing { to, from, n1, n2, fresnel, refracted, reflected: reflect_f64(d, normal) })
 }
