@@ -213,6 +213,78 @@ impl Tri4 {
     }
 }
 
+/// Two packets (the eight triangles of a full leaf) met in one AVX2
+/// register a value, lane for lane the operations of `Tri4::intersect`
+/// (so the same bits). Testing the second packet against the `t_max` from
+/// before the first changes nothing: a hit of the second beyond the
+/// first's nearest is not closer, and one as near is kept by the same
+/// lower-id rule either way.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+#[inline]
+fn pair_avx2(a: &Tri4, b: &Tri4, o: &[f32; 3], d: &[f32; 3], t_min: f32, t_max: f32, best: &mut Option<Hit>) {
+    use std::arch::x86_64::*;
+    // Lanes 0-3 from `a`, 4-7 from `b`.
+    macro_rules! join {
+        ($f:ident, $k:expr) => {
+            _mm256_set_m128(b.$f[$k].into(), a.$f[$k].into())
+        };
+    }
+    let (sub, mul, add) = (_mm256_sub_ps, _mm256_mul_ps, _mm256_add_ps);
+    let [dx, dy, dz] = d.map(|x| _mm256_set1_ps(x));
+    let [ox, oy, oz] = o.map(|x| _mm256_set1_ps(x));
+    let (e1x, e1y, e1z) = (join!(e1, 0), join!(e1, 1), join!(e1, 2));
+    let (e2x, e2y, e2z) = (join!(e2, 0), join!(e2, 1), join!(e2, 2));
+    // p = d x e2; det = e1 . p.
+    let px = sub(mul(dy, e2z), mul(e2y, dz));
+    let py = sub(mul(dz, e2x), mul(e2z, dx));
+    let pz = sub(mul(dx, e2y), mul(e2x, dy));
+    let det = add(add(mul(e1x, px), mul(e1y, py)), mul(e1z, pz));
+    let (sx, sy, sz) = (sub(ox, join!(v0, 0)), sub(oy, join!(v0, 1)), sub(oz, join!(v0, 2)));
+    let u_num = add(add(mul(sx, px), mul(sy, py)), mul(sz, pz));
+    // q = s x e1.
+    let qx = sub(mul(sy, e1z), mul(e1y, sz));
+    let qy = sub(mul(sz, e1x), mul(e1z, sx));
+    let qz = sub(mul(sx, e1y), mul(e1x, sy));
+    let v_num = add(add(mul(dx, qx), mul(dy, qy)), mul(dz, qz));
+    let t_num = add(add(mul(e2x, qx), mul(e2y, qy)), mul(e2z, qz));
+    let (zero, one) = (_mm256_setzero_ps(), _mm256_set1_ps(1.0));
+    let inv_det = _mm256_div_ps(one, det);
+    let (u, v, t) = (mul(u_num, inv_det), mul(v_num, inv_det), mul(t_num, inv_det));
+    // SSE's cmpneq is unordered (true for NaN), its other comparisons
+    // ordered: the same predicates here.
+    let ok = _mm256_and_ps(
+        _mm256_and_ps(
+            _mm256_and_ps(_mm256_cmp_ps::<_CMP_NEQ_UQ>(det, zero), _mm256_cmp_ps::<_CMP_GE_OQ>(u, zero)),
+            _mm256_and_ps(_mm256_cmp_ps::<_CMP_LE_OQ>(u, one), _mm256_cmp_ps::<_CMP_GE_OQ>(v, zero)),
+        ),
+        _mm256_and_ps(
+            _mm256_cmp_ps::<_CMP_LE_OQ>(add(u, v), one),
+            _mm256_and_ps(_mm256_cmp_ps::<_CMP_GT_OQ>(t, _mm256_set1_ps(t_min)), _mm256_cmp_ps::<_CMP_LE_OQ>(t, _mm256_set1_ps(t_max))),
+        ),
+    );
+    let mut mask = _mm256_movemask_ps(ok) as u32;
+    if mask == 0 {
+        return;
+    }
+    let (mut ts, mut us, mut vs) = ([0.0f32; 8], [0.0f32; 8], [0.0f32; 8]);
+    // SAFETY: each array holds eight f32s (alignment not required).
+    unsafe {
+        _mm256_storeu_ps(ts.as_mut_ptr(), t);
+        _mm256_storeu_ps(us.as_mut_ptr(), u);
+        _mm256_storeu_ps(vs.as_mut_ptr(), v);
+    }
+    while mask != 0 {
+        let k = mask.trailing_zeros() as usize;
+        mask &= mask - 1;
+        let tri = if k < 4 { a.ids[k] } else { b.ids[k - 4] };
+        let h = Hit { t: ts[k], tri, u: us[k], v: vs[k] };
+        if best.is_none_or(|b| h.closer_than(&b)) {
+            *best = Some(h);
+        }
+    }
+}
+
 const BINS: usize = 16;
 const MAX_LEAF: usize = 8;
 const MAX_DEPTH: usize = 60;
@@ -356,25 +428,50 @@ impl Bvh {
             #[cfg(target_arch = "x86_64")]
             // SAFETY: `Avx2` is only chosen where the processor has AVX2.
             BoxTest::Avx2 => unsafe { self.intersect_avx2(ray) },
-            _ => self.walk(ray, boxes_portable),
+            _ => self.walk(ray, boxes_portable, |packets, o, d, t_min, t_max, best| {
+                let (o4, d4) = (o.map(Vec4::splat), d.map(Vec4::splat));
+                for p in packets {
+                    p.intersect(&o4, &d4, t_min, *t_max, best);
+                    *t_max = best.map_or(*t_max, |b| b.t);
+                }
+            }),
         }
     }
 
-    /// `walk` compiled for AVX2, its box test in AVX2 registers.
+    /// `walk` compiled for AVX2, its box test and a full leaf's two
+    /// packets in AVX2 registers.
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2")]
     fn intersect_avx2(&self, ray: &Ray) -> Option<Hit> {
-        self.walk(ray, |n, r, t| boxes_avx2(n, r, t))
+        self.walk(
+            ray,
+            |n, r, t| boxes_avx2(n, r, t),
+            |packets, o, d, t_min, t_max, best| {
+                let mut pairs = packets.chunks_exact(2);
+                for pair in &mut pairs {
+                    pair_avx2(&pair[0], &pair[1], o, d, t_min, *t_max, best);
+                    *t_max = best.map_or(*t_max, |b| b.t);
+                }
+                if let [last] = pairs.remainder() {
+                    last.intersect(&o.map(Vec4::splat), &d.map(Vec4::splat), t_min, *t_max, best);
+                    *t_max = best.map_or(*t_max, |b| b.t);
+                }
+            },
+        )
     }
 
     /// The traversal: children entered nearest first, leaves' packets met
     /// as soon as their box is entered.
     #[inline(always)]
-    fn walk(&self, ray: &Ray, boxes: impl Fn(&Wide, &RayBoxes, f32) -> (u32, [f32; WIDTH])) -> Option<Hit> {
+    fn walk(
+        &self,
+        ray: &Ray,
+        boxes: impl Fn(&Wide, &RayBoxes, f32) -> (u32, [f32; WIDTH]),
+        leaf: impl Fn(&[Tri4], &[f32; 3], &[f32; 3], f32, &mut f32, &mut Option<Hit>),
+    ) -> Option<Hit> {
         let inv = ray.inv_dir();
         let r = RayBoxes { down: inv.to_array().map(f32::is_sign_negative), o: ray.origin.to_array(), inv: inv.to_array(), t_min: ray.t_min };
-        let o4 = ray.origin.to_array().map(Vec4::splat);
-        let d4 = ray.dir.to_array().map(Vec4::splat);
+        let (o, d) = (ray.origin.to_array(), ray.dir.to_array());
         let mut best: Option<Hit> = None;
         let mut t_max = ray.t_max;
         // Children still to visit, with the distance where the ray enters
@@ -388,10 +485,7 @@ impl Bvh {
         loop {
             if at.count > 0 {
                 let first = at.child as usize;
-                for p in &self.packets[first..first + at.count as usize] {
-                    p.intersect(&o4, &d4, ray.t_min, t_max, &mut best);
-                    t_max = best.map_or(t_max, |b| b.t);
-                }
+                leaf(&self.packets[first..first + at.count as usize], &o, &d, ray.t_min, &mut t_max, &mut best);
             } else {
                 let node = &self.nodes[at.child as usize];
                 let (mut mask, near) = boxes(node, &r, t_max);
@@ -682,5 +776,49 @@ mod tests {
             hits += a.is_some() as usize;
         }
         assert!(hits > 1000, "the test must exercise hits, got {hits}");
+    }
+
+    /// Rays aimed at points just inside and just outside a triangle's
+    /// edges and corners (barycentric coordinates 1e-7 either side of 0,
+    /// and of u + v = 1), where a lane's comparisons decide: the hits are
+    /// the scan's to the bit with either box test, so every lane of the
+    /// packet tests (four and eight at a time) decides as `Triangle` does.
+    #[test]
+    fn edges_are_decided_as_the_scan_decides() {
+        let mut rng = crate::sampling::Rng::new(9, 4, 1);
+        let mut rnd = || Vec3::new(rng.f32(), rng.f32(), rng.f32()) * 2.0 - 1.0;
+        let tris: Vec<Triangle> = (0..4000)
+            .map(|_| {
+                let c = rnd();
+                Triangle::new(c, c + 0.1 * rnd(), c + 0.1 * rnd())
+            })
+            .collect();
+        let trees = [Bvh::build(&tris), Bvh::build(&tris).with_box_test(BoxTest::Portable)];
+        let mut rng = crate::sampling::Rng::new(9, 4, 2);
+        let (mut inside, mut outside) = (0, 0);
+        for i in 0..20_000 {
+            let t = &tris[(rng.next_u64() % tris.len() as u64) as usize];
+            let s = rng.f32();
+            let eps = if i % 2 == 0 { 1e-7 } else { -1e-7 };
+            let (a, b) = match i / 2 % 4 {
+                0 => (eps, s),
+                1 => (s, eps),
+                2 => (s, 1.0 - s - eps),
+                _ => (eps, eps),
+            };
+            let target = t.v0 + a * t.e1 + b * t.e2;
+            let n = t.e1.cross(t.e2).normalize_or(Vec3::Z);
+            let o = target + 0.5 * (n + 0.3 * rnd());
+            let ray = Ray::new(o, (target - o).normalize());
+            let want = linear_intersect(&tris, &ray);
+            for tree in &trees {
+                assert_eq!(tree.intersect(&ray), want, "{:?}, ray {o} towards {target}", tree.box_test());
+            }
+            match want {
+                Some(h) if std::ptr::eq(&tris[h.tri as usize], t) => inside += 1,
+                _ => outside += 1,
+            }
+        }
+        assert!(inside > 2000 && outside > 2000, "both sides of the edges: {inside} in, {outside} out");
     }
 }
