@@ -7,7 +7,8 @@
 //! children are visited first (as Embree's BVH8 on AVX2).
 //! A leaf's triangles are stored four to a packet, one array per
 //! coordinate, and a ray meets the four in one pass of vector
-//! instructions (as Embree's Triangle4 leaves; Wald et al. 2014).
+//! instructions (as Embree's Triangle4 leaves; Wald et al. 2014), or a
+//! full leaf's eight in one pass of AVX2 registers.
 
 use super::aabb::GAMMA3;
 use super::{Aabb, Hit, Ray, Triangle};
