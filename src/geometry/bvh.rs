@@ -702,6 +702,23 @@ fn partition(prims: &mut [BuildPrim], ids: &mut [u32], pred: impl Fn(&BuildPrim)
 mod tests {
     use super::*;
     use crate::geometry::accel::linear_intersect;
+    use crate::sampling::Rng;
+
+    /// A point uniform in the cube [-1, 1]^3.
+    fn point(rng: &mut Rng) -> Vec3 {
+        Vec3::new(rng.f32(), rng.f32(), rng.f32()) * 2.0 - 1.0
+    }
+
+    /// `n` triangles scattered over that cube, their edges up to `size`
+    /// along each axis.
+    fn soup(rng: &mut Rng, n: usize, size: f32) -> Vec<Triangle> {
+        (0..n)
+            .map(|_| {
+                let c = point(rng);
+                Triangle::new(c, c + size * point(rng), c + size * point(rng))
+            })
+            .collect()
+    }
 
     /// The bin of a centroid is `(x as usize).min(bins - 1)` for every
     /// x: inside, on the edges, below zero, beyond, infinite and NaN.
@@ -755,13 +772,8 @@ mod tests {
     #[test]
     fn both_box_tests_find_what_the_scan_finds() {
         let mut rng = crate::sampling::Rng::new(5, 2, 7);
-        let mut rnd = || Vec3::new(rng.f32(), rng.f32(), rng.f32()) * 2.0 - 1.0;
-        let tris: Vec<Triangle> = (0..20_000)
-            .map(|_| {
-                let c = rnd();
-                Triangle::new(c, c + 0.05 * rnd(), c + 0.05 * rnd())
-            })
-            .collect();
+        let tris = soup(&mut rng, 20_000, 0.05);
+        let mut rnd = || point(&mut rng);
         let fast = Bvh::build(&tris);
         let portable = Bvh::build(&tris).with_box_test(BoxTest::Portable);
         assert!(fast.node_count() > 1 + WIDTH, "the tree must have several levels: {} nodes", fast.node_count());
@@ -786,14 +798,7 @@ mod tests {
     /// packet tests (four and eight at a time) decides as `Triangle` does.
     #[test]
     fn edges_are_decided_as_the_scan_decides() {
-        let mut rng = crate::sampling::Rng::new(9, 4, 1);
-        let mut rnd = || Vec3::new(rng.f32(), rng.f32(), rng.f32()) * 2.0 - 1.0;
-        let tris: Vec<Triangle> = (0..4000)
-            .map(|_| {
-                let c = rnd();
-                Triangle::new(c, c + 0.1 * rnd(), c + 0.1 * rnd())
-            })
-            .collect();
+        let tris = soup(&mut crate::sampling::Rng::new(9, 4, 1), 4000, 0.1);
         let trees = [Bvh::build(&tris), Bvh::build(&tris).with_box_test(BoxTest::Portable)];
         let mut rng = crate::sampling::Rng::new(9, 4, 2);
         let (mut inside, mut outside) = (0, 0);
@@ -809,7 +814,7 @@ mod tests {
             };
             let target = t.v0 + a * t.e1 + b * t.e2;
             let n = t.e1.cross(t.e2).normalize_or(Vec3::Z);
-            let o = target + 0.5 * (n + 0.3 * rnd());
+            let o = target + 0.5 * (n + 0.3 * point(&mut rng));
             let ray = Ray::new(o, (target - o).normalize());
             let want = linear_intersect(&tris, &ray);
             for tree in &trees {
