@@ -32,18 +32,14 @@ fn pow2(k: i32) -> f32 {
 
 /// `v.round() as i64` (halves away from zero, saturating, NaN to 0)
 /// without the library call `round` is on baseline x86-64: below 2^52 the
-/// truncation and the fraction left are exact; above, v is whole.
+/// truncation and the fraction left are exact; above, v is whole. No
+/// branch on the fraction, a coin toss for a photon's flux (packing fell
+/// from 8.3 % to 7.1 % of the light pass's time under `perf`).
 #[inline]
 pub fn round_to_i64(v: f64) -> i64 {
     let i = v as i64;
     let frac = v - i as f64;
-    if frac >= 0.5 {
-        i.saturating_add(1)
-    } else if frac <= -0.5 {
-        i.saturating_sub(1)
-    } else {
-        i
-    }
+    i.saturating_add((frac >= 0.5) as i64).saturating_sub((frac <= -0.5) as i64)
 }
 
 impl Photon {

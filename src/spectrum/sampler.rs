@@ -18,7 +18,7 @@ pub struct WavelengthSampler {
 }
 
 /// Entries of the guide table.
-const GUIDE: usize = 1024;
+const GUIDE: usize = 4096;
 
 impl WavelengthSampler {
     pub fn new(s: &Spectrum) -> Self {
