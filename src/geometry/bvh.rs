@@ -429,13 +429,15 @@ impl Bvh {
             #[cfg(target_arch = "x86_64")]
             // SAFETY: `Avx2` is only chosen where the processor has AVX2.
             BoxTest::Avx2 => unsafe { self.intersect_avx2(ray) },
-            _ => self.walk(ray, boxes_portable, |packets, o, d, t_min, t_max, best| {
-                let (o4, d4) = (o.map(Vec4::splat), d.map(Vec4::splat));
-                for p in packets {
-                    p.intersect(&o4, &d4, t_min, *t_max, best);
-                    *t_max = best.map_or(*t_max, |b| b.t);
-                }
-            }),
+            _ => {
+                let (o4, d4) = (ray.origin.to_array().map(Vec4::splat), ray.dir.to_array().map(Vec4::splat));
+                self.walk(ray, boxes_portable, |packets, _, _, t_min, t_max, best| {
+                    for p in packets {
+                        p.intersect(&o4, &d4, t_min, *t_max, best);
+                        *t_max = best.map_or(*t_max, |b| b.t);
+                    }
+                })
+            }
         }
     }
 

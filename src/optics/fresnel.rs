@@ -88,8 +88,9 @@ mod tests {
                 match refract_cos_f64(d, normal, n1 / n2) {
                     Some((_, ci, ct)) => {
                         let f = Fresnel::from_cosines(ci, ct, n1, n2);
-                        // Within 1e-7 of cos theta_t = 0, cos theta_t's own
-                        // rounding is amplified; past it both must agree.
+                        // Where cos theta_t is under 1e-4 (grazing
+                        // refraction), its own rounding is amplified;
+                        // above it both routes must agree.
                         if ct > 1e-4 {
                             worst = worst.max((f.rs - whole.rs).abs()).max((f.rp - whole.rp).abs());
                         }
