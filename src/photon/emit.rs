@@ -178,7 +178,7 @@ pub struct LightPass {
     pub stats: LightStats,
 }
 
-const MAX_BOUNCES: usize = 100;
+pub(super) const MAX_BOUNCES: usize = 100;
 const CHUNK: u64 = 8192;
 
 /// Traces `total` photons, shared among the lights by power. The result
@@ -250,6 +250,8 @@ fn trace_lights<D: Deposit + Send>(
         _ => scene.lights.iter().map(|l| l.power / power).collect(),
     };
     progress.start("light", total);
+    // Prism trains take the shortcut (`train`): the same photons, sooner.
+    let train = super::train::Train::new(scene).filter(|_| !general_only());
     for (li, light) in scene.lights.iter().enumerate() {
         let n = ((total as f64 * shares[li]).round() as u64).max(1);
         let emission = &light.emission;
@@ -278,6 +280,8 @@ fn trace_lights<D: Deposit + Send>(
                 let mut maps = sink();
                 let mut stats = LightStats::default();
                 let (mut by3, mut by5) = (RadicalInverses::new(3, a + pass * n), RadicalInverses::new(5, a + pass * n));
+                let photon = Emitted { power: per_photon, ..source };
+                let train = train.as_ref().filter(|_| matches!(emission, Emission::Beam { .. }));
                 for i in (a + pass * n)..(b + pass * n) {
                     let u = [rotate(by3.value(), offsets[0]), rotate(by5.value(), offsets[1]), rotate(radical_inverse(i, 2), offsets[2])];
                     by3.advance();
@@ -291,9 +295,11 @@ fn trace_lights<D: Deposit + Send>(
                         _ => (rng.f64(), rng.f64()),
                     };
                     let (o, d) = emit(scene, emission, a, b, &mut rng);
-                    let photon = Emitted { power: per_photon, ..source };
                     maps.photon(i);
-                    trace_photon(scene, o, d, &photon, colours, u[2], &mut rng, &mut maps, &mut stats);
+                    match train {
+                        Some(t) => t.trace(super::train::Start { o, d, u_lambda: u[2], rng }, &photon, colours, &mut maps, &mut stats),
+                        None => trace_photon(scene, o, d, &photon, colours, u[2], &mut rng, &mut maps, &mut stats),
+                    }
                 }
                 progress.advance("light", b - a);
                 (maps, stats)
@@ -303,6 +309,21 @@ fn trace_lights<D: Deposit + Send>(
     }
     progress.finish("light");
     out
+}
+
+#[cfg(test)]
+thread_local! {
+    /// Set by tests that trace with the general tracer only, to compare
+    /// the shortcut's photons with its.
+    pub(super) static GENERAL_ONLY: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+}
+
+/// Whether the shortcuts are off (only ever in tests).
+fn general_only() -> bool {
+    #[cfg(test)]
+    return GENERAL_ONLY.with(|g| g.get());
+    #[cfg(not(test))]
+    false
 }
 
 /// Start point and direction of a photon from two stratified numbers (and
@@ -360,18 +381,18 @@ pub fn concentric_disc(a: f64, b: f64) -> DVec2 {
 /// the light's whole spectrum (and of what each matte surface reflects of
 /// it), and the light's wavelength sampler.
 #[derive(Clone, Copy)]
-struct Emitted<'a> {
-    power: f64,
-    white: DVec3,
-    reflected: &'a [DVec3],
+pub(super) struct Emitted<'a> {
+    pub(super) power: f64,
+    pub(super) white: DVec3,
+    pub(super) reflected: &'a [DVec3],
     sampler: &'a WavelengthSampler,
     importance: &'a WavelengthSampler,
-    polarisation: Option<Polarisation>,
+    pub(super) polarisation: Option<Polarisation>,
 }
 
 impl Emitted<'_> {
     /// A wavelength for `u` and the XYZ flux a photon of it carries.
-    fn pick(&self, u: f64, colours: ColorMap) -> (f64, DVec3) {
+    pub(super) fn pick(&self, u: f64, colours: ColorMap) -> (f64, DVec3) {
         let (l, q) = self.importance.sample(u);
         let w = if q > 0.0 { self.sampler.pdf(l) / q } else { 0.0 };
         (l, colours.xyz_weight(l) * (self.power * w))

@@ -4,3 +4,4 @@
 pub mod emit;
 pub mod gather;
 pub mod map;
+mod train;

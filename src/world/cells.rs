@@ -84,6 +84,11 @@ struct Plane {
     normal: DVec3,
     at: DVec3,
     out: f64,
+    /// `normal * out`, the normal pointing out of the cell: a ray heads
+    /// out where `d . outward > 0`, which is `d . normal * out > 0` to the
+    /// bit (negating a factor negates the rounded sum exactly), and the
+    /// distance `(at - o) . outward / d . outward` is the face's own.
+    outward: DVec3,
     face: usize,
     /// Other faces in the same plane (a floor a prism stands on, the caps
     /// of its neighbouring parts): the scan may meet one of them at the
@@ -102,7 +107,7 @@ impl Cells {
                 if let Some(c) = c {
                     // The back side's cell has the normal pointing out of it.
                     let out = if side == 1 { 1.0 } else { -1.0 };
-                    cells[*c as usize].push(Plane { normal: f.normal, out, at: f.verts[0], face: id, ties: coplanar(faces, id) });
+                    cells[*c as usize].push(Plane { normal: f.normal, out, outward: f.normal * out, at: f.verts[0], face: id, ties: coplanar(faces, id) });
                 }
             }
             if let (Some(s), true) = (f.solid, f.cells.contains(&None)) {
@@ -114,7 +119,9 @@ impl Cells {
                     .find(|(p, _)| (p.normal * p.out - f.normal * out).length() < 1e-12 && (f.verts[0] - p.at).dot(p.normal).abs() < 1e-12 * scale)
                 {
                     Some((_, faces)) => faces.push(id),
-                    None => planes.push((Plane { normal: f.normal * out, out: 1.0, at: f.verts[0], face: id, ties: Vec::new() }, vec![id])),
+                    None => {
+                        planes.push((Plane { normal: f.normal * out, out: 1.0, outward: f.normal * out, at: f.verts[0], face: id, ties: Vec::new() }, vec![id]))
+                    }
                 }
             }
         }
@@ -155,6 +162,11 @@ impl Cells {
         self.faces == faces.len() && !self.cells.is_empty()
     }
 
+    /// Whether every cell is walked (none had something reach into it).
+    pub fn all_walked(&self) -> bool {
+        self.cells.iter().all(|planes| !planes.is_empty())
+    }
+
     /// How many convex solids there are.
     pub fn solids(&self) -> usize {
         self.solids.len()
@@ -172,30 +184,38 @@ impl Cells {
     /// it heads out through (not `skip`). `None` if rounding left no such
     /// plane ahead, or the cell is not walked (then scan).
     pub fn leave(&self, faces: &[Face], c: usize, o: DVec3, d: DVec3, skip: Option<usize>) -> Option<FaceHit> {
-        let mut best: Option<(FaceHit, &Plane)> = None;
-        let mut from: Option<&Plane> = None;
-        for p in self.cells.get(c)? {
-            if Some(p.face) == skip {
+        let planes = self.cells.get(c)?;
+        // Plain indices, not options, in the loop (a face index is never
+        // usize::MAX): the nearest plane ahead, and the one left.
+        let skip = skip.unwrap_or(usize::MAX);
+        let (mut best, mut best_t, mut from) = (usize::MAX, 0.0, usize::MAX);
+        for (k, p) in planes.iter().enumerate() {
+            if p.face == skip {
                 // Reflected off this plane: rounding may have put the ray
                 // just beyond a face lying in it, which the scan would meet.
-                from = Some(p);
+                from = k;
                 continue;
             }
-            let denom = d.dot(p.normal);
-            if !(denom * p.out > 0.0) {
+            let denom = d.dot(p.outward);
+            if !(denom > 0.0) {
                 continue;
             }
             // As `Face::plane_distance` (`at` is the face's first vertex).
-            let t = (p.at - o).dot(p.normal) / denom;
-            if t > 0.0 && best.is_none_or(|(b, _)| t < b.t) {
-                best = Some((FaceHit { t, face: p.face }, p));
+            let t = (p.at - o).dot(p.outward) / denom;
+            if t > 0.0 && (best == usize::MAX || t < best_t) {
+                (best, best_t) = (k, t);
             }
         }
-        let (mut hit, plane) = best?;
-        for &k in plane.ties.iter().chain(from.into_iter().flat_map(|p| p.ties.iter())) {
+        let plane = planes.get(best)?;
+        let mut hit = FaceHit { t: best_t, face: plane.face };
+        let from = planes.get(from).map_or(&[][..], |p| &p.ties[..]);
+        if plane.ties.is_empty() && from.is_empty() {
+            return Some(hit);
+        }
+        for &k in plane.ties.iter().chain(from) {
             if let Some(t) = faces[k].intersect_before(o, d, hit.t.next_up()) {
                 let tie = FaceHit { t, face: k };
-                if Some(k) != skip && before(tie, Some(hit)) {
+                if k != skip && before(tie, Some(hit)) {
                     hit = tie;
                 }
             }

@@ -1,0 +1,314 @@
+//! The light pass's shortcut through prism trains: scenes whose glass is
+//! convex prism cells (`World::add_extruded`) and whose other faces are
+//! matte parallelograms, with no ball, mirror or diffuse bounce (the
+//! Amici and single-prism screens). A photon there only crosses planar
+//! interfaces and lands, so it is traced without the general tracer's
+//! dispatch: the cell it is in gives the next face directly, the media's
+//! indices are an array, a crossing is Snell and Fresnel inline.
+//!
+//! Every photon is the general tracer's (`emit::trace_photon`) to the bit:
+//! the same surfaces met at the same distances (the same `Cells` searches,
+//! and the scan where they are in doubt), the same arithmetic at each
+//! crossing, the same random numbers in the same order, the same deposits
+//! and counts. A test traces both ways and compares every photon.
+
+use super::emit::{Deposit, Emitted, LightStats, MAX_BOUNCES};
+use crate::optics::snell::{reflect_f64, refract_cos_f64};
+use crate::optics::Fresnel;
+use crate::sampling::Rng;
+use crate::spectrum::colormap::ColorMap;
+use crate::world::cells::{before, Entry, Region};
+use crate::world::interface::Polarisation;
+use crate::world::{FaceHit, Surface, World};
+use glam::DVec3;
+
+/// Media a train's photons keep the indices of (a scene with more takes
+/// the general tracer).
+const MEDIA: usize = 8;
+
+/// A scene the shortcut can trace, read once a light pass.
+pub(super) struct Train<'a> {
+    scene: &'a World,
+    /// The matte faces, in index order (the faces of no convex solid).
+    loose: Vec<usize>,
+    /// Each medium's index for a photon that has no wavelength yet: its
+    /// constant index, or NaN where it disperses.
+    white: [f64; MEDIA],
+}
+
+impl<'a> Train<'a> {
+    /// The shortcut for `scene`, if its faces are all convex prism cells'
+    /// interfaces or matte parallelograms, every cell is walked, and
+    /// photons stop where they first land.
+    pub(super) fn new(scene: &'a World) -> Option<Train<'a>> {
+        if !scene.cells.valid(&scene.faces)
+            || !scene.cells.all_walked()
+            || scene.accel.is_some()
+            || !scene.spheres.is_empty()
+            || scene.bounces != 0
+            || scene.media.len() > MEDIA
+        {
+            return None;
+        }
+        let mut loose = Vec::new();
+        for (i, f) in scene.faces.iter().enumerate() {
+            match (&f.surface, f.solid) {
+                (Surface::Interface { .. }, Some(_)) => {}
+                (Surface::Diffuse { .. }, None) if f.cells == [None, None] && f.frame.is_some() => loose.push(i),
+                _ => return None,
+            }
+        }
+        let mut white = [f64::NAN; MEDIA];
+        for (w, m) in white.iter_mut().zip(&scene.media) {
+            *w = m.n(None).unwrap_or(f64::NAN);
+        }
+        Some(Train { scene, loose, white })
+    }
+
+    /// The nearest face for a ray outside every cell (`region` is
+    /// `Outside` or `Left`): as `World::intersect_in`, the matte faces one
+    /// by one, then each convex solid whole.
+    #[inline]
+    fn outside(&self, o: DVec3, d: DVec3, skip: Option<usize>, region: Region) -> Option<FaceHit> {
+        let scene = self.scene;
+        let mut best: Option<FaceHit> = None;
+        for &i in &self.loose {
+            if Some(i) == skip {
+                continue;
+            }
+            if let Some(t) = scene.faces[i].intersect_before(o, d, best.map_or(f64::INFINITY, |b| b.t)) {
+                best = Some(FaceHit { t, face: i });
+            }
+        }
+        let left = match region {
+            Region::Left(s) => Some(s),
+            _ => None,
+        };
+        let from = skip.and_then(|k| scene.faces.get(k)).and_then(|f| f.solid);
+        for s in 0..scene.cells.solids() as u32 {
+            if Some(s) == left || Some(s) == from {
+                continue;
+            }
+            match scene.cells.enter(&scene.faces, s as usize, o, d) {
+                Entry::Hit(h) if before(h, best) => best = Some(h),
+                Entry::Hit(_) | Entry::Miss => {}
+                // Rounding leaves the face in doubt: the scan decides.
+                Entry::InDoubt => return scene.intersect_in(o, d, skip, region),
+            }
+        }
+        best
+    }
+
+    /// One photon, as `emit::trace_photon` traces it: the same faces, the
+    /// same arithmetic, the same random numbers, the same deposit and
+    /// counts.
+    pub(super) fn trace(&self, start: Start, light: &Emitted, colours: ColorMap, maps: &mut impl Deposit, stats: &mut LightStats) {
+        let scene = self.scene;
+        let Start { o, d, u_lambda, mut rng } = start;
+        stats.emitted += 1;
+        stats.emitted_power += light.power;
+        let u_pol = rng.f64();
+        let pol = match light.polarisation {
+            Some(p) => p,
+            None if u_pol < 0.5 => Polarisation::S,
+            None => Polarisation::P,
+        };
+        let mut l = Lane {
+            o,
+            d,
+            region: scene.cells.region_at(o),
+            skip: None,
+            rng,
+            u_lambda,
+            pol,
+            nm: None,
+            n: self.white,
+            xyz: light.white * light.power,
+            through_glass: false,
+        };
+        for _ in 0..MAX_BOUNCES {
+            let hit = match l.region {
+                Region::Cell(c) => {
+                    scene.cells.leave(&scene.faces, c as usize, l.o, l.d, l.skip).or_else(|| scene.intersect_in(l.o, l.d, l.skip, Region::Unknown))
+                }
+                _ => self.outside(l.o, l.d, l.skip, l.region),
+            };
+            let Some(hit) = hit else { return };
+            if !self.step(&mut l, hit, light, colours, maps, stats) {
+                return;
+            }
+        }
+    }
+
+    /// What photon `l` does at the face it meets next (`hit`): crosses it
+    /// (true), or lands and is stored, or goes (false).
+    #[inline]
+    fn step(&self, l: &mut Lane, hit: FaceHit, light: &Emitted, colours: ColorMap, maps: &mut impl Deposit, stats: &mut LightStats) -> bool {
+        let scene = self.scene;
+        let p = l.o + hit.t * l.d;
+        let face = &scene.faces[hit.face];
+        match face.surface {
+            Surface::Interface { front, back } => {
+                let (d, normal) = (l.d, face.normal);
+                let (from, to) = if d.dot(normal) < 0.0 { (front, back) } else { (back, front) };
+                if l.nm.is_none() && (l.n[from].is_nan() || l.n[to].is_nan()) {
+                    // The first dispersive face: the photon takes its
+                    // wavelength (`Emitted::pick`) and the media their
+                    // indices at it (`Indices::keep`).
+                    let (nm, flux) = light.pick(l.u_lambda, colours);
+                    l.nm = Some(nm);
+                    l.xyz = flux;
+                    stats.dispersed += 1;
+                    for (k, m) in l.n.iter_mut().zip(&scene.media) {
+                        *k = m.n(Some(nm)).unwrap_or(f64::NAN);
+                    }
+                }
+                // As `interface::cross_with`.
+                let (n1, n2) = (l.n[from], l.n[to]);
+                let (refracted, fresnel) = match refract_cos_f64(d, normal, n1 / n2) {
+                    Some((t, cos_i, cos_t)) => (Some(t), Fresnel::from_cosines(cos_i, cos_t, n1, n2)),
+                    None => (None, Fresnel { rs: 1.0, rp: 1.0 }),
+                };
+                if refracted.is_none() {
+                    stats.tir += 1;
+                }
+                l.through_glass = true;
+                let r = match l.pol {
+                    Polarisation::S => fresnel.rs,
+                    Polarisation::P => fresnel.rp,
+                };
+                l.d = match refracted {
+                    Some(t) if l.rng.f64() >= r => t,
+                    _ => reflect_f64(d, normal),
+                };
+                l.o = p;
+                l.skip = Some(hit.face);
+                l.region = scene.region_after(hit.face, l.d);
+                true
+            }
+            Surface::Diffuse { map, albedo } => {
+                if l.d.dot(face.normal) >= 0.0 {
+                    return false;
+                }
+                let (_, eu, ev) = face.frame.expect("matte surfaces are parallelograms");
+                // No mirror here: crossing glass is `trace_photon`'s `specular`.
+                let direct = scene.direct_lighting && !l.through_glass;
+                if let (Some(uv), false) = (face.uv(p), direct) {
+                    let pos = [(uv.x * eu.length()) as f32, (uv.y * ev.length()) as f32];
+                    let out = match l.nm {
+                        Some(nm) => l.xyz * albedo.at(nm),
+                        None => light.reflected[map] * light.power,
+                    };
+                    let slot = if scene.split_maps() && !l.through_glass { map + scene.maps.len() } else { map };
+                    maps.deposit(slot, pos, [out.x as f32, out.y as f32, out.z as f32]);
+                    stats.stored += 1;
+                }
+                // Its first matte surface, and its last: no bounces here.
+                stats.stored_power += light.power;
+                false
+            }
+            _ => false,
+        }
+    }
+}
+
+/// A photon as it leaves its light: start, direction, wavelength sample
+/// and random stream.
+pub(super) struct Start {
+    pub o: DVec3,
+    pub d: DVec3,
+    pub u_lambda: f64,
+    pub rng: Rng,
+}
+
+/// A photon on its way.
+struct Lane {
+    o: DVec3,
+    d: DVec3,
+    region: Region,
+    /// The face it has just left.
+    skip: Option<usize>,
+    rng: Rng,
+    u_lambda: f64,
+    pol: Polarisation,
+    nm: Option<f64>,
+    /// The media's indices at `nm` (NaN for a dispersive medium while it
+    /// has none).
+    n: [f64; MEDIA],
+    xyz: DVec3,
+    /// Whether it has crossed glass (no mirror here: the same as
+    /// `trace_photon`'s `specular`).
+    through_glass: bool,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::photon::emit::{light_pass, LightPass, GENERAL_ONLY};
+    use crate::scenes::{build, SceneKind, SceneOptions};
+
+    fn pass(w: &World, n: u64, seed: u64, colours: ColorMap, general: bool) -> LightPass {
+        GENERAL_ONLY.with(|g| g.set(general));
+        let p = light_pass(w, n, seed, colours, &crate::progress::Silent);
+        GENERAL_ONLY.with(|g| g.set(false));
+        p
+    }
+
+    /// The prism-train scenes take the shortcut, and it stores the general
+    /// tracer's photons to the bit (position and flux, map by map, in the
+    /// same order) with the same counts and power sums: through the Amici
+    /// prism and the single prism at incidences from grazing (total
+    /// internal reflection inside) to steep, with a polarised laser, a
+    /// constant-index prism (white photons), split maps (the lit bench),
+    /// two colour maps and several seeds. Scenes with anything else keep
+    /// the general tracer.
+    #[test]
+    fn the_shortcut_stores_the_general_tracers_photons() {
+        let mut cases = Vec::new();
+        for kind in [SceneKind::AmiciScreen, SceneKind::AmiciBench, SceneKind::SinglePrism] {
+            cases.push(SceneOptions::new(kind));
+        }
+        for deg in [38.0, 45.0, 75.0, 88.0] {
+            let mut o = SceneOptions::new(SceneKind::SinglePrism);
+            o.incidence_deg = Some(deg);
+            cases.push(o);
+        }
+        let mut o = SceneOptions::new(SceneKind::SinglePrism);
+        o.light = Some(crate::spectrum::spectra::NamedSpectrum::parse("laser:532").unwrap());
+        cases.push(o);
+        let mut o = SceneOptions::new(SceneKind::AmiciScreen);
+        o.no_dispersion = true;
+        cases.push(o);
+        let (mut tir, mut white, mut reflected) = (0, 0, 0);
+        for (k, o) in cases.iter().enumerate() {
+            let mut w = build(o).unwrap();
+            if k == 7 {
+                // The laser, polarised in the plane of incidence.
+                let crate::world::Emission::Beam { polarisation, .. } = &mut w.lights[0].emission else { panic!("a beam") };
+                *polarisation = Some(Polarisation::P);
+            }
+            assert!(Train::new(&w).is_some(), "case {k}: {:?} takes the shortcut", o.kind);
+            for (seed, colours) in [(1, ColorMap::Cie), (7, ColorMap::Gradient)] {
+                let (a, b) = (pass(&w, 20_000, seed, colours, false), pass(&w, 20_000, seed, colours, true));
+                assert_eq!(a.stats, b.stats, "case {k} seed {seed}");
+                for (m, (pa, pb)) in a.photons.iter().zip(&b.photons).enumerate() {
+                    assert_eq!(pa.len(), pb.len(), "case {k} seed {seed} map {m}");
+                    for (x, y) in pa.iter().zip(pb) {
+                        assert_eq!(
+                            (x.pos.map(f32::to_bits), x.xyz().map(f32::to_bits)),
+                            (y.pos.map(f32::to_bits), y.xyz().map(f32::to_bits)),
+                            "case {k} seed {seed} map {m}"
+                        );
+                    }
+                }
+                tir += a.stats.tir;
+                white += a.stats.emitted - a.stats.dispersed;
+                reflected += a.stats.emitted - a.stats.stored;
+            }
+        }
+        assert!(tir > 1000 && white > 10_000 && reflected > 1000, "the cases reach every branch: {tir} {white} {reflected}");
+        for kind in [SceneKind::AmiciLamp, SceneKind::CornellLaser, SceneKind::SphereArealight, SceneKind::DarkSide] {
+            assert!(Train::new(&build(&SceneOptions::new(kind)).unwrap()).is_none(), "{kind:?}");
+        }
+    }
+}
