@@ -281,7 +281,6 @@ fn trace_lights<D: Deposit + Send>(
                 let mut stats = LightStats::default();
                 let (mut by3, mut by5) = (RadicalInverses::new(3, a + pass * n), RadicalInverses::new(5, a + pass * n));
                 let photon = Emitted { power: per_photon, ..source };
-                let train = train.as_ref().filter(|_| matches!(emission, Emission::Beam { .. }));
                 for i in (a + pass * n)..(b + pass * n) {
                     let u = [rotate(by3.value(), offsets[0]), rotate(by5.value(), offsets[1]), rotate(radical_inverse(i, 2), offsets[2])];
                     by3.advance();
@@ -296,7 +295,7 @@ fn trace_lights<D: Deposit + Send>(
                     };
                     let (o, d) = emit(scene, emission, a, b, &mut rng);
                     maps.photon(i);
-                    match train {
+                    match &train {
                         Some(t) => t.trace(super::train::Start { o, d, u_lambda: u[2], rng }, &photon, colours, &mut maps, &mut stats),
                         None => trace_photon(scene, o, d, &photon, colours, u[2], &mut rng, &mut maps, &mut stats),
                     }

@@ -1,7 +1,7 @@
 //! The light pass's shortcut through prism trains: scenes whose glass is
 //! convex prism cells (`World::add_extruded`) and whose other faces are
-//! matte parallelograms, with no ball, mirror or diffuse bounce (the
-//! Amici and single-prism screens). A photon there only crosses planar
+//! matte or emitting parallelograms, with no ball, mirror or diffuse
+//! bounce (the Amici and single-prism screens, the album cover). A photon there only crosses planar
 //! interfaces and lands, so it is traced without the general tracer's
 //! dispatch: the cell it is in gives the next face directly, the media's
 //! indices are an array, a crossing is Snell and Fresnel inline.
@@ -29,7 +29,8 @@ const MEDIA: usize = 8;
 /// A scene the shortcut can trace, read once a light pass.
 pub(super) struct Train<'a> {
     scene: &'a World,
-    /// The matte faces, in index order (the faces of no convex solid).
+    /// The matte and emitting faces, in index order (the faces of no
+    /// convex solid).
     loose: Vec<usize>,
     /// Each medium's index for a photon that has no wavelength yet: its
     /// constant index, or NaN where it disperses.
@@ -38,8 +39,8 @@ pub(super) struct Train<'a> {
 
 impl<'a> Train<'a> {
     /// The shortcut for `scene`, if its faces are all convex prism cells'
-    /// interfaces or matte parallelograms, every cell is walked, and
-    /// photons stop where they first land.
+    /// interfaces or matte or emitting parallelograms, every cell is
+    /// walked, and photons stop where they first land.
     pub(super) fn new(scene: &'a World) -> Option<Train<'a>> {
         if !scene.cells.valid(&scene.faces)
             || !scene.cells.all_walked()
@@ -54,7 +55,7 @@ impl<'a> Train<'a> {
         for (i, f) in scene.faces.iter().enumerate() {
             match (&f.surface, f.solid) {
                 (Surface::Interface { .. }, Some(_)) => {}
-                (Surface::Diffuse { .. }, None) if f.cells == [None, None] && f.frame.is_some() => loose.push(i),
+                (Surface::Diffuse { .. } | Surface::Emitter { .. }, None) if f.cells == [None, None] && f.frame.is_some() => loose.push(i),
                 _ => return None,
             }
         }
@@ -260,12 +261,13 @@ mod tests {
     /// prism and the single prism at incidences from grazing (total
     /// internal reflection inside) to steep, with a polarised laser, a
     /// constant-index prism (white photons), split maps (the lit bench),
-    /// two colour maps and several seeds. Scenes with anything else keep
-    /// the general tracer.
+    /// area lights whose photons may meet the lamps (the album cover), two
+    /// colour maps and two seeds. Scenes with anything else (diffuse
+    /// bounces, mirrors, balls) keep the general tracer.
     #[test]
     fn the_shortcut_stores_the_general_tracers_photons() {
         let mut cases = Vec::new();
-        for kind in [SceneKind::AmiciScreen, SceneKind::AmiciBench, SceneKind::SinglePrism] {
+        for kind in [SceneKind::AmiciScreen, SceneKind::AmiciBench, SceneKind::SinglePrism, SceneKind::DarkSide] {
             cases.push(SceneOptions::new(kind));
         }
         for deg in [38.0, 45.0, 75.0, 88.0] {
@@ -282,7 +284,7 @@ mod tests {
         let (mut tir, mut white, mut reflected) = (0, 0, 0);
         for (k, o) in cases.iter().enumerate() {
             let mut w = build(o).unwrap();
-            if k == 7 {
+            if k == 8 {
                 // The laser, polarised in the plane of incidence.
                 let crate::world::Emission::Beam { polarisation, .. } = &mut w.lights[0].emission else { panic!("a beam") };
                 *polarisation = Some(Polarisation::P);
@@ -307,7 +309,7 @@ mod tests {
             }
         }
         assert!(tir > 1000 && white > 10_000 && reflected > 1000, "the cases reach every branch: {tir} {white} {reflected}");
-        for kind in [SceneKind::AmiciLamp, SceneKind::CornellLaser, SceneKind::SphereArealight, SceneKind::DarkSide] {
+        for kind in [SceneKind::CornellLaser, SceneKind::CornellMirrorTube, SceneKind::SphereArealight, SceneKind::SpheresFinal] {
             assert!(Train::new(&build(&SceneOptions::new(kind)).unwrap()).is_none(), "{kind:?}");
         }
     }
