@@ -398,6 +398,40 @@ impl Emitted<'_> {
     }
 }
 
+/// Stores a photon landing at `p` on matte face `id`, as the flux the
+/// surface reflects: at the photon's wavelength `nm` (its flux `xyz`), or
+/// over its light's whole spectrum; none where the eye pass computes this
+/// light directly (`direct`) or `p` lies off the face. A caustic (through
+/// glass, no matte bounce) keeps the first map of a split.
+#[allow(clippy::too_many_arguments)]
+#[inline]
+pub(super) fn store(
+    scene: &World,
+    id: usize,
+    p: DVec3,
+    nm: Option<f64>,
+    xyz: DVec3,
+    light: &Emitted,
+    direct: bool,
+    caustic: bool,
+    maps: &mut impl Deposit,
+    stats: &mut LightStats,
+) {
+    let face = &scene.faces[id];
+    let Surface::Diffuse { map, albedo } = face.surface else { return };
+    let (_, eu, ev) = face.frame.expect("matte surfaces are parallelograms");
+    if let (Some(uv), false) = (face.uv(p), direct) {
+        let pos = [(uv.x * eu.length()) as f32, (uv.y * ev.length()) as f32];
+        let out = match nm {
+            Some(l) => xyz * albedo.at(l),
+            None => light.reflected[map] * light.power,
+        };
+        let slot = if scene.split_maps() && !caustic { map + scene.maps.len() } else { map };
+        maps.deposit(slot, pos, [out.x as f32, out.y as f32, out.z as f32]);
+        stats.stored += 1;
+    }
+}
+
 #[allow(clippy::too_many_arguments)]
 fn trace_photon(
     scene: &World,
@@ -410,7 +444,7 @@ fn trace_photon(
     maps: &mut impl Deposit,
     stats: &mut LightStats,
 ) {
-    let Emitted { power, white, reflected, .. } = *light;
+    let Emitted { power, white, .. } = *light;
     stats.emitted += 1;
     stats.emitted_power += power;
     // A natural light's photons are s or p at random; a polarised beam's all
@@ -434,7 +468,6 @@ fn trace_photon(
     // Whether it has crossed glass since it left the light (a caustic
     // while it has not bounced).
     let mut through_glass = false;
-    let split = scene.split_maps();
     let mut region = scene.cells.region_at(o);
     for _ in 0..MAX_BOUNCES {
         let Some(hit) = scene.intersect_in(o, d, skip, region) else { return };
@@ -470,28 +503,14 @@ fn trace_photon(
                 d = crate::optics::snell::reflect_f64(d, scene.normal(hit.face, p));
                 specular = true;
             }
-            Surface::Diffuse { map, albedo } => {
+            Surface::Diffuse { albedo, .. } => {
                 let face = &scene.faces[hit.face];
                 if d.dot(face.normal) >= 0.0 {
                     return;
                 }
-                let (_, eu, ev) = face.frame.expect("matte surfaces are parallelograms");
                 // Direct light is the eye pass's where the scene says so.
                 let direct = scene.direct_lighting && bounces == 0 && !specular;
-                if let (Some(uv), false) = (face.uv(p), direct) {
-                    let pos = [(uv.x * eu.length()) as f32, (uv.y * ev.length()) as f32];
-                    // Stored as the flux the surface reflects: at the
-                    // photon's wavelength, or over its light's whole spectrum.
-                    let out = match nm {
-                        Some(l) => xyz * albedo.at(l),
-                        None => reflected[map] * power,
-                    };
-                    // Caustics (through glass, no matte bounce) keep the
-                    // first map of a split.
-                    let slot = if split && (bounces > 0 || !through_glass) { map + scene.maps.len() } else { map };
-                    maps.deposit(slot, pos, [out.x as f32, out.y as f32, out.z as f32]);
-                    stats.stored += 1;
-                }
+                store(scene, hit.face, p, nm, xyz, light, direct, bounces == 0 && through_glass, maps, stats);
                 if bounces == 0 {
                     // Counted once, at the first matte surface it reaches.
                     stats.stored_power += power;

@@ -1,10 +1,11 @@
 //! The light pass's shortcut through prism trains: scenes whose glass is
 //! convex prism cells (`World::add_extruded`) and whose other faces are
 //! matte or emitting parallelograms, with no ball, mirror or diffuse
-//! bounce (the Amici and single-prism screens, the album cover). A photon there only crosses planar
-//! interfaces and lands, so it is traced without the general tracer's
-//! dispatch: the cell it is in gives the next face directly, the media's
-//! indices are an array, a crossing is Snell and Fresnel inline.
+//! bounce (the Amici and single-prism screens, the album cover). A photon
+//! there only crosses planar interfaces and lands, so it is traced without
+//! the general tracer's dispatch: the cell it is in gives the next face
+//! directly (`Cells::leave`), and the media's indices, read at every
+//! crossing, are an array.
 //!
 //! Every photon is the general tracer's (`emit::trace_photon`) to the bit:
 //! the same surfaces met at the same distances (the same `Cells` searches,
@@ -12,13 +13,11 @@
 //! crossing, the same random numbers in the same order, the same deposits
 //! and counts. A test traces both ways and compares every photon.
 
-use super::emit::{Deposit, Emitted, LightStats, MAX_BOUNCES};
-use crate::optics::snell::{reflect_f64, refract_cos_f64};
-use crate::optics::Fresnel;
+use super::emit::{store, Deposit, Emitted, LightStats, MAX_BOUNCES};
 use crate::sampling::Rng;
 use crate::spectrum::colormap::ColorMap;
 use crate::world::cells::{before, Entry, Region};
-use crate::world::interface::Polarisation;
+use crate::world::interface::{cross_with, Polarisation};
 use crate::world::{FaceHit, Surface, World};
 use glam::DVec3;
 
@@ -114,7 +113,7 @@ impl<'a> Train<'a> {
             None if u_pol < 0.5 => Polarisation::S,
             None => Polarisation::P,
         };
-        let mut l = Lane {
+        let mut l = Path {
             o,
             d,
             region: scene.cells.region_at(o),
@@ -144,15 +143,13 @@ impl<'a> Train<'a> {
     /// What photon `l` does at the face it meets next (`hit`): crosses it
     /// (true), or lands and is stored, or goes (false).
     #[inline]
-    fn step(&self, l: &mut Lane, hit: FaceHit, light: &Emitted, colours: ColorMap, maps: &mut impl Deposit, stats: &mut LightStats) -> bool {
+    fn step(&self, l: &mut Path, hit: FaceHit, light: &Emitted, colours: ColorMap, maps: &mut impl Deposit, stats: &mut LightStats) -> bool {
         let scene = self.scene;
         let p = l.o + hit.t * l.d;
         let face = &scene.faces[hit.face];
         match face.surface {
             Surface::Interface { front, back } => {
-                let (d, normal) = (l.d, face.normal);
-                let (from, to) = if d.dot(normal) < 0.0 { (front, back) } else { (back, front) };
-                if l.nm.is_none() && (l.n[from].is_nan() || l.n[to].is_nan()) {
+                if l.nm.is_none() && (l.n[front].is_nan() || l.n[back].is_nan()) {
                     // The first dispersive face: the photon takes its
                     // wavelength (`Emitted::pick`) and the media their
                     // indices at it (`Indices::keep`).
@@ -164,46 +161,27 @@ impl<'a> Train<'a> {
                         *k = m.n(Some(nm)).unwrap_or(f64::NAN);
                     }
                 }
-                // As `interface::cross_with`.
-                let (n1, n2) = (l.n[from], l.n[to]);
-                let (refracted, fresnel) = match refract_cos_f64(d, normal, n1 / n2) {
-                    Some((t, cos_i, cos_t)) => (Some(t), Fresnel::from_cosines(cos_i, cos_t, n1, n2)),
-                    None => (None, Fresnel { rs: 1.0, rp: 1.0 }),
-                };
-                if refracted.is_none() {
+                let c = cross_with(scene, hit.face, p, l.d, |m| Some(l.n[m])).expect("every index is given");
+                if c.refracted.is_none() {
                     stats.tir += 1;
                 }
                 l.through_glass = true;
-                let r = match l.pol {
-                    Polarisation::S => fresnel.rs,
-                    Polarisation::P => fresnel.rp,
-                };
-                l.d = match refracted {
-                    Some(t) if l.rng.f64() >= r => t,
-                    _ => reflect_f64(d, normal),
+                l.d = match c.refracted {
+                    Some(t) if l.rng.f64() >= c.reflectance(l.pol) => t,
+                    _ => c.reflected,
                 };
                 l.o = p;
                 l.skip = Some(hit.face);
                 l.region = scene.region_after(hit.face, l.d);
                 true
             }
-            Surface::Diffuse { map, albedo } => {
+            Surface::Diffuse { .. } => {
                 if l.d.dot(face.normal) >= 0.0 {
                     return false;
                 }
-                let (_, eu, ev) = face.frame.expect("matte surfaces are parallelograms");
                 // No mirror here: crossing glass is `trace_photon`'s `specular`.
                 let direct = scene.direct_lighting && !l.through_glass;
-                if let (Some(uv), false) = (face.uv(p), direct) {
-                    let pos = [(uv.x * eu.length()) as f32, (uv.y * ev.length()) as f32];
-                    let out = match l.nm {
-                        Some(nm) => l.xyz * albedo.at(nm),
-                        None => light.reflected[map] * light.power,
-                    };
-                    let slot = if scene.split_maps() && !l.through_glass { map + scene.maps.len() } else { map };
-                    maps.deposit(slot, pos, [out.x as f32, out.y as f32, out.z as f32]);
-                    stats.stored += 1;
-                }
+                store(scene, hit.face, p, l.nm, l.xyz, light, direct, l.through_glass, maps, stats);
                 // Its first matte surface, and its last: no bounces here.
                 stats.stored_power += light.power;
                 false
@@ -223,7 +201,7 @@ pub(super) struct Start {
 }
 
 /// A photon on its way.
-struct Lane {
+struct Path {
     o: DVec3,
     d: DVec3,
     region: Region,
@@ -259,10 +237,10 @@ mod tests {
     /// tracer's photons to the bit (position and flux, map by map, in the
     /// same order) with the same counts and power sums: through the Amici
     /// prism and the single prism at incidences from grazing (total
-    /// internal reflection inside) to steep, with a polarised laser, a
-    /// constant-index prism (white photons), split maps (the lit bench),
-    /// area lights whose photons may meet the lamps (the album cover), two
-    /// colour maps and two seeds. Scenes with anything else (diffuse
+    /// internal reflection inside) to steep, with a laser natural and
+    /// polarised, a constant-index prism (white photons), split maps (the
+    /// lit bench), area lights whose photons may meet the lamps (the album
+    /// cover), two colour maps and two seeds. Scenes with anything else (diffuse
     /// bounces, mirrors, balls) keep the general tracer.
     #[test]
     fn the_shortcut_stores_the_general_tracers_photons() {
@@ -277,6 +255,7 @@ mod tests {
         }
         let mut o = SceneOptions::new(SceneKind::SinglePrism);
         o.light = Some(crate::spectrum::spectra::NamedSpectrum::parse("laser:532").unwrap());
+        cases.push(o.clone());
         cases.push(o);
         let mut o = SceneOptions::new(SceneKind::AmiciScreen);
         o.no_dispersion = true;
@@ -284,7 +263,7 @@ mod tests {
         let (mut tir, mut white, mut reflected) = (0, 0, 0);
         for (k, o) in cases.iter().enumerate() {
             let mut w = build(o).unwrap();
-            if k == 8 {
+            if k == 9 {
                 // The laser, polarised in the plane of incidence.
                 let crate::world::Emission::Beam { polarisation, .. } = &mut w.lights[0].emission else { panic!("a beam") };
                 *polarisation = Some(Polarisation::P);
