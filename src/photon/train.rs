@@ -240,8 +240,8 @@ mod tests {
     /// internal reflection inside) to steep, with a laser natural and
     /// polarised, a constant-index prism (white photons), split maps (the
     /// lit bench), area lights whose photons may meet the lamps (the album
-    /// cover), two colour maps and two seeds. Scenes with anything else (diffuse
-    /// bounces, mirrors, balls) keep the general tracer.
+    /// cover), two colour maps and two seeds. Scenes with anything else
+    /// (diffuse bounces, mirrors, balls) keep the general tracer.
     #[test]
     fn the_shortcut_stores_the_general_tracers_photons() {
         let mut cases = Vec::new();

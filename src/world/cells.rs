@@ -76,18 +76,15 @@ pub fn before(a: FaceHit, b: Option<FaceHit>) -> bool {
     b.is_none_or(|b| a.t < b.t || (a.t == b.t && a.face < b.face))
 }
 
-/// A bounding plane of a cell or solid: its face's normal and first vertex
-/// (the point the plane is measured from), and +1 where the normal points
-/// out, -1 where in.
+/// A bounding plane of a cell or solid: its face's first vertex (the
+/// point the plane is measured from) and its normal turned to point out
+/// of the cell or solid. Turning a normal negates every dot product with
+/// it exactly (the rounded sum of negated products is the negated sum), so
+/// signs and the distance `(at - o) . outward / d . outward` are the
+/// face's own, to the bit.
 #[derive(Clone, Debug)]
 struct Plane {
-    normal: DVec3,
     at: DVec3,
-    out: f64,
-    /// `normal * out`, the normal pointing out of the cell: a ray heads
-    /// out where `d . outward > 0`, which is `d . normal * out > 0` to the
-    /// bit (negating a factor negates the rounded sum exactly), and the
-    /// distance `(at - o) . outward / d . outward` is the face's own.
     outward: DVec3,
     face: usize,
     /// Other faces in the same plane (a floor a prism stands on, the caps
@@ -107,21 +104,17 @@ impl Cells {
                 if let Some(c) = c {
                     // The back side's cell has the normal pointing out of it.
                     let out = if side == 1 { 1.0 } else { -1.0 };
-                    cells[*c as usize].push(Plane { normal: f.normal, out, outward: f.normal * out, at: f.verts[0], face: id, ties: coplanar(faces, id) });
+                    cells[*c as usize].push(Plane { outward: f.normal * out, at: f.verts[0], face: id, ties: coplanar(faces, id) });
                 }
             }
             if let (Some(s), true) = (f.solid, f.cells.contains(&None)) {
                 let out = if f.cells[1].is_some() { 1.0 } else { -1.0 };
                 let scale = f.verts.iter().map(|v| v.abs().max_element()).fold(1e-3, f64::max);
                 let planes = &mut solids[s as usize];
-                match planes
-                    .iter_mut()
-                    .find(|(p, _)| (p.normal * p.out - f.normal * out).length() < 1e-12 && (f.verts[0] - p.at).dot(p.normal).abs() < 1e-12 * scale)
+                match planes.iter_mut().find(|(p, _)| (p.outward - f.normal * out).length() < 1e-12 && (f.verts[0] - p.at).dot(p.outward).abs() < 1e-12 * scale)
                 {
                     Some((_, faces)) => faces.push(id),
-                    None => {
-                        planes.push((Plane { normal: f.normal * out, out: 1.0, outward: f.normal * out, at: f.verts[0], face: id, ties: Vec::new() }, vec![id]))
-                    }
+                    None => planes.push((Plane { outward: f.normal * out, at: f.verts[0], face: id, ties: Vec::new() }, vec![id])),
                 }
             }
         }
@@ -132,7 +125,7 @@ impl Cells {
             let verts: Vec<DVec3> = faces.iter().filter(|f| own(f)).flat_map(|f| f.verts.iter().copied()).collect();
             let (lo, hi) = verts.iter().fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(l, h), v| (l.min(*v), h.max(*v)));
             let eps = 1e-9 * (hi - lo).max_element().max(1e-9);
-            let inside = |p: DVec3| planes.iter().all(|q| (p - q.at).dot(q.normal) * q.out < -eps);
+            let inside = |p: DVec3| planes.iter().all(|q| (p - q.at).dot(q.outward) < -eps);
             let crowded = faces.iter().filter(|f| !own(f)).any(|f| {
                 let (flo, fhi) = f.verts.iter().fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(l, h), v| (l.min(*v), h.max(*v)));
                 let overlap = flo.cmplt(hi - eps).all() && fhi.cmpgt(lo + eps).all();
@@ -176,7 +169,7 @@ impl Cells {
     pub fn region_at(&self, p: DVec3) -> Region {
         self.cells
             .iter()
-            .position(|planes| !planes.is_empty() && planes.iter().all(|q| (p - q.at).dot(q.normal) * q.out < 0.0))
+            .position(|planes| !planes.is_empty() && planes.iter().all(|q| (p - q.at).dot(q.outward) < 0.0))
             .map_or(Region::Outside, |c| Region::Cell(c as u32))
     }
 
@@ -234,8 +227,7 @@ impl Cells {
         }
         let (mut t_in, mut t_out, mut entry) = (f64::NEG_INFINITY, f64::INFINITY, None);
         for (p, faces) in &self.solids[s] {
-            // The normal points out (`out` is 1).
-            let (denom, gap) = (d.dot(p.normal), (p.at - o).dot(p.normal));
+            let (denom, gap) = (d.dot(p.outward), (p.at - o).dot(p.outward));
             if denom < 0.0 {
                 let t = gap / denom;
                 if t > t_in {
