@@ -274,13 +274,16 @@ fn trace_lights<D: Deposit + Send>(
         let mut key = Rng::new(seed, li as u64, 0xfeed);
         let offsets = [key.f64(), key.f64(), key.f64()];
         let chunks: Vec<(u64, u64)> = (0..n.div_ceil(CHUNK)).map(|c| (c * CHUNK, ((c + 1) * CHUNK).min(n))).collect();
+        let photon = Emitted { power: per_photon, ..source };
+        // A beam through a prism train: four photons at a time (`beam`).
+        let beam = train.as_ref().and_then(|t| super::beam::Beam::new(t, emission, &photon, colours));
         let results: Vec<(D, LightStats)> = chunks
             .par_iter()
             .map(|&(a, b)| {
                 let mut maps = sink();
                 let mut stats = LightStats::default();
                 let (mut by3, mut by5) = (RadicalInverses::new(3, a + pass * n), RadicalInverses::new(5, a + pass * n));
-                let photon = Emitted { power: per_photon, ..source };
+                let (mut group, mut grouped): ([Option<(u64, super::train::Start)>; super::beam::LANES], usize) = Default::default();
                 for i in (a + pass * n)..(b + pass * n) {
                     let u = [rotate(by3.value(), offsets[0]), rotate(by5.value(), offsets[1]), rotate(radical_inverse(i, 2), offsets[2])];
                     by3.advance();
@@ -294,10 +297,31 @@ fn trace_lights<D: Deposit + Send>(
                         _ => (rng.f64(), rng.f64()),
                     };
                     let (o, d) = emit(scene, emission, a, b, &mut rng);
-                    maps.photon(i);
-                    match &train {
-                        Some(t) => t.trace(super::train::Start { o, d, u_lambda: u[2], rng }, &photon, colours, &mut maps, &mut stats),
-                        None => trace_photon(scene, o, d, &photon, colours, u[2], &mut rng, &mut maps, &mut stats),
+                    match (&beam, &train) {
+                        (Some(beam), _) => {
+                            group[grouped] = Some((i, super::train::Start { o, d, u_lambda: u[2], rng }));
+                            grouped += 1;
+                            if grouped == super::beam::LANES {
+                                let four = group.each_mut().map(|g| g.take().expect("a full group"));
+                                beam.trace(four.each_ref().map(|g| g.0), four.map(|g| g.1), &photon, colours, &mut maps, &mut stats);
+                                grouped = 0;
+                            }
+                        }
+                        (None, Some(t)) => {
+                            maps.photon(i);
+                            t.trace(super::train::Start { o, d, u_lambda: u[2], rng }, &photon, colours, &mut maps, &mut stats);
+                        }
+                        (None, None) => {
+                            maps.photon(i);
+                            trace_photon(scene, o, d, &photon, colours, u[2], &mut rng, &mut maps, &mut stats);
+                        }
+                    }
+                }
+                // The last photons of the chunk, fewer than a group.
+                if let Some(t) = &train {
+                    for (i, start) in group.into_iter().flatten() {
+                        maps.photon(i);
+                        t.trace(start, &photon, colours, &mut maps, &mut stats);
                     }
                 }
                 progress.advance("light", b - a);

@@ -23,17 +23,17 @@ use glam::DVec3;
 
 /// Media a train's photons keep the indices of (a scene with more takes
 /// the general tracer).
-const MEDIA: usize = 8;
+pub(super) const MEDIA: usize = 8;
 
 /// A scene the shortcut can trace, read once a light pass.
 pub(super) struct Train<'a> {
-    scene: &'a World,
+    pub(super) scene: &'a World,
     /// The matte and emitting faces, in index order (the faces of no
     /// convex solid).
     loose: Vec<usize>,
     /// Each medium's index for a photon that has no wavelength yet: its
     /// constant index, or NaN where it disperses.
-    white: [f64; MEDIA],
+    pub(super) white: [f64; MEDIA],
 }
 
 impl<'a> Train<'a> {
@@ -69,7 +69,7 @@ impl<'a> Train<'a> {
     /// `Outside` or `Left`): as `World::intersect_in`, the matte faces one
     /// by one, then each convex solid whole.
     #[inline]
-    fn outside(&self, o: DVec3, d: DVec3, skip: Option<usize>, region: Region) -> Option<FaceHit> {
+    pub(super) fn outside(&self, o: DVec3, d: DVec3, skip: Option<usize>, region: Region) -> Option<FaceHit> {
         let scene = self.scene;
         let mut best: Option<FaceHit> = None;
         for &i in &self.loose {
@@ -103,7 +103,15 @@ impl<'a> Train<'a> {
     /// same arithmetic, the same random numbers, the same deposit and
     /// counts.
     pub(super) fn trace(&self, start: Start, light: &Emitted, colours: ColorMap, maps: &mut impl Deposit, stats: &mut LightStats) {
-        let scene = self.scene;
+        let region = self.scene.cells.region_at(start.o);
+        let l = self.begin(start, region, light, stats);
+        self.run(l, light, colours, maps, stats);
+    }
+
+    /// A photon leaving its light (counted as emitted) from `region`: its
+    /// polarisation drawn, white.
+    #[inline]
+    pub(super) fn begin(&self, start: Start, region: Region, light: &Emitted, stats: &mut LightStats) -> Path {
         let Start { o, d, u_lambda, mut rng } = start;
         stats.emitted += 1;
         stats.emitted_power += light.power;
@@ -113,19 +121,12 @@ impl<'a> Train<'a> {
             None if u_pol < 0.5 => Polarisation::S,
             None => Polarisation::P,
         };
-        let mut l = Path {
-            o,
-            d,
-            region: scene.cells.region_at(o),
-            skip: None,
-            rng,
-            u_lambda,
-            pol,
-            nm: None,
-            n: self.white,
-            xyz: light.white * light.power,
-            through_glass: false,
-        };
+        Path { o, d, region, skip: None, rng, u_lambda, pol, nm: None, n: self.white, xyz: light.white * light.power, through_glass: false }
+    }
+
+    /// Photon `l` from where it is to where it lands or leaves.
+    pub(super) fn run(&self, mut l: Path, light: &Emitted, colours: ColorMap, maps: &mut impl Deposit, stats: &mut LightStats) {
+        let scene = self.scene;
         for _ in 0..MAX_BOUNCES {
             let hit = match l.region {
                 Region::Cell(c) => {
@@ -140,6 +141,20 @@ impl<'a> Train<'a> {
         }
     }
 
+    /// At the first dispersive face, photon `l` takes its wavelength
+    /// (`Emitted::pick`) and the media their indices at it
+    /// (`Indices::keep`).
+    #[inline]
+    pub(super) fn take_wavelength(&self, l: &mut Path, light: &Emitted, colours: ColorMap, stats: &mut LightStats) {
+        let (nm, flux) = light.pick(l.u_lambda, colours);
+        l.nm = Some(nm);
+        l.xyz = flux;
+        stats.dispersed += 1;
+        for (k, m) in l.n.iter_mut().zip(&self.scene.media) {
+            *k = m.n(Some(nm)).unwrap_or(f64::NAN);
+        }
+    }
+
     /// What photon `l` does at the face it meets next (`hit`): crosses it
     /// (true), or lands and is stored, or goes (false).
     #[inline]
@@ -150,16 +165,7 @@ impl<'a> Train<'a> {
         match face.surface {
             Surface::Interface { front, back } => {
                 if l.nm.is_none() && (l.n[front].is_nan() || l.n[back].is_nan()) {
-                    // The first dispersive face: the photon takes its
-                    // wavelength (`Emitted::pick`) and the media their
-                    // indices at it (`Indices::keep`).
-                    let (nm, flux) = light.pick(l.u_lambda, colours);
-                    l.nm = Some(nm);
-                    l.xyz = flux;
-                    stats.dispersed += 1;
-                    for (k, m) in l.n.iter_mut().zip(&scene.media) {
-                        *k = m.n(Some(nm)).unwrap_or(f64::NAN);
-                    }
+                    self.take_wavelength(l, light, colours, stats);
                 }
                 let c = cross_with(scene, hit.face, p, l.d, |m| Some(l.n[m])).expect("every index is given");
                 if c.refracted.is_none() {
@@ -201,36 +207,43 @@ pub(super) struct Start {
 }
 
 /// A photon on its way.
-struct Path {
-    o: DVec3,
-    d: DVec3,
-    region: Region,
+pub(super) struct Path {
+    pub(super) o: DVec3,
+    pub(super) d: DVec3,
+    pub(super) region: Region,
     /// The face it has just left.
-    skip: Option<usize>,
-    rng: Rng,
-    u_lambda: f64,
-    pol: Polarisation,
-    nm: Option<f64>,
+    pub(super) skip: Option<usize>,
+    pub(super) rng: Rng,
+    pub(super) u_lambda: f64,
+    pub(super) pol: Polarisation,
+    pub(super) nm: Option<f64>,
     /// The media's indices at `nm` (NaN for a dispersive medium while it
     /// has none).
-    n: [f64; MEDIA],
-    xyz: DVec3,
+    pub(super) n: [f64; MEDIA],
+    pub(super) xyz: DVec3,
     /// Whether it has crossed glass (no mirror here: the same as
     /// `trace_photon`'s `specular`).
-    through_glass: bool,
+    pub(super) through_glass: bool,
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::photon::beam::LANDED;
     use crate::photon::emit::{light_pass, LightPass, GENERAL_ONLY};
     use crate::scenes::{build, SceneKind, SceneOptions};
 
-    fn pass(w: &World, n: u64, seed: u64, colours: ColorMap, general: bool) -> LightPass {
-        GENERAL_ONLY.with(|g| g.set(general));
-        let p = light_pass(w, n, seed, colours, &crate::progress::Silent);
-        GENERAL_ONLY.with(|g| g.set(false));
-        p
+    /// A light pass on one thread of its own, and how many of its photons
+    /// landed in `beam`'s lanes.
+    fn pass(w: &World, n: u64, seed: u64, colours: ColorMap, general: bool) -> (LightPass, u64) {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build().unwrap();
+        pool.install(|| {
+            GENERAL_ONLY.with(|g| g.set(general));
+            LANDED.with(|n| n.set(0));
+            let p = light_pass(w, n, seed, colours, &crate::progress::Silent);
+            GENERAL_ONLY.with(|g| g.set(false));
+            (p, LANDED.with(|n| n.get()))
+        })
     }
 
     /// The prism-train scenes take the shortcut, and it stores the general
@@ -260,6 +273,10 @@ mod tests {
         let mut o = SceneOptions::new(SceneKind::AmiciScreen);
         o.no_dispersion = true;
         cases.push(o);
+        // The single prism with a matte card halfway to the screen, over
+        // 0.4 of its width: the card comes before the screen the beam's
+        // axis lands on, so no photon may land on the screen in lanes.
+        cases.push(SceneOptions::new(SceneKind::SinglePrism));
         let (mut tir, mut white, mut reflected) = (0, 0, 0);
         for (k, o) in cases.iter().enumerate() {
             let mut w = build(o).unwrap();
@@ -268,9 +285,23 @@ mod tests {
                 let crate::world::Emission::Beam { polarisation, .. } = &mut w.lights[0].emission else { panic!("a beam") };
                 *polarisation = Some(Polarisation::P);
             }
+            if k == 11 {
+                let screen = &w.faces[w.maps[0]];
+                let ((corner, eu, ev), n) = (screen.frame.unwrap(), screen.normal);
+                crate::scenes::matte(&mut w, "card", corner + n * 2.0, eu * 0.4, ev, [0.5; 3]);
+                w.build_accel();
+            }
             assert!(Train::new(&w).is_some(), "case {k}: {:?} takes the shortcut", o.kind);
             for (seed, colours) in [(1, ColorMap::Cie), (7, ColorMap::Gradient)] {
-                let (a, b) = (pass(&w, 20_000, seed, colours, false), pass(&w, 20_000, seed, colours, true));
+                let ((a, lanes), (b, none)) = (pass(&w, 20_000, seed, colours, false), pass(&w, 20_000, seed, colours, true));
+                assert_eq!(none, 0);
+                // Beams through the prism land mostly in lanes (`beam`);
+                // the album cover's beam starts inside a prism cell.
+                match k {
+                    3 | 11 => assert_eq!(lanes, 0, "case {k}"),
+                    7 => {}
+                    _ => assert!(lanes > a.stats.stored / 2, "case {k}: {lanes} of {} stored in lanes", a.stats.stored),
+                }
                 assert_eq!(a.stats, b.stats, "case {k} seed {seed}");
                 for (m, (pa, pb)) in a.photons.iter().zip(&b.photons).enumerate() {
                     assert_eq!(pa.len(), pb.len(), "case {k} seed {seed} map {m}");

@@ -160,6 +160,13 @@ impl Cells {
         self.cells.iter().all(|planes| !planes.is_empty())
     }
 
+    /// Cell `c`'s planes as `leave` meets them: the face, the point the
+    /// plane is measured from, its outward normal, and whether another
+    /// face lies in it.
+    pub fn planes(&self, c: usize) -> impl Iterator<Item = (usize, DVec3, DVec3, bool)> + '_ {
+        self.cells.get(c).into_iter().flatten().map(|p| (p.face, p.at, p.outward, !p.ties.is_empty()))
+    }
+
     /// How many convex solids there are.
     pub fn solids(&self) -> usize {
         self.solids.len()

@@ -101,6 +101,13 @@ impl Face {
         (self.verts[0] - o).dot(self.normal) / denom
     }
 
+    /// The polygon's edge tests (`contains`): per edge, the in-plane
+    /// outward vector m, the offset c and the tolerance; a point p is
+    /// inside where every p . m - c >= -tolerance.
+    pub fn edges(&self) -> &[(DVec3, f64, f64)] {
+        &self.edges
+    }
+
     /// Whether a point of the face's plane lies inside its polygon.
     #[inline]
     pub fn contains(&self, p: DVec3) -> bool {
