@@ -70,6 +70,8 @@ pub struct RadicalInverses {
     /// `terms[k][d]`: the loop's `f * d` at digit k (f = base^-(k+1) as
     /// its repeated products round it).
     terms: Box<[[f64; 8]; 64]>,
+    /// `terms[k][digits[k]]` for every k: the sum's terms as they stand.
+    current: [f64; 64],
 }
 
 impl RadicalInverses {
@@ -91,17 +93,14 @@ impl RadicalInverses {
             i /= base;
             len += 1;
         }
-        RadicalInverses { base: base as u32, digits, len, terms }
+        let current = std::array::from_fn(|k| terms[k][digits[k] as usize]);
+        RadicalInverses { base: base as u32, digits, len, terms, current }
     }
 
     /// The radical inverse of the current index.
     #[inline]
     pub fn value(&self) -> f64 {
-        let mut r = 0.0;
-        for (row, &d) in self.terms.iter().zip(&self.digits[..self.len]) {
-            r += row[d as usize & 7];
-        }
-        r
+        self.current[..self.len].iter().fold(0.0, |r, &t| r + t)
     }
 
     /// On to the next index.
@@ -111,10 +110,12 @@ impl RadicalInverses {
             let d = &mut self.digits[k];
             *d += 1;
             if u32::from(*d) < self.base {
+                self.current[k] = self.terms[k][*d as usize];
                 self.len = self.len.max(k + 1);
                 return;
             }
             *d = 0;
+            self.current[k] = 0.0;
         }
     }
 }

@@ -23,6 +23,7 @@
 //! within the margin of an edge, it goes on alone.
 
 use super::emit::{store, Deposit, Emitted, LightStats};
+use super::lanes::Lanes;
 use super::train::{Start, Train};
 use crate::optics::snell::refract_cos_f64;
 use crate::spectrum::colormap::ColorMap;
@@ -85,20 +86,19 @@ pub(super) struct Beam<'a> {
 thread_local! {
     /// Photons that landed in the lanes (the tests check the lanes are used).
     pub(super) static LANDED: std::cell::Cell<u64> = const { std::cell::Cell::new(0) };
+    /// Set by tests to trace with the portable lanes where AVX2 is present.
+    pub(super) static PORTABLE: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
 }
-
-/// One number a lane.
-type F = wide::f64x4;
 
 /// A mask of the lanes whose bits are set in `bits`.
 #[inline(always)]
-fn lanes(bits: u32) -> F {
+fn lanes<F: Lanes>(bits: u32) -> F {
     F::new(from_fn(|i| if bits >> i & 1 == 1 { f64::from_bits(u64::MAX) } else { 0.0 }))
 }
 
 /// `a . b` lane by lane, in glam's order.
 #[inline(always)]
-fn dot(x: F, y: F, z: F, b: DVec3) -> F {
+fn dot<F: Lanes>(x: F, y: F, z: F, b: DVec3) -> F {
     x * F::splat(b.x) + y * F::splat(b.y) + z * F::splat(b.z)
 }
 
@@ -167,6 +167,8 @@ impl<'a> Beam<'a> {
                     let avx2 = std::arch::is_x86_feature_detected!("avx2");
                     #[cfg(not(target_arch = "x86_64"))]
                     let avx2 = false;
+                    #[cfg(test)]
+                    let avx2 = avx2 && !PORTABLE.with(|p| p.get());
                     let beam = Beam { train, steps, avx2 };
                     return beam.screen_comes_after(&corners, dir).then_some(beam);
                 }
@@ -196,8 +198,8 @@ impl<'a> Beam<'a> {
     /// four lanes, and each photon that leaves it alone from there.
     pub(super) fn trace(
         &self,
-        index: [u64; LANES],
-        start: [Start; LANES],
+        index: &[u64; LANES],
+        start: &[Start; LANES],
         light: &Emitted,
         colours: ColorMap,
         maps: &mut impl Deposit,
@@ -208,25 +210,33 @@ impl<'a> Beam<'a> {
             // SAFETY: the processor has AVX2 (checked in `new`).
             return unsafe { self.trace_avx2(index, start, light, colours, maps, stats) };
         }
-        self.trace_lanes(index, start, light, colours, maps, stats)
+        self.trace_lanes::<wide::f64x4>(index, start, light, colours, maps, stats)
     }
 
     /// `trace_lanes` compiled for AVX2: four lanes of f64 in one register
-    /// (the same operations, so the same bits).
+    /// (the same operations, so the same bits: `lanes`).
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2")]
-    fn trace_avx2(&self, index: [u64; LANES], start: [Start; LANES], light: &Emitted, colours: ColorMap, maps: &mut impl Deposit, stats: &mut LightStats) {
-        self.trace_lanes(index, start, light, colours, maps, stats)
+    fn trace_avx2(&self, index: &[u64; LANES], start: &[Start; LANES], light: &Emitted, colours: ColorMap, maps: &mut impl Deposit, stats: &mut LightStats) {
+        self.trace_lanes::<super::lanes::Avx>(index, start, light, colours, maps, stats)
     }
 
     #[inline(always)]
-    fn trace_lanes(&self, index: [u64; LANES], start: [Start; LANES], light: &Emitted, colours: ColorMap, maps: &mut impl Deposit, stats: &mut LightStats) {
+    fn trace_lanes<F: Lanes>(
+        &self,
+        index: &[u64; LANES],
+        start: &[Start; LANES],
+        light: &Emitted,
+        colours: ColorMap,
+        maps: &mut impl Deposit,
+        stats: &mut LightStats,
+    ) {
         let train = self.train;
         let scene = train.scene;
         let lane = |f: &dyn Fn(&Start) -> f64| F::new(from_fn(|i| f(&start[i])));
         let (mut ox, mut oy, mut oz) = (lane(&|s| s.o.x), lane(&|s| s.o.y), lane(&|s| s.o.z));
         let (mut dx, mut dy, mut dz) = (lane(&|s| s.d.x), lane(&|s| s.d.y), lane(&|s| s.d.z));
-        let mut paths = start.map(|s| train.begin(s, Region::Outside, light, stats));
+        let mut paths: [_; LANES] = from_fn(|i| train.begin(&start[i], Region::Outside, light, stats));
         // The lanes still on the path, a bit each.
         let mut on_path = (1u32 << LANES) - 1;
         // The step each photon left the path at (`steps.len()`: it landed).
@@ -234,7 +244,7 @@ impl<'a> Beam<'a> {
         let zero = F::splat(0.0);
         for (k, step) in self.steps.iter().enumerate() {
             // Where each meets the face, and whether inside it by the margin.
-            let t = dot(step.at.x - ox, step.at.y - oy, step.at.z - oz, step.n) / dot(dx, dy, dz, step.n);
+            let t = dot(F::splat(step.at.x) - ox, F::splat(step.at.y) - oy, F::splat(step.at.z) - oz, step.n) / dot(dx, dy, dz, step.n);
             let (px, py, pz) = (ox + t * dx, oy + t * dy, oz + t * dz);
             // How far inside the polygon, the least over its edges (less
             // the margin): a guard, so rounding here only moves the margin.
@@ -243,14 +253,14 @@ impl<'a> Beam<'a> {
                 slack = slack.min(dot(px, py, pz, m) - F::splat(c) - F::splat(margin));
             }
             let side = dot(dx, dy, dz, step.normal);
-            let facing = if step.against { side.simd_lt(zero) } else { side.simd_gt(zero) };
-            let mut on = t.simd_gt(zero) & t.simd_lt(F::splat(f64::INFINITY)) & facing & slack.simd_ge(zero);
+            let facing = if step.against { side.lt(zero) } else { side.gt(zero) };
+            let mut on = t.gt(zero) & t.lt(F::splat(f64::INFINITY)) & facing & slack.ge(zero);
             if let What::Land { others } = &step.what {
                 // No other loose face's plane is met first.
                 for &(at, n) in others {
                     let dn = dot(dx, dy, dz, n);
-                    let s = dot(at.x - ox, at.y - oy, at.z - oz, n) / dn;
-                    on &= dn.simd_eq(zero) | !(s.simd_gt(zero) & s.simd_le(t));
+                    let s = dot(F::splat(at.x) - ox, F::splat(at.y) - oy, F::splat(at.z) - oz, n) / dn;
+                    on = on & (dn.eq(zero) | !(s.gt(zero) & s.le(t)));
                 }
             }
             let stray = on_path & !on.to_bitmask();
@@ -263,14 +273,17 @@ impl<'a> Beam<'a> {
             let What::Cross { from, to, pick } = step.what else {
                 // Landed where it met the screen (the others stay where
                 // they left the path).
-                let landed = lanes(on_path);
+                let landed: F = lanes(on_path);
                 (ox, oy, oz) = (landed.bitselect(px, ox), landed.bitselect(py, oy), landed.bitselect(pz, oz));
                 break;
             };
             if pick {
+                // Picked for all four together (`Emitted::pick_many`), taken
+                // by those on the path (the others pick again on their own).
+                let picked = light.pick_many(paths.each_ref().map(|p| p.u_lambda), colours);
                 for (i, p) in paths.iter_mut().enumerate() {
                     if on_path >> i & 1 == 1 {
-                        train.take_wavelength(p, light, colours, stats);
+                        train.set_wavelength(p, picked[i], stats);
                     }
                 }
             }
@@ -282,7 +295,7 @@ impl<'a> Beam<'a> {
             let eta = n1 / n2;
             let cos_i = dot(dx, dy, dz, nn).min(F::splat(1.0));
             let k2 = F::splat(1.0) - eta * eta * (F::splat(1.0) - cos_i * cos_i);
-            let tir = (!k2.simd_ge(zero)).to_bitmask();
+            let tir = (!k2.ge(zero)).to_bitmask();
             let cos_t = k2.sqrt();
             let f = cos_t - eta * cos_i;
             let (tx, ty, tz) = (eta * dx + f * F::splat(nn.x), eta * dy + f * F::splat(nn.y), eta * dz + f * F::splat(nn.z));
@@ -305,12 +318,12 @@ impl<'a> Beam<'a> {
                 p.rng = rng;
             }
             // The photons that crossed move on; the others stay where they left.
-            let moved = lanes(on_path);
+            let moved: F = lanes(on_path);
             (ox, oy, oz) = (moved.bitselect(px, ox), moved.bitselect(py, oy), moved.bitselect(pz, oz));
             (dx, dy, dz) = (moved.bitselect(tx, dx), moved.bitselect(ty, dy), moved.bitselect(tz, dz));
         }
         let [ox, oy, oz, dx, dy, dz] = [ox, oy, oz, dx, dy, dz].map(F::to_array);
-        for (i, mut path) in paths.into_iter().enumerate() {
+        for (i, path) in paths.iter_mut().enumerate() {
             maps.photon(index[i]);
             let (o, d) = (DVec3::new(ox[i], oy[i], oz[i]), DVec3::new(dx[i], dy[i], dz[i]));
             match self.steps.get(left[i]) {

@@ -15,7 +15,9 @@
 //! spectrum times the photon's wavelength, or times the light's whole
 //! spectrum for a white photon.
 
+use super::beam::LANES;
 use super::map::Photon;
+use super::train::Start;
 use crate::progress::Progress;
 use crate::sampling::{radical_inverse, rotate, RadicalInverses, Rng};
 use crate::spectrum::colormap::ColorMap;
@@ -283,7 +285,9 @@ fn trace_lights<D: Deposit + Send>(
                 let mut maps = sink();
                 let mut stats = LightStats::default();
                 let (mut by3, mut by5) = (RadicalInverses::new(3, a + pass * n), RadicalInverses::new(5, a + pass * n));
-                let (mut group, mut grouped): ([Option<(u64, super::train::Start)>; super::beam::LANES], usize) = Default::default();
+                // Photons waiting for a group of four (`beam`).
+                let mut group: [Start; LANES] = std::array::from_fn(|_| Start { o: DVec3::ZERO, d: DVec3::ZERO, u_lambda: 0.0, rng: Rng::new(0, 0, 0) });
+                let (mut index, mut grouped) = ([0; LANES], 0);
                 for i in (a + pass * n)..(b + pass * n) {
                     let u = [rotate(by3.value(), offsets[0]), rotate(by5.value(), offsets[1]), rotate(radical_inverse(i, 2), offsets[2])];
                     by3.advance();
@@ -299,17 +303,16 @@ fn trace_lights<D: Deposit + Send>(
                     let (o, d) = emit(scene, emission, a, b, &mut rng);
                     match (&beam, &train) {
                         (Some(beam), _) => {
-                            group[grouped] = Some((i, super::train::Start { o, d, u_lambda: u[2], rng }));
+                            (group[grouped], index[grouped]) = (Start { o, d, u_lambda: u[2], rng }, i);
                             grouped += 1;
-                            if grouped == super::beam::LANES {
-                                let four = group.each_mut().map(|g| g.take().expect("a full group"));
-                                beam.trace(four.each_ref().map(|g| g.0), four.map(|g| g.1), &photon, colours, &mut maps, &mut stats);
+                            if grouped == LANES {
+                                beam.trace(&index, &group, &photon, colours, &mut maps, &mut stats);
                                 grouped = 0;
                             }
                         }
                         (None, Some(t)) => {
                             maps.photon(i);
-                            t.trace(super::train::Start { o, d, u_lambda: u[2], rng }, &photon, colours, &mut maps, &mut stats);
+                            t.trace(&Start { o, d, u_lambda: u[2], rng }, &photon, colours, &mut maps, &mut stats);
                         }
                         (None, None) => {
                             maps.photon(i);
@@ -319,7 +322,7 @@ fn trace_lights<D: Deposit + Send>(
                 }
                 // The last photons of the chunk, fewer than a group.
                 if let Some(t) = &train {
-                    for (i, start) in group.into_iter().flatten() {
+                    for (&i, start) in index.iter().zip(&group).take(grouped) {
                         maps.photon(i);
                         t.trace(start, &photon, colours, &mut maps, &mut stats);
                     }
@@ -416,9 +419,17 @@ pub(super) struct Emitted<'a> {
 impl Emitted<'_> {
     /// A wavelength for `u` and the XYZ flux a photon of it carries.
     pub(super) fn pick(&self, u: f64, colours: ColorMap) -> (f64, DVec3) {
-        let (l, q) = self.importance.sample(u);
-        let w = if q > 0.0 { self.sampler.pdf(l) / q } else { 0.0 };
-        (l, colours.xyz_weight(l) * (self.power * w))
+        let [p] = self.pick_many([u], colours);
+        p
+    }
+
+    /// `pick` of several numbers at once, the tables read for all of them
+    /// together (`WavelengthSampler::sample_many`).
+    #[inline]
+    pub(super) fn pick_many<const N: usize>(&self, u: [f64; N], colours: ColorMap) -> [(f64, DVec3); N] {
+        let drawn = self.importance.sample_many(u);
+        let w = drawn.map(|(l, q)| if q > 0.0 { self.sampler.pdf(l) / q } else { 0.0 });
+        std::array::from_fn(|j| (drawn[j].0, colours.xyz_weight(drawn[j].0) * (self.power * w[j])))
     }
 }
 
@@ -443,9 +454,8 @@ pub(super) fn store(
 ) {
     let face = &scene.faces[id];
     let Surface::Diffuse { map, albedo } = face.surface else { return };
-    let (_, eu, ev) = face.frame.expect("matte surfaces are parallelograms");
-    if let (Some(uv), false) = (face.uv(p), direct) {
-        let pos = [(uv.x * eu.length()) as f32, (uv.y * ev.length()) as f32];
+    if let (Some(pos), false) = (face.chart_pos(p), direct) {
+        let pos = [pos.x as f32, pos.y as f32];
         let out = match nm {
             Some(l) => xyz * albedo.at(l),
             None => light.reflected[map] * light.power,

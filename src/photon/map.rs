@@ -64,7 +64,12 @@ impl Photon {
             e += 1;
         }
         let scale = pow2(15 - e);
-        let mantissa = xyz.map(|x| round_to_i64((x * scale).clamp(-32767.0, 32767.0) as f64) as i16);
+        // Rounded half away from zero: an f32 under 2^15 plus a signed half
+        // is exact in f64, and truncating that rounds it.
+        let mantissa = xyz.map(|x| {
+            let v = (x * scale).clamp(-32767.0, 32767.0) as f64;
+            (v + 0.5f64.copysign(v)) as i32 as i16
+        });
         Photon { pos, mantissa, exponent: e as i16 }
     }
 

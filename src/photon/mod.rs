@@ -4,5 +4,6 @@
 mod beam;
 pub mod emit;
 pub mod gather;
+mod lanes;
 pub mod map;
 mod train;

@@ -233,9 +233,8 @@ fn footprint(scene: &World, route: &Route, nm: f64, flux: DVec3) -> Option<Footp
     }
     let screen = &scene.faces[route[route.len() - 1].0];
     let Surface::Diffuse { albedo, .. } = screen.surface else { return None };
-    let (_, eu, ev) = screen.frame?;
     let on = b.onto(screen.normal, screen.verts[0])?;
-    let pos = |p: DVec3| screen.uv(p).map(|uv| DVec2::new(uv.x * eu.length(), uv.y * ev.length()));
+    let pos = |p: DVec3| screen.chart_pos(p);
     let pos0 = pos(on.o)?;
     let j = DMat2::from_cols(pos(on.o + on.m[0])? - pos0, pos(on.o + on.m[1])? - pos0);
     let det = j.determinant();
@@ -271,8 +270,7 @@ pub fn render(scene: &World, o: &ExactOptions) -> Result<XyzImage, ExactError> {
     let routes: Vec<Route> = discover(scene, screen, &sampler).into_iter().collect();
     let cam = &scene.camera;
     let (w, h, s) = (cam.width, cam.height, o.subsamples);
-    let sf = scene.faces[screen].frame.expect("matte surfaces are parallelograms");
-    let to_pos = |p: DVec3| scene.faces[screen].uv(p).map(|uv| DVec2::new(uv.x * sf.1.length(), uv.y * sf.2.length()));
+    let to_pos = |p: DVec3| scene.faces[screen].chart_pos(p);
     // Where image position (x, y) sees the screen directly (front side), if it does.
     let sees = |x: f64, y: f64| -> Option<DVec2> {
         let d = cam.ray(x, y);

@@ -16,7 +16,7 @@ use crate::sampling::Rng;
 use crate::spectrum::sampler::WavelengthSampler;
 use crate::world::interface::{cross_with, Polarisation};
 use crate::world::{Emission, Indices, Region, Surface, World};
-use glam::{DVec2, DVec3};
+use glam::DVec3;
 
 const MAX_DEPTH: usize = 64;
 /// Interfaces up to this depth split an eye path into its reflected and
@@ -244,8 +244,7 @@ impl Eye<'_> {
     /// reflects, spectrally for light of one wavelength).
     fn matte(&self, p: &Path, id: usize, x: DVec3, map: usize, rng: &mut Rng) -> DVec3 {
         let face = &self.scene.faces[id];
-        let (Some(uv), Some((_, eu, ev))) = (face.uv(x), face.frame) else { return DVec3::ZERO };
-        let pos = DVec2::new(uv.x * eu.length(), uv.y * ev.length());
+        let Some(pos) = face.chart_pos(x) else { return DVec3::ZERO };
         // Under --map film the caustics the camera sees directly are on
         // the film already.
         let on_film = self.film && p.depth == 0;

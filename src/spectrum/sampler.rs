@@ -53,16 +53,31 @@ impl WavelengthSampler {
 
     /// A wavelength for `u` in [0, 1) and its pdf (per nm).
     pub fn sample(&self, u: f64) -> (f64, f64) {
-        let u = u.clamp(0.0, 1.0 - 1e-12);
+        let [s] = self.sample_many([u]);
+        s
+    }
+
+    /// `sample` of several numbers: the same answers, each table read for
+    /// all of them before the next, so their cache misses overlap (a
+    /// search waits on the guide's entry, and the pdf on the search).
+    #[inline]
+    pub fn sample_many<const N: usize>(&self, u: [f64; N]) -> [(f64, f64); N] {
+        let u = u.map(|u| u.clamp(0.0, 1.0 - 1e-12));
         // First edge with cdf > u (between the guide's cutpoints around u);
         // the bin before it holds u.
-        let k = ((u * GUIDE as f64) as usize).min(GUIDE - 1);
-        let (lo, hi) = (self.guide[k] as usize, (self.guide[k + 1] as usize + 1).min(self.cdf.len()));
-        let i = (lo + self.cdf[lo..hi].partition_point(|&c| c <= u)).clamp(1, self.cdf.len() - 1) - 1;
-        let (c0, c1) = (self.cdf[i], self.cdf[i + 1]);
-        let frac = if c1 > c0 { (u - c0) / (c1 - c0) } else { 0.5 };
-        let nm = LAMBDA_MIN + (i as f64 + frac) * BIN_NM;
-        (nm, (c1 - c0) / BIN_NM)
+        let k = u.map(|u| ((u * GUIDE as f64) as usize).min(GUIDE - 1));
+        let range = k.map(|k| (self.guide[k] as usize, (self.guide[k + 1] as usize + 1).min(self.cdf.len())));
+        let bin = std::array::from_fn::<_, N, _>(|j| {
+            let (lo, hi) = range[j];
+            (lo + self.cdf[lo..hi].partition_point(|&c| c <= u[j])).clamp(1, self.cdf.len() - 1) - 1
+        });
+        std::array::from_fn(|j| {
+            let i = bin[j];
+            let (c0, c1) = (self.cdf[i], self.cdf[i + 1]);
+            let frac = if c1 > c0 { (u[j] - c0) / (c1 - c0) } else { 0.5 };
+            let nm = LAMBDA_MIN + (i as f64 + frac) * BIN_NM;
+            (nm, (c1 - c0) / BIN_NM)
+        })
     }
 
     pub fn pdf(&self, nm: f64) -> f64 {

@@ -16,6 +16,8 @@ pub struct Face {
     /// For parallelogram faces: corner and edge vectors, the (u, v) frame
     /// of the report's per-object photon buffer.
     pub frame: Option<(DVec3, DVec3, DVec3)>,
+    /// The frame's chart, worked out once (`Face::uv`, `Face::chart_pos`).
+    chart: Option<Chart>,
     /// The convex glass cells (`World::cells`) on the face's front and
     /// back sides, where it bounds one; set by `World::add_extruded`.
     pub cells: [Option<u32>; 2],
@@ -49,13 +51,26 @@ impl Face {
                 (m, a.dot(m), 1e-12 * (b - a).length_squared().max(1e-30))
             })
             .collect();
-        Face { name: name.into(), verts, normal: n, surface, frame: None, cells: [None, None], solid: None, bound: (centre, r2 * (1.0 + 1e-9) + 1e-18), edges }
+        Face {
+            name: name.into(),
+            verts,
+            normal: n,
+            surface,
+            frame: None,
+            chart: None,
+            cells: [None, None],
+            solid: None,
+            bound: (centre, r2 * (1.0 + 1e-9) + 1e-18),
+            edges,
+        }
     }
 
     /// Parallelogram from a corner and two edges; normal eu x ev.
     pub fn rect(name: &str, corner: DVec3, eu: DVec3, ev: DVec3, surface: Surface) -> Face {
         let mut f = Face::polygon(name, vec![corner, corner + eu, corner + eu + ev, corner + ev], eu.cross(ev), surface);
         f.frame = Some((corner, eu, ev));
+        let (uu, uv, vv) = (eu.dot(eu), eu.dot(ev), ev.dot(ev));
+        f.chart = Some(Chart { uu, uv, vv, det: uu * vv - uv * uv, lengths: DVec2::new(eu.length(), ev.length()) });
         f
     }
 
@@ -115,20 +130,37 @@ impl Face {
     }
 
     /// (u, v) in [0, 1]^2 of a point on a parallelogram face.
+    #[inline]
     pub fn uv(&self, p: DVec3) -> Option<DVec2> {
-        let (c, eu, ev) = self.frame?;
+        let ((c, eu, ev), Chart { uu, uv, vv, det, .. }) = (self.frame?, self.chart?);
         let r = p - c;
         // Solve r = u eu + v ev in the face's plane.
-        let (uu, uv, vv) = (eu.dot(eu), eu.dot(ev), ev.dot(ev));
         let (ru, rv) = (r.dot(eu), r.dot(ev));
-        let det = uu * vv - uv * uv;
         Some(DVec2::new((ru * vv - rv * uv) / det, (rv * uu - ru * uv) / det))
+    }
+
+    /// Where a point of a parallelogram face lies on its chart (metres
+    /// along its two edges from the corner): where photon maps keep it.
+    #[inline]
+    pub fn chart_pos(&self, p: DVec3) -> Option<DVec2> {
+        Some(self.uv(p)? * self.chart?.lengths)
     }
 
     pub fn area(&self) -> f64 {
         let k = self.verts.len();
         (1..k - 1).map(|i| (self.verts[i] - self.verts[0]).cross(self.verts[i + 1] - self.verts[0]).length() / 2.0).sum()
     }
+}
+
+/// A parallelogram's (u, v) solve, the parts that depend on its edges
+/// only: their dot products, the determinant and the edges' lengths.
+#[derive(Clone, Copy, Debug)]
+struct Chart {
+    uu: f64,
+    uv: f64,
+    vv: f64,
+    det: f64,
+    lengths: DVec2,
 }
 
 /// An analytic sphere (report 001's glass spheres and spherical lights).
