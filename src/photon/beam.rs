@@ -322,7 +322,9 @@ impl<'a> Beam<'a> {
             (ox, oy, oz) = (moved.bitselect(px, ox), moved.bitselect(py, oy), moved.bitselect(pz, oz));
             (dx, dy, dz) = (moved.bitselect(tx, dx), moved.bitselect(ty, dy), moved.bitselect(tz, dz));
         }
-        let [ox, oy, oz, dx, dy, dz] = [ox, oy, oz, dx, dy, dz].map(F::to_array);
+        // (One by one: `array::map` is not compiled for AVX, and an AVX
+        // intrinsic outside AVX code is a call.)
+        let (ox, oy, oz, dx, dy, dz) = (ox.to_array(), oy.to_array(), oz.to_array(), dx.to_array(), dy.to_array(), dz.to_array());
         for (i, path) in paths.iter_mut().enumerate() {
             maps.photon(index[i]);
             let (o, d) = (DVec3::new(ox[i], oy[i], oz[i]), DVec3::new(dx[i], dy[i], dz[i]));
