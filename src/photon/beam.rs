@@ -236,7 +236,10 @@ impl<'a> Beam<'a> {
         let lane = |f: &dyn Fn(&Start) -> f64| F::new(from_fn(|i| f(&start[i])));
         let (mut ox, mut oy, mut oz) = (lane(&|s| s.o.x), lane(&|s| s.o.y), lane(&|s| s.o.z));
         let (mut dx, mut dy, mut dz) = (lane(&|s| s.d.x), lane(&|s| s.d.y), lane(&|s| s.d.z));
-        let mut paths: [_; LANES] = from_fn(|i| train.begin(&start[i], Region::Outside, light, stats));
+        // (Written out: `from_fn` built each path on the stack and copied it,
+        // with loads that waited on the stores.)
+        let mut begin = |s| train.begin(s, Region::Outside, light, stats);
+        let mut paths = [begin(&start[0]), begin(&start[1]), begin(&start[2]), begin(&start[3])];
         // The lanes still on the path, a bit each.
         let mut on_path = (1u32 << LANES) - 1;
         // The step each photon left the path at (`steps.len()`: it landed).

@@ -303,7 +303,10 @@ fn trace_lights<D: Deposit + Send>(
                     let (o, d) = emit(scene, emission, a, b, &mut rng);
                     match (&beam, &train) {
                         (Some(beam), _) => {
-                            (group[grouped], index[grouped]) = (Start { o, d, u_lambda: u[2], rng }, i);
+                            // Field by field: a whole `Start` was built on the stack
+                            // and copied, with loads that waited on the stores.
+                            let g = &mut group[grouped];
+                            (g.o, g.d, g.u_lambda, g.rng, index[grouped]) = (o, d, u[2], rng, i);
                             grouped += 1;
                             if grouped == LANES {
                                 beam.trace(&index, &group, &photon, colours, &mut maps, &mut stats);
