@@ -18,6 +18,30 @@ pub mod lines {
     pub const G_SOLAR: f64 = 430.79;
 }
 
+/// What a dispersion formula asks of a number: an f64, or f64 lanes
+/// (`photon::lanes`) doing each lane's IEEE operation.
+pub trait Real: Copy + std::ops::Add<Output = Self> + std::ops::Sub<Output = Self> + std::ops::Mul<Output = Self> + std::ops::Div<Output = Self> {
+    fn splat(x: f64) -> Self;
+    /// `f64::max`: `self` where `other` is NaN, `other` where `self` is.
+    fn max(self, other: Self) -> Self;
+    fn sqrt(self) -> Self;
+}
+
+impl Real for f64 {
+    #[inline(always)]
+    fn splat(x: f64) -> f64 {
+        x
+    }
+    #[inline(always)]
+    fn max(self, other: f64) -> f64 {
+        f64::max(self, other)
+    }
+    #[inline(always)]
+    fn sqrt(self) -> f64 {
+        f64::sqrt(self)
+    }
+}
+
 #[derive(Clone, Debug, PartialEq)]
 pub struct Glass {
     pub name: String,
@@ -35,9 +59,20 @@ pub struct Glass {
 impl Glass {
     /// Sellmeier: n^2 = 1 + sum B_i l^2 / (l^2 - C_i), l in um.
     pub fn sellmeier(&self, nm: f64) -> f64 {
-        let l2 = (nm * 1e-3).powi(2);
-        let n2 = 1.0 + (0..3).map(|i| self.b[i] * l2 / (l2 - self.c[i])).sum::<f64>();
-        n2.max(0.0).sqrt()
+        self.sellmeier_of(nm)
+    }
+
+    /// The same formula for any `Real`: an f64, or several wavelengths in
+    /// lanes (the light pass's four photons), each lane's bits the f64's.
+    #[inline(always)]
+    pub fn sellmeier_of<T: Real>(&self, nm: T) -> T {
+        let l = nm * T::splat(1e-3);
+        let l2 = l * l;
+        let term = |i: usize| T::splat(self.b[i]) * l2 / (l2 - T::splat(self.c[i]));
+        // Summed as `Iterator::sum` sums f64s: from -0, in order (written
+        // out: a call to `fold` would not be compiled for AVX).
+        let n2 = T::splat(1.0) + (T::splat(-0.0) + term(0) + term(1) + term(2));
+        n2.max(T::splat(0.0)).sqrt()
     }
 
     /// Abbe number nu_d = (n_d - 1) / (n_F - n_C).

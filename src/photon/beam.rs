@@ -24,12 +24,13 @@
 
 use super::emit::{store, Deposit, Emitted, LightStats};
 use super::lanes::Lanes;
-use super::train::{Start, Train};
+use super::train::{Start, Train, MEDIA};
+use crate::optics::ior::IorModel;
 use crate::optics::snell::refract_cos_f64;
 use crate::spectrum::colormap::ColorMap;
 use crate::world::cells::Region;
 use crate::world::interface::Polarisation;
-use crate::world::{Emission, Surface};
+use crate::world::{Emission, Medium, Surface};
 use glam::DVec3;
 use std::array::from_fn;
 
@@ -284,9 +285,19 @@ impl<'a> Beam<'a> {
                 // Picked for all four together (`Emitted::pick_many`), taken
                 // by those on the path (the others pick again on their own).
                 let picked = light.pick_many(paths.each_ref().map(|p| p.u_lambda), colours);
+                // The Sellmeier glasses' indices in lanes, the other media's
+                // lane by lane (`Medium::n`).
+                let nm = F::new([picked[0].0, picked[1].0, picked[2].0, picked[3].0]);
+                let mut sellmeier = [None; MEDIA];
+                for (k, m) in scene.media.iter().take(MEDIA).enumerate() {
+                    if let Medium::Glass { ior: IorModel::Sellmeier(g), .. } = m {
+                        sellmeier[k] = Some(g.sellmeier_of(nm).to_array());
+                    }
+                }
                 for (i, p) in paths.iter_mut().enumerate() {
                     if on_path >> i & 1 == 1 {
-                        train.set_wavelength(p, picked[i], stats);
+                        let n = |k: usize, m: &Medium| sellmeier.get(k).copied().flatten().map(|n| n[i]).or_else(|| m.n(Some(picked[i].0)));
+                        train.set_wavelength(p, picked[i], n, stats);
                     }
                 }
             }

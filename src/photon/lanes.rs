@@ -4,19 +4,18 @@
 //! subtract, multiply, divide, square root: correctly rounded), so they
 //! give the same bits as each other and as the scalar code.
 
-use std::ops::{Add, BitAnd, BitOr, Div, Mul, Not, Sub};
+use crate::optics::glass::Real;
+use std::ops::{BitAnd, BitOr, Not};
 
-/// Four f64s, and masks of four (all bits set: true).
-pub(super) trait Lanes:
-    Copy + Add<Output = Self> + Sub<Output = Self> + Mul<Output = Self> + Div<Output = Self> + BitAnd<Output = Self> + BitOr<Output = Self> + Not<Output = Self>
-{
+/// Four f64s, and masks of four (all bits set: true). As `Real`s (add,
+/// subtract, multiply, divide, `splat`, `max`, `sqrt`) they run the
+/// dispersion formulas too.
+pub(super) trait Lanes: Real + BitAnd<Output = Self> + BitOr<Output = Self> + Not<Output = Self> {
     fn new(a: [f64; 4]) -> Self;
-    fn splat(x: f64) -> Self;
     fn to_array(self) -> [f64; 4];
     /// `f64::min` lane by lane: `other` where `self` is NaN, `self` where
     /// `other` is.
     fn min(self, other: Self) -> Self;
-    fn sqrt(self) -> Self;
     fn lt(self, other: Self) -> Self;
     fn gt(self, other: Self) -> Self;
     fn ge(self, other: Self) -> Self;
@@ -28,14 +27,25 @@ pub(super) trait Lanes:
     fn bitselect(self, if_one: Self, if_zero: Self) -> Self;
 }
 
+impl Real for wide::f64x4 {
+    #[inline(always)]
+    fn splat(x: f64) -> Self {
+        wide::f64x4::splat(x)
+    }
+    #[inline(always)]
+    fn max(self, other: Self) -> Self {
+        wide::f64x4::max(self, other)
+    }
+    #[inline(always)]
+    fn sqrt(self) -> Self {
+        wide::f64x4::sqrt(self)
+    }
+}
+
 impl Lanes for wide::f64x4 {
     #[inline(always)]
     fn new(a: [f64; 4]) -> Self {
         wide::f64x4::new(a)
-    }
-    #[inline(always)]
-    fn splat(x: f64) -> Self {
-        wide::f64x4::splat(x)
     }
     #[inline(always)]
     fn to_array(self) -> [f64; 4] {
@@ -44,10 +54,6 @@ impl Lanes for wide::f64x4 {
     #[inline(always)]
     fn min(self, other: Self) -> Self {
         wide::f64x4::min(self, other)
-    }
-    #[inline(always)]
-    fn sqrt(self) -> Self {
-        wide::f64x4::sqrt(self)
     }
     #[inline(always)]
     fn lt(self, other: Self) -> Self {
@@ -88,7 +94,7 @@ pub(super) struct Avx(std::arch::x86_64::__m256d);
 
 #[cfg(target_arch = "x86_64")]
 mod avx {
-    use super::{Avx, Lanes};
+    use super::{Avx, Lanes, Real};
     use std::arch::x86_64::*;
 
     macro_rules! op {
@@ -128,14 +134,27 @@ mod avx {
 
     // SAFETY (every block below): `Avx` values exist only where AVX is
     // enabled and present.
+    impl Real for Avx {
+        #[inline(always)]
+        fn splat(x: f64) -> Self {
+            Avx(unsafe { _mm256_set1_pd(x) })
+        }
+        #[inline(always)]
+        fn max(self, other: Self) -> Self {
+            // As `min`.
+            let m = Avx(unsafe { _mm256_max_pd(self.0, other.0) });
+            cmp::<_CMP_UNORD_Q>(other, other).bitselect(self, m)
+        }
+        #[inline(always)]
+        fn sqrt(self) -> Self {
+            Avx(unsafe { _mm256_sqrt_pd(self.0) })
+        }
+    }
+
     impl Lanes for Avx {
         #[inline(always)]
         fn new(a: [f64; 4]) -> Self {
             Avx(unsafe { _mm256_loadu_pd(a.as_ptr()) })
-        }
-        #[inline(always)]
-        fn splat(x: f64) -> Self {
-            Avx(unsafe { _mm256_set1_pd(x) })
         }
         #[inline(always)]
         fn to_array(self) -> [f64; 4] {
@@ -149,10 +168,6 @@ mod avx {
             // where `other` is NaN, as `f64::min` (and `wide`).
             let m = Avx(unsafe { _mm256_min_pd(self.0, other.0) });
             cmp::<_CMP_UNORD_Q>(other, other).bitselect(self, m)
-        }
-        #[inline(always)]
-        fn sqrt(self) -> Self {
-            Avx(unsafe { _mm256_sqrt_pd(self.0) })
         }
         #[inline(always)]
         fn lt(self, other: Self) -> Self {
@@ -219,9 +234,12 @@ mod tests {
             assert!(same((a * b).to_array(), (p * q).to_array()) && same((a / b).to_array(), (p / q).to_array()));
             assert!(same(a.sqrt().to_array(), p.sqrt().to_array()), "{x:?}");
             assert!(same(a.min(b).to_array(), Lanes::min(p, q).to_array()), "{x:?} {y:?}");
+            assert!(same(a.max(b).to_array(), Real::max(p, q).to_array()), "{x:?} {y:?}");
             // `f64::min` may return either of two equal inputs (+0 and -0).
             let scalar: [f64; 4] = std::array::from_fn(|i| if x[i] == y[i] { a.min(b).to_array()[i] } else { x[i].min(y[i]) });
             assert!(same(a.min(b).to_array(), scalar), "{x:?} {y:?}");
+            let scalar: [f64; 4] = std::array::from_fn(|i| if x[i] == y[i] { a.max(b).to_array()[i] } else { x[i].max(y[i]) });
+            assert!(same(a.max(b).to_array(), scalar), "{x:?} {y:?}");
             for (m, n) in [(a.lt(b), p.lt(q)), (a.gt(b), p.gt(q)), (a.ge(b), p.ge(q)), (a.le(b), p.le(q)), (a.eq(b), p.eq(q))] {
                 assert_eq!(m.to_bitmask(), n.to_bitmask());
                 assert_eq!((!m).to_bitmask(), (!n).to_bitmask());

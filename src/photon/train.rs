@@ -18,7 +18,7 @@ use crate::sampling::Rng;
 use crate::spectrum::colormap::ColorMap;
 use crate::world::cells::{before, Entry, Region};
 use crate::world::interface::{cross_with, Polarisation};
-use crate::world::{FaceHit, Surface, World};
+use crate::world::{FaceHit, Medium, Surface, World};
 use glam::DVec3;
 
 /// Media a train's photons keep the indices of (a scene with more takes
@@ -147,17 +147,19 @@ impl<'a> Train<'a> {
     /// (`Indices::keep`).
     #[inline]
     fn take_wavelength(&self, l: &mut Path, light: &Emitted, colours: ColorMap, stats: &mut LightStats) {
-        self.set_wavelength(l, light.pick(l.u_lambda, colours), stats);
+        let (nm, flux) = light.pick(l.u_lambda, colours);
+        self.set_wavelength(l, (nm, flux), |_, m| m.n(Some(nm)), stats);
     }
 
     /// Photon `l` takes wavelength `nm` (picked by `Emitted::pick` from its
-    /// `u_lambda`) and its flux.
-    pub(super) fn set_wavelength(&self, l: &mut Path, (nm, flux): (f64, DVec3), stats: &mut LightStats) {
+    /// `u_lambda`), its flux, and medium k's index `n(k, medium)` at `nm`.
+    #[inline(always)]
+    pub(super) fn set_wavelength(&self, l: &mut Path, (nm, flux): (f64, DVec3), n: impl Fn(usize, &Medium) -> Option<f64>, stats: &mut LightStats) {
         l.nm = Some(nm);
         l.xyz = flux;
         stats.dispersed += 1;
-        for (k, m) in l.n.iter_mut().zip(&self.scene.media) {
-            *k = m.n(Some(nm)).unwrap_or(f64::NAN);
+        for (k, (slot, m)) in l.n.iter_mut().zip(&self.scene.media).enumerate() {
+            *slot = n(k, m).unwrap_or(f64::NAN);
         }
     }
 
