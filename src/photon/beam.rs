@@ -25,6 +25,7 @@
 use super::emit::{store, Deposit, Emitted, LightStats};
 use super::lanes::Lanes;
 use super::train::{Start, Train, MEDIA};
+use crate::optics::glass::Glass;
 use crate::optics::ior::IorModel;
 use crate::optics::snell::refract_cos_f64;
 use crate::spectrum::colormap::ColorMap;
@@ -79,6 +80,8 @@ enum What {
 pub(super) struct Beam<'a> {
     train: &'a Train<'a>,
     steps: Vec<Step>,
+    /// The media whose index is a Sellmeier sum (worked out in lanes).
+    sellmeier: Vec<(usize, &'a Glass)>,
     /// Whether the processor has AVX2.
     avx2: bool,
 }
@@ -170,7 +173,13 @@ impl<'a> Beam<'a> {
                     let avx2 = false;
                     #[cfg(test)]
                     let avx2 = avx2 && !PORTABLE.with(|p| p.get());
-                    let beam = Beam { train, steps, avx2 };
+                    let sellmeier = (scene.media.iter().enumerate().take(MEDIA))
+                        .filter_map(|(k, m)| match m {
+                            Medium::Glass { ior: IorModel::Sellmeier(g), .. } => Some((k, g)),
+                            _ => None,
+                        })
+                        .collect();
+                    let beam = Beam { train, steps, sellmeier, avx2 };
                     return beam.screen_comes_after(&corners, dir).then_some(beam);
                 }
                 _ => return None,
@@ -289,10 +298,8 @@ impl<'a> Beam<'a> {
                 // lane by lane (`Medium::n`).
                 let nm = F::new([picked[0].0, picked[1].0, picked[2].0, picked[3].0]);
                 let mut sellmeier = [None; MEDIA];
-                for (k, m) in scene.media.iter().take(MEDIA).enumerate() {
-                    if let Medium::Glass { ior: IorModel::Sellmeier(g), .. } = m {
-                        sellmeier[k] = Some(g.sellmeier_of(nm).to_array());
-                    }
+                for &(k, g) in &self.sellmeier {
+                    sellmeier[k] = Some(g.sellmeier_of(nm).to_array());
                 }
                 for (i, p) in paths.iter_mut().enumerate() {
                     if on_path >> i & 1 == 1 {
