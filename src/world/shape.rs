@@ -14,7 +14,8 @@ pub struct Face {
     pub normal: DVec3,
     pub surface: Surface,
     /// For parallelogram faces: corner and edge vectors, the (u, v) frame
-    /// of the report's per-object photon buffer.
+    /// of the report's per-object photon buffer. Set by `Face::rect` only,
+    /// with the chart worked out from it.
     pub frame: Option<(DVec3, DVec3, DVec3)>,
     /// The frame's chart, worked out once (`Face::uv`, `Face::chart_pos`).
     chart: Option<Chart>,
