@@ -34,8 +34,8 @@ fn pow2(k: i32) -> f32 {
 /// without the library call `round` is on baseline x86-64: below 2^52 the
 /// truncation and the fraction left are exact; above, v is whole. No
 /// branch on the fraction, a coin toss for a photon's flux. For the
-/// fixed-point sums of any f64; `Photon::new`, whose values are f32s under
-/// 2^15, adds a signed half and truncates, which is fewer instructions.
+/// fixed-point sums of any f64; `Photon::new` does the same in f32 and
+/// i32 (its values are f32s under 2^15), which is fewer instructions.
 #[inline]
 pub fn round_to_i64(v: f64) -> i64 {
     let i = v as i64;
@@ -53,23 +53,29 @@ impl Photon {
         // An e with m < 2^e, so every |x| 2^(15 - e) < 32768: the least,
         // but where log2 rounds up to a power of two just above m.
         let bits = m.to_bits();
-        let mut e = if bits >> 23 != 0 && bits & 0x7f_ffff < 0x7f_f000 {
-            // A normal m = 2^k (1 + f) with f < 1 - 2^-11: log2(m) lies
-            // 7e-4 or more below k + 1, far beyond log2's rounding (under
-            // 8e-6 up to 2^127), so floor(log2(m)) is k, read off the bits.
-            (bits >> 23) as i32 - 127 + 1
+        let field = bits >> 23;
+        let e = if (1..=253).contains(&field) && bits & 0x7f_ffff < 0x7f_f000 {
+            // A normal m = 2^k (1 + f), k below 127, with f < 1 - 2^-11:
+            // log2(m) lies 7e-4 or more below k + 1, far beyond log2's
+            // rounding (under 8e-6 up to 2^127), so floor(log2(m)) is k,
+            // read off the bits; m < 2^(k + 1), an f32 exactly.
+            field as i32 - 127 + 1
         } else {
-            m.log2().floor() as i32 + 1
+            let e = m.log2().floor() as i32 + 1;
+            if m >= pow2(e) {
+                e + 1
+            } else {
+                e
+            }
         };
-        if m >= pow2(e) {
-            e += 1;
-        }
         let scale = pow2(15 - e);
-        // Rounded half away from zero: an f32 under 2^15 plus a signed half
-        // is exact in f64, and truncating that rounds it.
+        // Rounded half away from zero: x 2^(15 - e) is exact and under
+        // 2^15, so are its truncation and the fraction left.
         let mantissa = xyz.map(|x| {
-            let v = (x * scale).clamp(-32767.0, 32767.0) as f64;
-            (v + 0.5f64.copysign(v)) as i32 as i16
+            let v = x * scale;
+            let t = v as i32;
+            let frac = v - t as f32;
+            (t + (frac >= 0.5) as i32 - (frac <= -0.5) as i32).clamp(-32767, 32767) as i16
         });
         Photon { pos, mantissa, exponent: e as i16 }
     }
@@ -428,7 +434,19 @@ mod tests {
                 }
             }
         }
-        assert!(tried > 8000, "{tried}");
+        // Components of every size under the largest, and scaled values
+        // on and beside the halves.
+        for _ in 0..20_000 {
+            let m = 2f32.powi((r.next_u64() % 200) as i32 - 100) * (1.0 + r.f32());
+            let half = |k: u64| (k as f32 + 0.5) * m / 32768.0;
+            let k = r.next_u64() % 32768;
+            for xyz in [[m, -m * r.f32(), m * r.f32() * r.f32()], [m, half(k), -half(k)], [m, f32::from_bits(half(k).to_bits() + 1), -f32::from_bits(half(k).to_bits() - 1)]] {
+                let got = Photon::new([0.0; 2], xyz);
+                assert_eq!((got.mantissa, got.exponent), plain(xyz), "{xyz:?}");
+                tried += 1;
+            }
+        }
+        assert!(tried > 68000, "{tried}");
     }
 
     /// A stored photon is 16 bytes, and its flux comes back within 2^-15

@@ -60,12 +60,14 @@ impl WavelengthSampler {
     /// `sample` of several numbers: the same answers, each table read for
     /// all of them before the next, so their cache misses overlap (a
     /// search waits on the guide's entry, and the pdf on the search).
+    /// Indices go through 32-bit integers: on baseline x86-64 a 64-bit
+    /// unsigned conversion takes several instructions.
     #[inline]
     pub fn sample_many<const N: usize>(&self, u: [f64; N]) -> [(f64, f64); N] {
         let u = u.map(|u| u.clamp(0.0, 1.0 - 1e-12));
         // First edge with cdf > u (between the guide's cutpoints around u);
         // the bin before it holds u.
-        let k = u.map(|u| ((u * GUIDE as f64) as usize).min(GUIDE - 1));
+        let k = u.map(|u| ((u * GUIDE as f64) as i32 as usize).min(GUIDE - 1));
         let range = k.map(|k| (self.guide[k] as usize, (self.guide[k + 1] as usize + 1).min(self.cdf.len())));
         let bin = std::array::from_fn::<_, N, _>(|j| {
             let (lo, hi) = range[j];
@@ -75,17 +77,17 @@ impl WavelengthSampler {
             let i = bin[j];
             let (c0, c1) = (self.cdf[i], self.cdf[i + 1]);
             let frac = if c1 > c0 { (u[j] - c0) / (c1 - c0) } else { 0.5 };
-            let nm = LAMBDA_MIN + (i as f64 + frac) * BIN_NM;
+            let nm = LAMBDA_MIN + (f64::from(i as u32) + frac) * BIN_NM;
             (nm, (c1 - c0) / BIN_NM)
         })
     }
 
     pub fn pdf(&self, nm: f64) -> f64 {
         let f = (nm - LAMBDA_MIN) / BIN_NM;
-        if !(f >= 0.0 && f < (self.cdf.len() - 1) as f64) {
+        if !(f >= 0.0 && f < f64::from(self.cdf.len() as u32 - 1)) {
             return 0.0;
         }
-        let i = f as usize;
+        let i = f as i32 as usize;
         (self.cdf[i + 1] - self.cdf[i]) / BIN_NM
     }
 
