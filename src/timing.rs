@@ -82,3 +82,41 @@ pub fn append<T: Serialize + Default>(path: &Path, record: &T) -> Result<()> {
     file.flush()?;
     Ok(())
 }
+
+/// CPU time the calling thread has run, in seconds (`CLOCK_THREAD_CPUTIME_ID`):
+/// unlike the wall clock it stops while other processes have the core, so
+/// a per-thread rate measured with it holds on a shared machine. `None`
+/// where the system does not say.
+pub fn thread_cpu_seconds() -> Option<f64> {
+    #[cfg(unix)]
+    {
+        let mut ts = libc::timespec { tv_sec: 0, tv_nsec: 0 };
+        // SAFETY: `ts` is a valid timespec for the call to fill.
+        let ok = unsafe { libc::clock_gettime(libc::CLOCK_THREAD_CPUTIME_ID, &mut ts) } == 0;
+        ok.then_some(ts.tv_sec as f64 + ts.tv_nsec as f64 * 1e-9)
+    }
+    #[cfg(not(unix))]
+    None
+}
+
+#[cfg(all(test, unix))]
+mod tests {
+    use super::thread_cpu_seconds;
+    use std::time::{Duration, Instant};
+
+    /// The thread's CPU time stands still while it sleeps and runs on
+    /// while it works.
+    #[test]
+    fn thread_cpu_time_counts_work_not_sleep() {
+        let before = thread_cpu_seconds().expect("a CPU clock");
+        std::thread::sleep(Duration::from_millis(300));
+        let slept = thread_cpu_seconds().unwrap() - before;
+        assert!(slept < 0.1, "{slept} s of CPU time in a 0.3 s sleep");
+        let (start, wall) = (thread_cpu_seconds().unwrap(), Instant::now());
+        let mut x = 1u64;
+        while thread_cpu_seconds().unwrap() - start < 0.05 {
+            x = std::hint::black_box(x.wrapping_mul(6364136223846793005).wrapping_add(1));
+            assert!(wall.elapsed() < Duration::from_secs(20), "no CPU time counted in 20 s of work");
+        }
+    }
+}
