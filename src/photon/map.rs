@@ -44,7 +44,10 @@ pub fn round_to_i64(v: f64) -> i64 {
 }
 
 impl Photon {
-    /// A photon at `pos` carrying `xyz` (finite).
+    /// A photon at `pos` carrying `xyz` (finite). Inlined: as a call it
+    /// returned the photon through the stack in narrow stores, and the
+    /// store's 16-byte copy of it waited on them.
+    #[inline]
     pub fn new(pos: [f32; 2], xyz: [f32; 3]) -> Photon {
         let m = xyz.iter().fold(0f32, |m, x| m.max(x.abs()));
         if !(m > 0.0) || !m.is_finite() {
