@@ -1,6 +1,7 @@
 //! Appending timing rows to a CSV file: each mode's row is a serde record
 //! (its field names are the columns), the header is written once, every
-//! row flushed, so the rows of an interrupted run survive.
+//! row flushed, so the rows of an interrupted run survive. And the calling
+//! thread's CPU time, for per-thread rates.
 
 use anyhow::{bail, Context, Result};
 use serde::Serialize;
@@ -84,9 +85,9 @@ pub fn append<T: Serialize + Default>(path: &Path, record: &T) -> Result<()> {
 }
 
 /// CPU time the calling thread has run, in seconds (`CLOCK_THREAD_CPUTIME_ID`):
-/// unlike the wall clock it stops while other processes have the core, so
-/// a per-thread rate measured with it holds on a shared machine. `None`
-/// where the system does not say.
+/// unlike the wall clock it stops while other threads or processes have
+/// the core. It does not see a virtual machine's host taking the core
+/// away. `None` where the system does not say.
 pub fn thread_cpu_seconds() -> Option<f64> {
     #[cfg(unix)]
     {

@@ -443,7 +443,11 @@ mod tests {
             let m = 2f32.powi((r.next_u64() % 200) as i32 - 100) * (1.0 + r.f32());
             let half = |k: u64| (k as f32 + 0.5) * m / 32768.0;
             let k = r.next_u64() % 32768;
-            for xyz in [[m, -m * r.f32(), m * r.f32() * r.f32()], [m, half(k), -half(k)], [m, f32::from_bits(half(k).to_bits() + 1), -f32::from_bits(half(k).to_bits() - 1)]] {
+            for xyz in [
+                [m, -m * r.f32(), m * r.f32() * r.f32()],
+                [m, half(k), -half(k)],
+                [m, f32::from_bits(half(k).to_bits() + 1), -f32::from_bits(half(k).to_bits() - 1)],
+            ] {
                 let got = Photon::new([0.0; 2], xyz);
                 assert_eq!((got.mantissa, got.exponent), plain(xyz), "{xyz:?}");
                 tried += 1;
