@@ -330,7 +330,7 @@ fn prism_throughput(what: &str, scene: &crate::world::World, quick: bool, out: &
         .collect();
     let median = |mut v: Vec<f64>| {
         v.sort_by(f64::total_cmp);
-        v[v.len() / 2]
+        crate::experiment::charts::median(&v)
     };
     let secs = median(runs.iter().map(|r| r.1).collect());
     let stats = &runs[0].0;

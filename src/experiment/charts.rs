@@ -50,7 +50,7 @@ fn col(header: &[String], name: &str) -> Result<usize> {
 }
 
 /// Median of sorted values (the mean of the middle two for an even count).
-fn median(sorted: &[f64]) -> f64 {
+pub fn median(sorted: &[f64]) -> f64 {
     let n = sorted.len();
     if n % 2 == 1 {
         sorted[n / 2]
