@@ -604,19 +604,26 @@ fn build_rec(nodes: &mut Vec<Node>, at: usize, prims: &mut [BuildPrim], ids: &mu
     // BINS (small nodes near the leaves would otherwise pay for 16 empty
     // bins per axis).
     let nb = n.min(BINS);
-    let mut best = (f32::INFINITY, 0usize, 0usize); // cost, axis, split bin
-    for axis in 0..3 {
-        if spread[axis] <= 0.0 {
-            continue;
+    // The best split's cost, axis and bin.
+    let mut best = (f32::INFINITY, 0usize, 0usize);
+    // The three axes binned in one pass over the prims (each prim's
+    // centroid and box read once), each bin's union in prim order.
+    let live = [0, 1, 2].map(|axis| !(spread[axis] <= 0.0));
+    let scale = [0, 1, 2].map(|axis| nb as f32 / spread[axis]);
+    let mut counts = [[0usize; BINS]; 3];
+    let mut bin_boxes = [[BuildBox::EMPTY; BINS]; 3];
+    for p in prims.iter() {
+        let (c, b) = (p.centroid(), p.bounds());
+        for axis in 0..3 {
+            if live[axis] {
+                let k = bin_of(c[axis], cbounds.min[axis], scale[axis], nb);
+                counts[axis][k] += 1;
+                bin_boxes[axis][k] = bin_boxes[axis][k].union(b);
+            }
         }
-        let mut counts = [0usize; BINS];
-        let mut boxes = [BuildBox::EMPTY; BINS];
-        let scale = nb as f32 / spread[axis];
-        for p in prims.iter() {
-            let b = bin_of(p.centroid()[axis], cbounds.min[axis], scale, nb);
-            counts[b] += 1;
-            boxes[b] = boxes[b].union(p.bounds());
-        }
+    }
+    for axis in (0..3).filter(|&axis| live[axis]) {
+        let (counts, boxes) = (&counts[axis], &bin_boxes[axis]);
         let mut right_area = [0.0f32; BINS];
         let mut right_count = [0usize; BINS];
         let (mut acc, mut cnt) = (BuildBox::EMPTY, 0);
@@ -646,8 +653,7 @@ fn build_rec(nodes: &mut Vec<Node>, at: usize, prims: &mut [BuildPrim], ids: &mu
             return make_leaf(nodes);
         }
         let (axis, split) = (best.1, best.2);
-        let scale = nb as f32 / spread[axis];
-        let min = cbounds.min[axis];
+        let (scale, min) = (scale[axis], cbounds.min[axis]);
         partition(prims, ids, |p| bin_of(p.centroid()[axis], min, scale, nb) <= split)
     } else if n <= MAX_LEAF {
         return make_leaf(nodes);
