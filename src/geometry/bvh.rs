@@ -612,11 +612,13 @@ fn build_rec(nodes: &mut Vec<Node>, at: usize, prims: &mut [BuildPrim], ids: &mu
     let scale = [0, 1, 2].map(|axis| nb as f32 / spread[axis]);
     let mut counts = [[0usize; BINS]; 3];
     let mut bin_boxes = [[BuildBox::EMPTY; BINS]; 3];
+    let (cmin, scale3) = (Vec3A::from(cbounds.min), Vec3A::from(scale));
     for p in prims.iter() {
-        let (c, b) = (p.centroid(), p.bounds());
+        let b = p.bounds();
+        let k = bins_of(p.centroid(), cmin, scale3, nb);
         for axis in 0..3 {
             if live[axis] {
-                let k = bin_of(c[axis], cbounds.min[axis], scale[axis], nb);
+                let k = k[axis];
                 counts[axis][k] += 1;
                 bin_boxes[axis][k] = bin_boxes[axis][k].union(b);
             }
@@ -686,6 +688,15 @@ fn bin_of(c: f32, min: f32, scale: f32, bins: usize) -> usize {
     x as i32 as usize
 }
 
+/// `bin_of` on the three axes at once, in one vector: lane for lane the
+/// same operations (SSE's max and min give `f32`'s answers on NaN here,
+/// the NaN being the first operand).
+#[inline]
+fn bins_of(c: Vec3A, min: Vec3A, scale: Vec3A, bins: usize) -> [usize; 3] {
+    let x = ((c - min) * scale).max(Vec3A::ZERO).min(Vec3A::splat((bins - 1) as f32));
+    x.to_array().map(|x| x as i32 as usize)
+}
+
 /// In-place partition of `prims` (and their `ids` alongside): those for
 /// which `pred` holds first. Returns how many they are, and the extents
 /// of the two runs, gathered in the same pass.
@@ -729,7 +740,8 @@ mod tests {
     }
 
     /// The bin of a centroid is `(x as usize).min(bins - 1)` for every
-    /// x: inside, on the edges, below zero, beyond, infinite and NaN.
+    /// x: inside, on the edges, below zero, beyond, infinite and NaN; and
+    /// the three axes' bins at once are each `bin_of`'s.
     #[test]
     fn bins_are_the_saturating_conversion_capped() {
         let mut rng = crate::sampling::Rng::new(8, 1, 2);
@@ -738,6 +750,13 @@ mod tests {
         for bins in [1, 2, 7, 16] {
             for &x in &xs {
                 assert_eq!(bin_of(x, 0.0, 1.0, bins), (x as usize).min(bins - 1), "x {x}, {bins} bins");
+            }
+            // Three axes at once, each as `bin_of` (offsets and scales
+            // that are not exact, so the rounding is compared too).
+            for w in xs.windows(3) {
+                let (c, min, scale) = (Vec3A::new(w[0], w[1], w[2]), Vec3A::new(0.3, -1.7, 2.9), Vec3A::new(1.3, 0.7, 3.1));
+                let want = [0, 1, 2].map(|a| bin_of(c[a], min[a], scale[a], bins));
+                assert_eq!(bins_of(c, min, scale, bins), want, "{c}, {bins} bins");
             }
         }
     }
