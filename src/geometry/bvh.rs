@@ -31,20 +31,19 @@ struct Node {
 const WIDTH: usize = 8;
 
 /// A node of the 8-wide tree: per child slot its box (`lo`/`hi`, one
-/// array per axis), and either a node index (`count` 0) or a leaf's first
-/// packet and packet count. Unused slots hold `EMPTY` and an empty box.
-/// 256 bytes: four cache lines.
+/// array per axis) and a `Ref` to a node or a leaf's packets. Unused
+/// slots hold `EMPTY` and an empty box, which no ray enters. 224 bytes,
+/// aligned to four cache lines.
 #[derive(Copy, Clone, Debug)]
 #[repr(C, align(64))]
 struct Wide {
     lo: [[f32; WIDTH]; 3],
     hi: [[f32; WIDTH]; 3],
-    child: [u32; WIDTH],
-    count: [u32; WIDTH],
+    child: [Ref; WIDTH],
 }
 
 impl Wide {
-    const EMPTY: Wide = Wide { lo: [[f32::INFINITY; WIDTH]; 3], hi: [[f32::NEG_INFINITY; WIDTH]; 3], child: [EMPTY; WIDTH], count: [0; WIDTH] };
+    const EMPTY: Wide = Wide { lo: [[f32::INFINITY; WIDTH]; 3], hi: [[f32::NEG_INFINITY; WIDTH]; 3], child: [Ref(EMPTY); WIDTH] };
 }
 
 /// The child index of an unused slot.
@@ -496,23 +495,23 @@ impl Bvh {
         let mut stack = [const { MaybeUninit::<Slot>::uninit() }; (WIDTH - 1) * MAX_DEPTH + WIDTH];
         let mut sp = 0usize;
         let slack = 1.0 + 2.0 * GAMMA3;
-        let mut at = Slot { child: 0, count: 0, near: ray.t_min };
+        let mut at = Slot { child: Ref::node(0), near: ray.t_min };
         loop {
-            if at.count > 0 {
-                let first = at.child as usize;
-                leaf(&self.packets[first..first + at.count as usize], &o, &d, ray.t_min, &mut t_max, &mut best);
+            if at.child.is_leaf() {
+                let (first, count) = (at.child.index(), at.child.packets());
+                leaf(&self.packets[first..first + count], &o, &d, ray.t_min, &mut t_max, &mut best);
             } else {
-                let node = &self.nodes[at.child as usize];
+                let node = &self.nodes[at.child.index()];
                 let (mut mask, near) = boxes(node, &r, t_max);
                 // The children entered, leaves and nodes alike, sorted far
                 // to near (at most 8: insertion sort); the nearest is
                 // visited next, the others wait on the stack.
-                let mut entered = [Slot { child: 0, count: 0, near: 0.0 }; WIDTH];
+                let mut entered = [Slot { child: Ref::node(0), near: 0.0 }; WIDTH];
                 let mut n = 0;
                 while mask != 0 {
                     let k = mask.trailing_zeros() as usize;
                     mask &= mask - 1;
-                    entered[n] = Slot { child: node.child[k], count: node.count[k], near: near[k] };
+                    entered[n] = Slot { child: node.child[k], near: near[k] };
                     self.prefetch(entered[n]);
                     n += 1;
                 }
@@ -562,9 +561,9 @@ impl Bvh {
         #[cfg(target_arch = "x86_64")]
         {
             use std::arch::x86_64::{_mm_prefetch, _MM_HINT_T0};
-            let leaf = self.packets.as_ptr().wrapping_add(s.child as usize) as *const i8;
-            let node = self.nodes.as_ptr().wrapping_add(s.child as usize) as *const i8;
-            let p = if s.count > 0 { leaf } else { node };
+            let leaf = self.packets.as_ptr().wrapping_add(s.child.index()) as *const i8;
+            let node = self.nodes.as_ptr().wrapping_add(s.child.index()) as *const i8;
+            let p = if s.child.is_leaf() { leaf } else { node };
             for line in 0..PREFETCH_BYTES.div_ceil(64) {
                 // SAFETY: a prefetch reads nothing into the program and
                 // cannot fault, whatever the address.
@@ -576,13 +575,45 @@ impl Bvh {
     }
 }
 
-/// A child waiting to be visited: a node (`count` 0) or a leaf's first
-/// packet and count, and the distance where the ray enters its box.
+/// A child waiting to be visited, and the distance where the ray enters
+/// its box.
 #[derive(Copy, Clone)]
 struct Slot {
-    child: u32,
-    count: u32,
+    child: Ref,
     near: f32,
+}
+
+/// A child of a wide node in one word: a node's index, or a leaf's first
+/// packet and packet count (1 or 2) in the two lowest bits (0 for a node).
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+struct Ref(u32);
+
+impl Ref {
+    /// Indices must stay below 2^30 (a billion packets: far beyond memory).
+    fn node(index: u32) -> Ref {
+        assert!(index < 1 << 30, "BVH node index {index}");
+        Ref(index << 2)
+    }
+
+    fn leaf(first: u32, packets: u32) -> Ref {
+        assert!(first < 1 << 30 && (1..=3).contains(&packets), "BVH leaf {first}+{packets}");
+        Ref(first << 2 | packets)
+    }
+
+    #[inline(always)]
+    fn is_leaf(self) -> bool {
+        self.0 & 3 != 0
+    }
+
+    #[inline(always)]
+    fn index(self) -> usize {
+        (self.0 >> 2) as usize
+    }
+
+    #[inline(always)]
+    fn packets(self) -> usize {
+        (self.0 & 3) as usize
+    }
 }
 
 /// Turns the binary subtree under `at` (an inner node, or the root leaf)
@@ -610,12 +641,12 @@ fn collapse(binary: &[Node], at: usize, wide: &mut Vec<Wide>, pack: &mut impl Fn
             wide[me].lo[a][k] = b.min[a];
             wide[me].hi[a][k] = b.max[a];
         }
-        if b.count > 0 {
-            (wide[me].child[k], wide[me].count[k]) = pack(b.first, b.count);
+        wide[me].child[k] = if b.count > 0 {
+            let (first, packets) = pack(b.first, b.count);
+            Ref::leaf(first, packets)
         } else {
-            let child = collapse(binary, c, wide, pack);
-            wide[me].child[k] = child;
-        }
+            Ref::node(collapse(binary, c, wide, pack))
+        };
     }
     me as u32
 }
