@@ -584,9 +584,13 @@ struct Slot {
 }
 
 /// A child of a wide node in one word: a node's index, or a leaf's first
-/// packet and packet count (1 or 2) in the two lowest bits (0 for a node).
+/// packet, shifted up two bits; the low two bits hold the leaf's packet
+/// count (1 to 3), or 0 for a node.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 struct Ref(u32);
+
+// A full leaf's packets fit the two bits.
+const _: () = assert!(MAX_LEAF.div_ceil(4) <= 3);
 
 impl Ref {
     /// Indices must stay below 2^30 (a billion packets: far beyond memory).
