@@ -46,7 +46,8 @@ impl Wide {
     const EMPTY: Wide = Wide { lo: [[f32::INFINITY; WIDTH]; 3], hi: [[f32::NEG_INFINITY; WIDTH]; 3], child: [Ref(EMPTY); WIDTH] };
 }
 
-/// The child index of an unused slot.
+/// What an unused slot holds: as a node's child (a `Ref` no ray reaches,
+/// its box being empty) and as a packet's triangle id (a lane of zero size).
 const EMPTY: u32 = u32::MAX;
 
 /// How a ray meets a node's eight boxes: one AVX2 register per bound, or
