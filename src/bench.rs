@@ -178,8 +178,8 @@ pub fn interior(quick: bool) -> Result<String> {
 /// camera's primary rays, then the incoherent ones, each with the BVH's
 /// hit count and seconds as timed for the first table), 1 thread: build
 /// times, rates, hit counts and how many rays found the same triangle, for
-/// Embree's default mode and for its robust mode (the one that, like the
-/// BVH, does not let rays slip through edges by rounding).
+/// Embree's default mode and for its robust mode (no shortcuts that lose
+/// accuracy; the BVH takes none).
 /// Without the `embree` feature, a line saying how to get the comparison.
 #[cfg(feature = "embree")]
 fn against_embree(

@@ -28,15 +28,15 @@ const RTC_SCENE_FLAG_ROBUST: u32 = 1 << 2;
 /// Embree's scene mode (`rtcSetSceneFlags`).
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 pub enum EmbreeMode {
-    /// No flags: Embree's fastest traversal, whose slab test (a fused
-    /// multiply-subtract on a precomputed `origin / direction`) can miss a
-    /// box by rounding, so rays may slip through edges.
+    /// No flags: Embree's fastest traversal (its slab test, for one, is a
+    /// fused multiply-subtract on a precomputed `origin / direction`,
+    /// which is not conservative).
     Default,
     /// `RTC_SCENE_FLAG_ROBUST`: "avoids optimizations that reduce
     /// arithmetic accuracy ... for avoiding artifacts caused by rays
-    /// shooting through edges of neighboring primitives" (rtcSetSceneFlags(3)),
-    /// the guarantee the BVH gives (its box test never loses a hit the
-    /// linear scan finds).
+    /// shooting through edges of neighboring primitives" (rtcSetSceneFlags(3)):
+    /// the BVH's kind of test (its boxes never lose a hit its triangle
+    /// test would find).
     Robust,
 }
 
