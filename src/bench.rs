@@ -272,11 +272,7 @@ pub fn relative_rmse(img: &crate::spectral::film::XyzImage, reference: &crate::s
         num += (a.y - b.y).powi(2);
         den += b.y * b.y;
     }
-    if den > 0.0 {
-        (num / den).sqrt()
-    } else {
-        0.0
-    }
+    crate::experiment::metrics::relative(num, den)
 }
 
 /// The same measure on what the figure shows: the 8-bit sRGB pixels
@@ -641,7 +637,7 @@ mod tests {
         w.row("film, no kernel", 6250, 0.004996, 0.562571).unwrap();
         w.row("buffer box", 25000, 0.027226, f64::NAN).unwrap();
         let text = w.finish().unwrap();
-        assert_eq!(text.lines().nth(2), Some("buffer box,25000,0.027226,0"));
+        assert_eq!(text.lines().nth(2), Some("buffer box,25000,0.027226,"));
         let mut r = csv::Reader::from_reader(text.as_bytes());
         assert_eq!(r.headers().unwrap(), vec!["method", "photons", "seconds", "rel_error"]);
         let rows: Vec<csv::StringRecord> = r.records().map(|x| x.unwrap()).collect();

@@ -8,8 +8,8 @@ use serde::Serialize;
 use std::io::{Read, Seek, Write};
 use std::path::Path;
 
-/// A measured number in a CSV cell: six decimals, and 0 for a NaN or an
-/// infinity, which never reach a CSV.
+/// A measured number in a CSV cell: six decimals, and an empty cell (no
+/// value) for a NaN or an infinity, which never reach a CSV.
 #[derive(Copy, Clone, Debug, Default, PartialEq)]
 pub struct Real(pub f64);
 
@@ -27,12 +27,14 @@ pub fn header_of<T: Serialize + Default>() -> Result<String> {
     Ok(String::from_utf8_lossy(&bytes).lines().next().unwrap_or_default().to_string())
 }
 
-/// Formats a float for a CSV cell; a NaN or infinity never reaches a CSV.
+/// Formats a float for a CSV cell; a NaN or infinity never reaches a CSV:
+/// its cell is left empty, the usual mark of a missing value (0 would read
+/// as a measurement, and as a perfect one for an error).
 pub fn cell(v: f64) -> String {
     if v.is_finite() {
         format!("{v:.6}")
     } else {
-        "0".to_string()
+        String::new()
     }
 }
 

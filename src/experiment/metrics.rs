@@ -29,14 +29,28 @@ pub fn rmse_psnr(a: &Frame, reference: &Frame) -> Option<(f64, f64)> {
     Some((rmse, psnr))
 }
 
-/// Relative RMSE of luminance, ||Y - Y_ref|| / ||Y_ref||.
+/// Relative RMSE of luminance, ||Y - Y_ref|| / ||Y_ref||: against an
+/// all-black reference 0 for a black frame and infinite for any other
+/// (written to a CSV as an empty cell, not as a perfect 0).
 pub fn relative_rmse(a: &Frame, reference: &Frame) -> Option<f64> {
     if (a.width, a.height) != (reference.width, reference.height) {
         return None;
     }
     let fin = |v: f64| if v.is_finite() { v } else { 0.0 };
     let (num, den) = a.luminance.iter().zip(&reference.luminance).fold((0.0, 0.0), |(n, d), (x, y)| (n + (fin(*x) - fin(*y)).powi(2), d + fin(*y).powi(2)));
-    Some(if den > 0.0 { (num / den).sqrt() } else { 0.0 })
+    Some(relative(num, den))
+}
+
+/// sqrt(num / den) for sums of squares, with x / 0 read as infinite for
+/// x > 0 and as 0 for x = 0 (two black images are equal).
+pub fn relative(num: f64, den: f64) -> f64 {
+    if den > 0.0 {
+        (num / den).sqrt()
+    } else if num > 0.0 {
+        f64::INFINITY
+    } else {
+        0.0
+    }
 }
 
 /// Pixels whose display value differs from the other frame's.
@@ -100,6 +114,16 @@ mod tests {
         assert_eq!(non_finite(&f), 2);
         // Metrics stay finite with them.
         assert!(relative_rmse(&f, &frame(vec![0.5; 10])).unwrap().is_finite());
+    }
+
+    #[test]
+    fn a_black_reference_makes_any_other_frame_infinitely_wrong_not_perfect() {
+        let black = frame(vec![0.0; 10]);
+        assert_eq!(relative_rmse(&black, &black), Some(0.0));
+        assert_eq!(relative_rmse(&frame(vec![0.5; 10]), &black), Some(f64::INFINITY));
+        assert_eq!(relative_rmse(&frame(vec![0.5; 10]), &frame(vec![0.25; 10])), Some(1.0));
+        // And the CSV gets a missing value for it, not 0.
+        assert_eq!(crate::timing::cell(f64::INFINITY), "");
     }
 
     #[test]
