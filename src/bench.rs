@@ -13,7 +13,7 @@ use crate::spectral::options::RenderOptions;
 use crate::spectral::render::render;
 use crate::spectrum::cie::GamutMap;
 use crate::spectrum::colormap::ColorMap;
-use anyhow::{ensure, Result};
+use anyhow::{bail, ensure, Context, Result};
 use std::fmt::Write;
 use std::time::Instant;
 
@@ -313,6 +313,17 @@ pub fn time_to_error(runs: &[(f64, f64)], target: f64) -> Option<f64> {
 /// beam at 49.4 degrees, screen 4 m behind), against the exact image
 /// (`spectral::exact`), so blur counts as error as much as noise does.
 pub fn prism(quick: bool, out_dir: &std::path::Path) -> Result<String> {
+    let (csv_path, png_path) = (out_dir.join("prism-error-vs-time.csv"), out_dir.join("prism-error-vs-time.png"));
+    // The folder and both files are checked before the minute of work.
+    if out_dir.exists() && !out_dir.is_dir() {
+        bail!("--out: {} is not a folder; the bench writes prism-error-vs-time.csv and .png in it", out_dir.display());
+    }
+    std::fs::create_dir_all(out_dir).with_context(|| format!("--out: cannot create the folder {}", out_dir.display()))?;
+    for path in [&csv_path, &png_path] {
+        if std::fs::symlink_metadata(path).is_ok_and(|m| !m.is_file()) {
+            bail!("--out: {} is not a regular file (a folder, link, device or FIFO); refract replaces only regular files", path.display());
+        }
+    }
     let mut so = SceneOptions::new(SceneKind::SinglePrism);
     (so.width, so.height, so.incidence_deg) = (320, 240, Some(49.4));
     let scene = build(&so)?;
@@ -323,9 +334,8 @@ pub fn prism(quick: bool, out_dir: &std::path::Path) -> Result<String> {
     prism_throughput("Amici prism (amici-screen)", &build(&SceneOptions::new(SceneKind::AmiciScreen))?, quick, &mut out)?;
     let (csv, series) = prism_error_vs_time(&scene, radius, quick, &mut out)?;
     prism_strip_hue(quick, &mut out)?;
-    std::fs::create_dir_all(out_dir)?;
-    crate::image_io::write_text(&out_dir.join("prism-error-vs-time.csv"), &csv)?;
-    crate::experiment::plot::render(&out_dir.join("prism-error-vs-time.png"), &error_chart(&series))?;
+    crate::image_io::write_text(&csv_path, &csv).with_context(|| format!("cannot write {}", csv_path.display()))?;
+    crate::experiment::plot::render(&png_path, &error_chart(&series)).with_context(|| format!("cannot write {}", png_path.display()))?;
     writeln!(out, "wrote {}/prism-error-vs-time.{{csv,png}}", out_dir.display())?;
     Ok(out)
 }

@@ -118,6 +118,8 @@ fn outputs_threads_and_csv_paths_are_checked_before_the_render() {
     let cube = repo("off/cube.off");
     let c = cube.to_str().unwrap();
     std::fs::create_dir(d.join("folder.png")).unwrap();
+    std::fs::write(d.join("plain"), "a file, not a folder").unwrap();
+    std::fs::create_dir_all(d.join("taken/prism-error-vs-time.png")).unwrap();
     assert!(std::process::Command::new("mkfifo").arg(d.join("fifo.png")).status().unwrap().success());
     let cases: Vec<(Vec<&str>, &str, &str)> = vec![
         (vec!["interior", "--off", c, "--out", "x.jpg"], "--out: `x.jpg` does not end in an image extension refract writes here (.png, .ppm)", "x.jpg"),
@@ -139,6 +141,10 @@ fn outputs_threads_and_csv_paths_are_checked_before_the_render() {
             "p.png",
         ),
         (vec!["prism", "trace", "--scene", "sphere-metal"], "prism trace: the sphere-metal scene has no prism to trace through", ""),
+        // The bench's folder and files, before its minute of work.
+        (vec!["bench", "prism", "--quick", "--out", "plain"], "--out: plain is not a folder; the bench writes prism-error-vs-time.csv and .png in it", ""),
+        (vec!["bench", "prism", "--quick", "--out", "plain/sub"], "--out: cannot create the folder plain/sub", ""),
+        (vec!["bench", "prism", "--quick", "--out", "taken"], "--out: taken/prism-error-vs-time.png is not a regular file", ""),
     ];
     for (args, needle, output) in cases {
         let o = run(&args, "", d);
