@@ -253,8 +253,11 @@ fn scenes_without_an_exact_image_are_refused() {
     (o.width, o.height) = (16, 16);
     let e = exact::render(&build(&o).unwrap(), &ExactOptions::default()).unwrap_err();
     assert!(matches!(e, ExactError::NotOneBeam(_) | ExactError::NotABeam(_)), "{e}");
-    let s = single_prism(None, None);
+    let mut s = single_prism(None, None);
     assert_eq!(exact::render(&s, &ExactOptions { wavelengths: 3, ..Default::default() }).unwrap_err(), ExactError::Wavelengths(3));
+    // A haze's visible beam is light the exact image does not hold.
+    s.haze = 0.5;
+    assert_eq!(exact::render(&s, &ExactOptions::default()).unwrap_err(), ExactError::Haze(0.5));
 }
 
 /// The command line: `--exact` writes the exact image (the same bytes as

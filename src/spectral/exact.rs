@@ -35,9 +35,11 @@ pub enum ExactError {
     Screens(usize),
     #[error("--exact needs light that lands once (this scene bounces light between matte surfaces)")]
     Bounces,
-    #[error("--wavelengths {0}: must be between 16 and 1000000")]
+    #[error("--exact leaves out the light a haze scatters toward the eye (this scene's haze is {0} per metre); set the haze to 0")]
+    Haze(f64),
+    #[error("--exact-wavelengths {0}: must be between 16 and 1000000")]
     Wavelengths(usize),
-    #[error("--subsamples {0}: must be between 1 and 64")]
+    #[error("--exact-subsamples {0}: must be between 1 and 64")]
     Subsamples(usize),
 }
 
@@ -118,6 +120,9 @@ fn check(scene: &World, o: &ExactOptions) -> Result<usize, ExactError> {
     }
     if scene.bounces > 0 || scene.direct_lighting {
         return Err(ExactError::Bounces);
+    }
+    if scene.haze > 0.0 {
+        return Err(ExactError::Haze(scene.haze));
     }
     if !(16..=1_000_000).contains(&o.wavelengths) {
         return Err(ExactError::Wavelengths(o.wavelengths));
