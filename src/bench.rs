@@ -318,7 +318,7 @@ pub fn prism(quick: bool, out_dir: &std::path::Path) -> Result<String> {
     if out_dir.exists() && !out_dir.is_dir() {
         bail!("--out: {} is not a folder; the bench writes prism-error-vs-time.csv and .png in it", out_dir.display());
     }
-    std::fs::create_dir_all(out_dir).with_context(|| format!("--out: cannot create the folder {}", out_dir.display()))?;
+    crate::image_io::create_folder(out_dir).context("--out")?;
     for path in [&csv_path, &png_path] {
         if std::fs::symlink_metadata(path).is_ok_and(|m| !m.is_file()) {
             bail!("--out: {} is not a regular file (a folder, link, device or FIFO); refract replaces only regular files", path.display());

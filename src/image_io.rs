@@ -96,6 +96,15 @@ pub fn write_text(path: &Path, text: &str) -> Result<()> {
     atomic_write(path, |f| Ok(f.write_all(text.as_bytes())?))
 }
 
+/// Makes the folder `path` (and its parents) for outputs. The one-line
+/// error names it: a file in the way, or why it cannot be made.
+pub fn create_folder(path: &Path) -> Result<()> {
+    if path.exists() && !path.is_dir() {
+        anyhow::bail!("{} is not a folder", path.display());
+    }
+    std::fs::create_dir_all(path).with_context(|| format!("cannot create the folder {}", path.display()))
+}
+
 /// Creates `path` through a temporary sibling file and a rename.
 pub fn atomic_write(path: &Path, fill: impl FnOnce(&mut std::io::BufWriter<std::fs::File>) -> Result<()>) -> Result<()> {
     let tmp = temp_sibling(path);

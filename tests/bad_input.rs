@@ -117,6 +117,8 @@ fn outputs_threads_and_csv_paths_are_checked_before_the_render() {
     let d = dir.path();
     let cube = repo("off/cube.off");
     let c = cube.to_str().unwrap();
+    let scene_dir = repo("scenes");
+    let scenes = scene_dir.to_str().unwrap();
     std::fs::create_dir(d.join("folder.png")).unwrap();
     std::fs::write(d.join("plain"), "a file, not a folder").unwrap();
     std::fs::create_dir_all(d.join("taken/prism-error-vs-time.png")).unwrap();
@@ -145,6 +147,11 @@ fn outputs_threads_and_csv_paths_are_checked_before_the_render() {
         (vec!["bench", "prism", "--quick", "--out", "plain"], "--out: plain is not a folder; the bench writes prism-error-vs-time.csv and .png in it", ""),
         (vec!["bench", "prism", "--quick", "--out", "plain/sub"], "--out: cannot create the folder plain/sub", ""),
         (vec!["bench", "prism", "--quick", "--out", "taken"], "--out: taken/prism-error-vs-time.png is not a regular file", ""),
+        // Every output folder: a file in the way is named.
+        (vec!["figures", "--quick", "--only", "css552-p2", "--scene-dir", scenes, "--out", "plain"], "--out: plain is not a folder", ""),
+        (vec!["spectrum", "accuracy", "--out", "plain"], "plain is not a folder", ""),
+        (vec!["spectrum", "accuracy", "--out", "plain/sub"], "cannot create the folder plain/sub", ""),
+        (vec!["meshes", "plain"], "plain is not a folder", ""),
     ];
     for (args, needle, output) in cases {
         let o = run(&args, "", d);

@@ -34,7 +34,7 @@ pub enum Command {
     /// redrawn from it. Delete results/<sweep>/ or run `refract sweep` to
     /// measure again.
     Figures {
-        /// Smaller images and fewer photons (about 25 s on 2 cores; the full set takes about 7 minutes)
+        /// Smaller images and fewer photons (about 20 s on 2 cores; the full set takes about 5 minutes)
         #[arg(long)]
         quick: bool,
         /// Only these figure ids, comma-separated (then no sweeps run)
@@ -344,7 +344,7 @@ impl InteriorArgs {
         let mut c = self.params.config();
         match &self.out {
             Some(o) => c.out = crate::params::out_path(&o.to_string_lossy()).map_err(|e| anyhow::anyhow!("--out: {e}"))?,
-            None => std::fs::create_dir_all("results").context("cannot create results/")?,
+            None => crate::image_io::create_folder(std::path::Path::new("results"))?,
         }
         Ok(c)
     }
@@ -371,7 +371,7 @@ pub fn run(cli: Cli) -> Result<()> {
             let out = match out {
                 Some(o) => o,
                 None => {
-                    std::fs::create_dir_all("results").context("cannot create results/")?;
+                    crate::image_io::create_folder(std::path::Path::new("results"))?;
                     PathBuf::from("results").join(format!("{}.png", scene.id))
                 }
             };
@@ -433,7 +433,7 @@ fn run_interior(args: InteriorArgs) -> Result<()> {
 }
 
 fn write_meshes(dir: &std::path::Path) -> Result<()> {
-    std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    crate::image_io::create_folder(dir)?;
     for (name, what, mesh) in crate::mesh::generate::shipped() {
         let path = dir.join(name);
         let text = mesh.to_off(&format!("{what}\nmade by `refract meshes {}`", dir.display()));
@@ -561,7 +561,7 @@ fn run_prism(args: PrismArgs) -> Result<()> {
     crate::params::check_threads(cfg.threads).map_err(anyhow::Error::msg)?;
     // The default folder, results/, is made; any other must exist.
     if let Some(parent) = cfg.out.parent().filter(|p| !p.as_os_str().is_empty() && cfg.out.starts_with("results")) {
-        std::fs::create_dir_all(parent).with_context(|| format!("cannot create {}", parent.display()))?;
+        crate::image_io::create_folder(parent)?;
     }
     use crate::image_io::ImageFormat;
     crate::image_io::check_output(&cfg.out, &[ImageFormat::Png, ImageFormat::Ppm, ImageFormat::Pfm]).map_err(|e| anyhow::anyhow!("--out: {e}"))?;

@@ -120,7 +120,7 @@ fn write_records(out: &Path, records: &BTreeMap<String, Record>) -> Result<()> {
         w.flush()?;
         Ok(())
     })?;
-    std::fs::create_dir_all(out.join("timings"))?;
+    crate::image_io::create_folder(&out.join("timings"))?;
     atomic_write(&timing_path(out), |f| {
         let mut w = csv::Writer::from_writer(f);
         w.write_record(["id", "render_s"])?;
@@ -166,8 +166,9 @@ pub fn run(o: &FigureOptions) -> Result<Outcome> {
         }
     }
     let todo: Vec<&String> = ids.iter().filter(|id| o.only.is_empty() || o.only.contains(id)).collect();
+    crate::image_io::create_folder(&o.out).context("--out")?;
     let dir = o.out.join("figures");
-    std::fs::create_dir_all(&dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    crate::image_io::create_folder(&dir)?;
     let mut records = read_records(&o.out);
     let bar = crate::terminal::counter(todo.len() as u64, "figures", "");
     let mut failed = Vec::new();

@@ -149,7 +149,7 @@ pub fn write(e: &Experiment, o: &PlanOptions) -> Result<String> {
         bail!("--cpus-per-task: {} is not between 1 and 1024", o.cpus_per_task);
     }
     let dir = o.out.clone().unwrap_or_else(|| PathBuf::from("results").join(&e.name));
-    std::fs::create_dir_all(&dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    crate::image_io::create_folder(&dir)?;
     let dir = absolute(&dir)?;
     let file = absolute(&o.file)?;
     let workdir = std::env::current_dir().context("cannot read the current folder")?;

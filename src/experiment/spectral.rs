@@ -64,7 +64,7 @@ pub fn map_summaries() -> Vec<MapSummary> {
 
 /// Writes the CSVs and plots into `dir`; returns a short text summary.
 pub fn write_report(dir: &Path, glass: &Glass) -> Result<String> {
-    std::fs::create_dir_all(dir)?;
+    crate::image_io::create_folder(dir)?;
     let errors = write_ior_report(dir, glass)?;
     let maps = write_colour_map_report(dir)?;
     let mut out = format!("IOR models for {} against Sellmeier, 380-780 nm:\n", glass.name);

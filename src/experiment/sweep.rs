@@ -258,7 +258,7 @@ pub fn run(e: &Experiment, opts: &SweepOptions) -> Result<(PathBuf, String)> {
     if dir.exists() && !dir.is_dir() {
         bail!("--out: {} is not a folder; a sweep writes a folder of results", dir.display());
     }
-    std::fs::create_dir_all(&dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    crate::image_io::create_folder(&dir)?;
     let _lock = FolderLock::take(&dir)?;
     // What a sweep killed while writing left behind.
     crate::image_io::remove_stale_temps(&dir);
@@ -279,7 +279,7 @@ pub fn run(e: &Experiment, opts: &SweepOptions) -> Result<(PathBuf, String)> {
     let meshes = MeshCache::default();
     let reference = reference_frame(e, &dir, &meshes)?;
     if e.images {
-        std::fs::create_dir_all(dir.join("images"))?;
+        crate::image_io::create_folder(&dir.join("images"))?;
     }
     let by_place = all.iter().map(|r| ((r.case.clone(), r.repeat, r.at.clone()), r.id)).collect();
     let sweep = Sweep {
@@ -527,14 +527,14 @@ pub fn merge(dirs: &[PathBuf], out: &Path, experiment: Option<&Experiment>, resu
             );
         }
     }
-    std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
+    crate::image_io::create_folder(out)?;
     {
         let _lock = FolderLock::take(out)?;
         // The run images and the reference image travel with their rows.
         for (r, k) in &rows {
             let from = dirs[*k].join("images").join(format!("{}.png", r[0]));
             if from.is_file() {
-                std::fs::create_dir_all(out.join("images"))?;
+                crate::image_io::create_folder(&out.join("images"))?;
                 copy_into_place(&from, &out.join("images").join(format!("{}.png", r[0])))?;
             }
         }
