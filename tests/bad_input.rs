@@ -234,6 +234,16 @@ fn a_run_bigger_than_memory_is_refused_before_work() {
         .output()
         .unwrap();
     assert!(!o.status.success() && stderr(&o).contains("--size 8000x8000 would need about"), "{}", stderr(&o));
+    // The exact image holds a partial image a thread (at 1536x1536 on 2
+    // threads about 0.3 GiB; it once held 64 of them, 3.4 GiB).
+    let o = bin()
+        .args(["prism", "--exact", "--threads", "2", "--size", "1536,1536", "--out", "m.pfm"])
+        .current_dir(dir.path())
+        .env("REFRACT_AVAILABLE_MEMORY", "250000000")
+        .output()
+        .unwrap();
+    assert_clean_failure(&o, "--exact at --size 1536x1536 would need about 0.3 GiB of memory; this machine has 0.2 GiB free");
+    assert!(!dir.path().join("m.pfm").exists());
     // A run that fits goes ahead.
     let o = bin()
         .args(["prism", "--photons", "2000", "--size", "64,24", "--out", "m.png"])
