@@ -169,7 +169,10 @@ pub fn render_world(cfg: &SpectralConfig, scene: &crate::world::World, progress:
         // (measured: 110 bytes a pixel on 2 threads).
         pixels.saturating_mul(24 * (3 + threads as u64) + 16)
     } else {
-        photon_bytes.saturating_add(pixels.saturating_mul(24 + 3 + 48 * film_copies + film_halves))
+        // Progressive passes add the running sum and mean and a pass's
+        // image as it is added (measured with the film: 205 bytes a pixel).
+        let passes = if cfg.passes > 1 { 96 } else { 0 };
+        photon_bytes.saturating_add(pixels.saturating_mul(24 + 3 + 48 * film_copies + film_halves + passes))
     };
     let what = if cfg.exact {
         format!("--exact at --size {}x{}", cfg.scene.width, cfg.scene.height)

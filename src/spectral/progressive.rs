@@ -75,10 +75,12 @@ pub fn render(scene: &World, opts: &RenderOptions, passes: usize, progress: &dyn
             ..opts.clone()
         };
         let offset = DVec2::new(rotate(radical_inverse(i as u64, 2), shift[0]), rotate(radical_inverse(i as u64, 3), shift[1]));
-        let pass = render_offset(scene, &o, Some(PassPlace { offset, eye_seed: opts.seed.wrapping_add(i as u64), index: i as u64 }), progress);
+        let mut pass = render_offset(scene, &o, Some(PassPlace { offset, eye_seed: opts.seed.wrapping_add(i as u64), index: i as u64 }), progress);
         for (s, x) in sum.iter_mut().zip(&pass.image.xyz) {
             *s += *x;
         }
+        // Summed: its image is not kept while the next pass renders.
+        pass.image.xyz = Vec::new();
         let k = (i + 1) as f64;
         for (m, s) in mean.xyz.iter_mut().zip(&sum) {
             *m = *s / k;
