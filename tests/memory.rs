@@ -37,7 +37,7 @@ static COUNTING: Counting = Counting;
 /// The exact image sums its 64 chunks of wavelengths as many at a time as
 /// there are threads: its peak is a few images (the corners' screen
 /// points, the sum, one partial a thread), not one image a chunk (it once
-/// held all 64: 26 GB at 4096x4096).
+/// held all 64: 24 GB at 4096x4096).
 #[test]
 fn the_exact_image_holds_a_partial_image_a_thread_not_one_a_chunk() {
     let mut o = SceneOptions::new(SceneKind::SinglePrism);
