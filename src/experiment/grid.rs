@@ -52,14 +52,3 @@ pub fn expand(e: &Experiment) -> Vec<RunSpec> {
     }
     runs
 }
-
-/// Parameter columns: the sweep axes, then case keys, then fixed keys.
-pub fn param_names(e: &Experiment) -> Vec<String> {
-    let mut names: Vec<String> = Vec::new();
-    for k in e.sweep.iter().map(|s| &s.0).chain(e.cases.iter().flat_map(|c| c.params.iter().map(|p| &p.0))).chain(e.fixed.iter().map(|p| &p.0)) {
-        if !names.contains(k) {
-            names.push(k.clone());
-        }
-    }
-    names
-}

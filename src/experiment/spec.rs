@@ -129,6 +129,40 @@ pub fn parse_toml(text: &str, file: &str) -> Result<Table> {
     })
 }
 
+/// The measured columns of runs.csv, after the run's identity and its
+/// parameters (`Experiment::columns`).
+pub const METRICS: [&str; 29] = [
+    "experiment",
+    "host",
+    "cpu",
+    "cores",
+    "load_1min",
+    "status",
+    "error",
+    "failed",
+    "triangles",
+    "width",
+    "height",
+    "load_s",
+    "build_s",
+    "trace_s",
+    "render_s",
+    "total_s",
+    "rays",
+    "rays_per_s",
+    "photons",
+    "stored",
+    "photons_per_s",
+    "nan_count",
+    "fireflies",
+    "tir_fraction",
+    "highlight_px",
+    "changed_px",
+    "rmse",
+    "psnr",
+    "rel_rmse",
+];
+
 impl Experiment {
     pub fn load(path: &Path, quick: bool) -> Result<Experiment> {
         let text = crate::data::read_input_text(path).map_err(|e| anyhow!("{}: cannot read: {e}", path.display()))?;
@@ -177,6 +211,17 @@ impl Experiment {
             quick,
             fingerprint,
         };
+        // A plot's columns are known before any run: a misspelt one is
+        // refused now, not after the sweep.
+        let columns = e.columns();
+        for (i, plot) in e.plots.iter().enumerate() {
+            let named = [("x", &plot.x), ("y", &plot.y)].into_iter().filter(|(_, c)| !c.is_empty()).chain(plot.series.iter().map(|c| ("series", c)));
+            for (key, c) in named {
+                if !columns.contains(c) {
+                    return Err(p.err("outputs.plot", i, key, format!("`{c}` is not a column of runs.csv; columns: {}", columns.join(", "))));
+                }
+            }
+        }
         let runs = e.run_count();
         if runs > MAX_RUNS as u128 {
             return Err(p.err(
@@ -187,6 +232,25 @@ impl Experiment {
             ));
         }
         Ok(e)
+    }
+
+    /// Parameter columns: the sweep axes, then case keys, then fixed keys.
+    pub fn param_names(&self) -> Vec<String> {
+        let mut names: Vec<String> = Vec::new();
+        for k in self.sweep.iter().map(|s| &s.0).chain(self.cases.iter().flat_map(|c| c.params.iter().map(|p| &p.0))).chain(self.fixed.iter().map(|p| &p.0)) {
+            if !names.contains(k) {
+                names.push(k.clone());
+            }
+        }
+        names
+    }
+
+    /// The columns of the experiment's runs.csv.
+    pub fn columns(&self) -> Vec<String> {
+        let mut h = vec!["run_id".to_string(), "mode".into(), "case".into(), "repeat".into()];
+        h.extend(self.param_names().iter().map(|n| format!("param_{n}")));
+        h.extend(METRICS.iter().map(|m| m.to_string()));
+        h
     }
 
     /// The sweep axes as a case sees them: a case may narrow an axis by
@@ -486,6 +550,9 @@ sweep = { trace = [0] }
             (GOOD.replace("[fixed]", "colour = 3\n[fixed]"), "t.toml:4: `colour`: unknown key"),
             (GOOD.replace("size = [16, 16]", "size = [16, 16"), "t.toml:6"),
             (GOOD.replace("sweep = { trace = [0] }", "swep = { trace = [0] }"), "t.toml:11: `swep`: unknown key in [quick]"),
+            // A plot's columns are checked against runs.csv's before any run.
+            (format!("{GOOD}[[outputs.plot]]\nx = \"param_trace\"\ny = \"render_s\"\nfile = \"a\"\n[[outputs.plot]]\nx = \"param_ior\"\ny = \"rendr_s\"\nfile = \"b\"\n"), "t.toml:18: `y`: `rendr_s` is not a column of runs.csv; columns: run_id, mode, case, repeat, param_trace, param_ior, param_off"),
+            (format!("{GOOD}[[outputs.plot]]\nx = \"param_trace\"\ny = \"render_s\"\nseries = [\"param_colour\"]\nfile = \"a\"\n"), "t.toml:15: `series`: `param_colour` is not a column"),
         ] {
             let e = Experiment::parse(&bad, "t.toml", false).unwrap_err().to_string();
             assert!(e.starts_with(needle), "{e}\n  expected: {needle}");

@@ -4,10 +4,11 @@
 //! `refract sweep merge` joins shards.
 //! A run that fails is a row with its error, never a crashed sweep.
 
-pub use super::grid::{expand, param_names, RunSpec};
+pub use super::grid::{expand, RunSpec};
 use super::metrics::{self, Frame};
 use super::params::{cell, interior_config, prism_config, Mode};
 use super::spec::Experiment;
+pub use super::spec::METRICS;
 use crate::image_io::{atomic_write, write_rgb8};
 use crate::mesh::source::MeshSource;
 use crate::mesh::Mesh;
@@ -18,45 +19,6 @@ use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 use std::time::Instant;
 use toml::Value;
-
-pub const METRICS: [&str; 29] = [
-    "experiment",
-    "host",
-    "cpu",
-    "cores",
-    "load_1min",
-    "status",
-    "error",
-    "failed",
-    "triangles",
-    "width",
-    "height",
-    "load_s",
-    "build_s",
-    "trace_s",
-    "render_s",
-    "total_s",
-    "rays",
-    "rays_per_s",
-    "photons",
-    "stored",
-    "photons_per_s",
-    "nan_count",
-    "fireflies",
-    "tir_fraction",
-    "highlight_px",
-    "changed_px",
-    "rmse",
-    "psnr",
-    "rel_rmse",
-];
-
-pub fn header(e: &Experiment) -> Vec<String> {
-    let mut h = vec!["run_id".to_string(), "mode".into(), "case".into(), "repeat".into()];
-    h.extend(param_names(e).iter().map(|n| format!("param_{n}")));
-    h.extend(METRICS.iter().map(|m| m.to_string()));
-    h
-}
 
 #[derive(Clone, Debug, Default)]
 pub struct SweepOptions {
@@ -164,7 +126,7 @@ fn run_one(mode: Mode, params: &[(String, Value)], meshes: &MeshCache) -> Outcom
 /// Whether `dir` holds no runs.csv, or one with this experiment's columns
 /// (so `--resume` can go on from it).
 pub fn resumable(e: &Experiment, dir: &Path) -> bool {
-    read_rows(&dir.join("runs.csv"), &header(e)).is_ok()
+    read_rows(&dir.join("runs.csv"), &e.columns()).is_ok()
 }
 
 fn read_rows(path: &Path, header: &[String]) -> Result<Vec<Vec<String>>> {
@@ -263,7 +225,7 @@ pub fn run(e: &Experiment, opts: &SweepOptions) -> Result<(PathBuf, String)> {
     // What a sweep killed while writing left behind.
     crate::image_io::remove_stale_temps(&dir);
     crate::image_io::remove_stale_temps(&dir.join("images"));
-    let header = header(e);
+    let header = e.columns();
     let csv_path = dir.join("runs.csv");
     let all = expand(e);
     let mut existing = if opts.resume { read_rows(&csv_path, &header)? } else { Vec::new() };
@@ -284,7 +246,7 @@ pub fn run(e: &Experiment, opts: &SweepOptions) -> Result<(PathBuf, String)> {
     let by_place = all.iter().map(|r| ((r.case.clone(), r.repeat, r.at.clone()), r.id)).collect();
     let sweep = Sweep {
         e,
-        names: param_names(e),
+        names: e.param_names(),
         by_place,
         all,
         meshes,
