@@ -141,20 +141,26 @@ fn shards_merged_equal_the_unsharded_run() {
 fn failing_runs_are_rows_and_bad_files_name_the_line() {
     let dir = tempfile::tempdir().unwrap();
     let file = dir.path().join("e.toml");
-    std::fs::write(
-        &file,
-        "name = \"e\"\nmode = \"interior\"\n[fixed]\nsize = [8, 8]\n[[case]]\nname = \"fine\"\noff = \"OFF_OK\"\n[[case]]\nname = \"missing mesh\"\noff = \"nowhere.off\"\n[[case]]\nname = \"prism, few photons\"\nmode = \"prism\"\nphotons = 10\nsize = [16, 8]\n"
-            .replace("OFF_OK", &repo("off/cube.off").display().to_string()),
-    )
-    .unwrap();
+    // A mesh that is there but malformed fails its run, as a row.
+    let bad = dir.path().join("bad.off");
+    std::fs::write(&bad, "PLY\n").unwrap();
+    let text = "name = \"e\"\nmode = \"interior\"\n[fixed]\nsize = [8, 8]\n[[case]]\nname = \"fine\"\noff = \"OFF_OK\"\n[[case]]\nname = \"malformed mesh\"\noff = \"OFF_BAD\"\n[[case]]\nname = \"prism, few photons\"\nmode = \"prism\"\nphotons = 10\nsize = [16, 8]\n"
+        .replace("OFF_OK", &repo("off/cube.off").display().to_string())
+        .replace("OFF_BAD", &bad.display().to_string());
+    std::fs::write(&file, &text).unwrap();
     let o = sweep(&[file.to_str().unwrap(), "--out", dir.path().join("o").to_str().unwrap()], &repo(""));
     assert!(o.status.success(), "{}", stderr(&o));
     let (h, r) = rows(&dir.path().join("o"));
     let col = |n: &str| h.iter().position(|c| c == n).unwrap();
     assert_eq!(r.len(), 3);
     assert_eq!((r[0][col("status")].as_str(), r[1][col("status")].as_str(), r[2][col("status")].as_str()), ("ok", "error", "ok"));
-    assert!(r[1][col("error")].contains("nowhere.off: cannot read the file"), "{}", r[1][col("error")]);
+    assert!(r[1][col("error")].contains("bad.off:1: expected the keyword OFF or COFF"), "{}", r[1][col("error")]);
     assert_eq!(r[2][col("mode")], "prism");
+    // A mesh that is not there is a mistake in the file: refused before any run.
+    std::fs::write(&file, text.replace(&bad.display().to_string(), "nowhere.off")).unwrap();
+    let o = sweep(&[file.to_str().unwrap(), "--out", dir.path().join("o2").to_str().unwrap()], &repo(""));
+    assert_clean_failure(&o, "e.toml:10: `off`: nowhere.off: no such file");
+    assert!(!dir.path().join("o2").exists());
 
     std::fs::write(&file, "name = \"e\"\nmode = \"interior\"\n[sweep]\nior = [1.4, \"glass\"]\n").unwrap();
     let o = sweep(&[file.to_str().unwrap()], dir.path());

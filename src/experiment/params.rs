@@ -37,9 +37,26 @@ pub fn check(mode: Mode, key: &str, v: &Value) -> Result<(), String> {
         };
         return Err(format!("unknown {} parameter; expected one of {}", mode.name(), keys.join(", ")));
     }
-    match mode {
-        Mode::Interior => params::apply_toml(interior::PARAMS, &mut interior::defaults(), key, v),
-        Mode::Prism => params::apply_toml(prism::PARAMS, &mut prism::defaults(), key, v),
+    // A mesh file is looked for now, before any run (a missing one made
+    // every run a failed row).
+    let file = match mode {
+        Mode::Interior => {
+            let mut cfg = interior::defaults();
+            params::apply_toml(interior::PARAMS, &mut cfg, key, v)?;
+            match cfg.off {
+                crate::mesh::source::MeshSource::File(p) if key == "off" => Some(p),
+                _ => None,
+            }
+        }
+        Mode::Prism => {
+            let mut cfg = prism::defaults();
+            params::apply_toml(prism::PARAMS, &mut cfg, key, v)?;
+            cfg.scene.obj.filter(|_| key == "obj")
+        }
+    };
+    match file {
+        Some(p) if !p.is_file() => Err(format!("{}: no such file (paths are from the folder refract runs in)", p.display())),
+        _ => Ok(()),
     }
 }
 
