@@ -8,7 +8,7 @@ pub use super::grid::{expand, RunSpec};
 use super::metrics::{self, Frame};
 use super::params::{cell, interior_config, prism_config, Mode};
 use super::spec::Experiment;
-pub use super::spec::METRICS;
+use super::spec::METRICS;
 use crate::image_io::{atomic_write, write_rgb8};
 use crate::mesh::source::MeshSource;
 use crate::mesh::Mesh;
