@@ -13,7 +13,7 @@ use crate::spectral::options::RenderOptions;
 use crate::spectral::render::render;
 use crate::spectrum::cie::GamutMap;
 use crate::spectrum::colormap::ColorMap;
-use anyhow::{bail, ensure, Context, Result};
+use anyhow::{ensure, Context, Result};
 use std::fmt::Write;
 use std::time::Instant;
 
@@ -317,9 +317,7 @@ pub fn prism(quick: bool, out_dir: &std::path::Path) -> Result<String> {
     // The folder and both files are checked before the minute of work.
     crate::image_io::create_folder(out_dir).context("--out")?;
     for path in [&csv_path, &png_path] {
-        if std::fs::symlink_metadata(path).is_ok_and(|m| !m.is_file()) {
-            bail!("--out: {} is not a regular file (a folder, link, device or FIFO); refract replaces only regular files", path.display());
-        }
+        crate::data::check_regular(path).map_err(|e| anyhow::anyhow!("--out: {e}"))?;
     }
     let mut so = SceneOptions::new(SceneKind::SinglePrism);
     (so.width, so.height, so.incidence_deg) = (320, 240, Some(49.4));

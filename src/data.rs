@@ -50,6 +50,16 @@ fn check_memory_against(need: u64, free: Option<u64>, what: &str) -> Result<(), 
     }
 }
 
+/// Checks, before any work, that an output `path` is absent or a regular
+/// file: an output replaces only regular files, never a folder, a link, a
+/// device or a FIFO (the outputs' side of `read_input`).
+pub fn check_regular(path: &std::path::Path) -> Result<(), String> {
+    if std::fs::symlink_metadata(path).is_ok_and(|m| !m.is_file()) {
+        return Err(format!("{} is not a regular file (a folder, link, device or FIFO); refract replaces only regular files", path.display()));
+    }
+    Ok(())
+}
+
 /// Reads an input file (a mesh, a scene or an experiment): only a regular
 /// file, and no more than `max_input_bytes`, so a device or a FIFO named
 /// by mistake cannot be read until memory runs out.
