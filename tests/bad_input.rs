@@ -69,6 +69,10 @@ fn impossible_parameters_name_the_flag() {
     assert_clean_failure(&o, "--off FILE is required");
     let o = run(&["interior", "--off", "nowhere.off"], "", dir.path());
     assert_clean_failure(&o, "nowhere.off: cannot read the file");
+    // A seed with one sample a pixel would change nothing: refused before
+    // any question is asked.
+    let o = run(&["interior", "--seed", "3"], "", dir.path());
+    assert_clean_failure(&o, "--seed: one sample a pixel looks through its centre");
 }
 
 #[test]

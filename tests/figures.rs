@@ -55,6 +55,17 @@ fn render_takes_a_scene_file_and_names_a_bad_line() {
     std::fs::write(&bad, "id = \"b\"\nmode = \"prism\"\ncolour = 1\n").unwrap();
     let o = run(&["render", bad.to_str().unwrap()], "", dir.path());
     assert_clean_failure(&o, "bad.toml:3: `colour`: unknown key");
+    // A key the scene would ignore is refused on its own line, in
+    // [params] or [quick].
+    std::fs::write(&bad, "id = \"b\"\nmode = \"prism\"\n[params]\nscene = \"single-prism\"\nflint_apex = 80\n").unwrap();
+    let o = run(&["render", bad.to_str().unwrap()], "", dir.path());
+    assert_clean_failure(&o, "bad.toml:5: `flint_apex`: the single-prism scene has no Amici prism");
+    std::fs::write(&bad, "id = \"b\"\nmode = \"prism\"\n[params]\nexact = true\n[quick]\nspp = 1\n").unwrap();
+    let o = run(&["render", bad.to_str().unwrap(), "--quick"], "", dir.path());
+    assert_clean_failure(&o, "bad.toml:6: `spp`: --exact computes the image without photons");
+    std::fs::write(&bad, "id = \"b\"\nmode = \"interior\"\n[params]\nseed = 3\n").unwrap();
+    let o = run(&["render", bad.to_str().unwrap()], "", dir.path());
+    assert_clean_failure(&o, "bad.toml:4: `seed`: one sample a pixel looks through its centre");
 }
 
 /// `render --set KEY=VALUE` overrides a scene file's parameters through the
@@ -71,6 +82,8 @@ fn render_overrides_parameters() {
     assert_clean_failure(&o, "--set photons: 0 is not between 1 and 2000000000");
     let o = run(&["render", scene.to_str().unwrap(), "--set", "colour=1", "--out", "x.png"], "", dir.path());
     assert_clean_failure(&o, "--set: `colour` is not a prism parameter");
+    let o = run(&["render", scene.to_str().unwrap(), "--set", "film_kernel=2", "--out", "x.png"], "", dir.path());
+    assert_clean_failure(&o, "--set film_kernel: only --map film has a kernel; --map kdtree gathers with --radius and --filter");
     assert!(!dir.path().join("x.png").exists());
 }
 

@@ -320,6 +320,14 @@ mod cli {
             (vec!["--radius", "-1"], "--radius"),
             (vec!["--out", "nowhere/x.png"], "--out: folder nowhere does not exist"),
             (vec!["--incidence", "20", "--scene", "single-prism"], "--incidence: at 20.000 degrees the d line is totally reflected"),
+            // Flags the run would ignore are refused, naming the flag.
+            (vec!["--scene", "single-prism", "--flint-apex", "80"], "--flint-apex: the single-prism scene has no Amici prism"),
+            (vec!["--scene", "sphere-metal", "--incidence", "40"], "--incidence: the sphere-metal scene's glass is a sphere"),
+            (vec!["--scene", "amici-lamp", "--haze", "0.3"], "--haze: the amici-lamp scene has no collimated beam"),
+            (vec!["--exact", "--photons", "1000"], "--photons: --exact computes the image without photons"),
+            (vec!["--exact-subsamples", "4"], "--exact-subsamples: only --exact uses it"),
+            (vec!["--split", "4"], "--split: --eye hero takes one wavelength"),
+            (vec!["--exposure", "1", "--exposure-gain", "2"], "--exposure-gain: --exposure sets the exposure"),
         ] {
             let mut full = vec!["prism", "--size", "8,8"];
             if !args.contains(&"--photons") {

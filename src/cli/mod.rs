@@ -397,6 +397,7 @@ pub fn run(cli: Cli) -> Result<()> {
 
 fn run_interior(args: InteriorArgs) -> Result<()> {
     // What the flags fix is checked before any question is asked.
+    args.params.check_used(&args.params.config()).map_err(anyhow::Error::msg)?;
     crate::params::check_threads(args.params.config().threads).map_err(anyhow::Error::msg)?;
     if let Some(path) = &args.timing_csv {
         crate::timing::check_header::<crate::interior::TimingRow>(path).context("--timing-csv")?;
@@ -523,6 +524,7 @@ fn run_glass(args: GlassArgs) -> Result<()> {
 
 fn run_prism(args: PrismArgs) -> Result<()> {
     if let Some(PrismCommand::Trace { scene, wavelengths }) = args.probe {
+        scene.check_used(&scene.config()).map_err(anyhow::Error::msg)?;
         let built = crate::scenes::build(&scene.config().scene)?;
         if !built.faces.iter().any(|f| matches!(f.surface, crate::world::Surface::Interface { .. })) {
             bail!(
@@ -557,6 +559,7 @@ fn run_prism(args: PrismArgs) -> Result<()> {
             cfg.scene.height = (cfg.scene.height / 2).max(1);
         }
     }
+    args.params.check_used(&cfg).map_err(anyhow::Error::msg)?;
     cfg.validate()?;
     crate::params::check_threads(cfg.threads).map_err(anyhow::Error::msg)?;
     // The default folder, results/, is made; any other must exist.

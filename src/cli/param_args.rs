@@ -82,6 +82,15 @@ impl<S: ParamSet> Given<S> {
         c
     }
 
+    /// Refuses a flag that `c` (the run these flags describe) would ignore,
+    /// naming it and why.
+    pub fn check_used(&self, c: &S::Config) -> Result<(), String> {
+        match S::params().into_iter().filter(|p| self.has(p.key)).find_map(|p| (p.ignored)(c).map(|why| (p, why))) {
+            Some((p, why)) => Err(format!("--{}: {why}", p.flag())),
+            None => Ok(()),
+        }
+    }
+
     pub fn has(&self, key: &str) -> bool {
         self.values.iter().any(|(k, _)| *k == key)
     }

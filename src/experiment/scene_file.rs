@@ -59,6 +59,8 @@ impl SceneFile {
         let mode = s("mode")?;
         let mode = Mode::from_name(&mode).ok_or_else(|| err("", "mode", format!("`{mode}` is not interior or prism")))?;
         let mut params: Vec<(String, Value)> = Vec::new();
+        // The section each key was last set in (for the line of an error).
+        let mut from: Vec<(String, &str)> = Vec::new();
         let sections: &[&str] = if quick { &["params", "quick"] } else { &["params"] };
         for section in sections {
             match root.get(*section) {
@@ -68,18 +70,36 @@ impl SceneFile {
                         super::params::check(mode, k, v).map_err(|m| err(section, k, m))?;
                         params.retain(|(p, _)| p != k);
                         params.push((k.clone(), v.clone()));
+                        from.retain(|(p, _)| p != k);
+                        from.push((k.clone(), section));
                     }
                 }
                 Some(_) => return Err(err("", section, "must be a table".into())),
             }
         }
-        Ok(SceneFile {
+        let file = SceneFile {
             id,
             report: root.get("report").and_then(Value::as_str).unwrap_or_default().into(),
             caption: root.get("caption").and_then(Value::as_str).unwrap_or_default().into(),
             mode,
             params,
-        })
+        };
+        if let Some((key, why)) = file.ignored()? {
+            let section = from.iter().find(|(k, _)| *k == key).map_or("params", |(_, s)| *s);
+            return Err(err(section, &key, why));
+        }
+        Ok(file)
+    }
+
+    /// A parameter the run would ignore (the scene has no use for it), and
+    /// why: a file's key, as a flag, is refused rather than dropped.
+    fn ignored(&self) -> Result<Option<(String, String)>> {
+        let keys = self.params.iter().map(|(k, _)| k.as_str());
+        Ok(match self.mode {
+            Mode::Interior => crate::params::first_ignored(crate::params::interior::PARAMS, keys, &interior_config(&self.params)?).map(|(p, why)| (p.key, why)),
+            Mode::Prism => crate::params::first_ignored(crate::params::prism::PARAMS, keys, &prism_config(&self.params)?).map(|(p, why)| (p.key, why)),
+        }
+        .map(|(key, why)| (key.to_string(), why)))
     }
 
     /// Renders to `out`; returns the render time in seconds (light pass,
@@ -116,7 +136,10 @@ impl SceneFile {
             self.params.retain(|(p, _)| *p != k);
             self.params.push((k, value.to_toml()));
         }
-        Ok(())
+        match self.ignored()? {
+            Some((key, why)) => Err(anyhow!("--set {key}: {why}")),
+            None => Ok(()),
+        }
     }
 
     /// The parameters as `key = value` text, for the gallery.

@@ -2,7 +2,7 @@
 //! prompts, interior scene files and experiments): one row each. Defaults
 //! come from `InteriorConfig::with_defaults`.
 
-use super::{choices, pick, Kind, Param, Value};
+use super::{choices, never, pick, Kind, Param, Value};
 use crate::geometry::AccelKind;
 use crate::interior::config::{InteriorConfig, SceneKind, SpecularOpacity};
 use crate::mesh::source::MeshSource;
@@ -38,6 +38,7 @@ pub static PARAMS: &[Param<InteriorConfig>] = &[
         auto: "",
         get: |c| Some(Value::Count(c.max_trace as u64)),
         set: |c, v| c.max_trace = v.count() as u32,
+        ignored: never,
     },
     Param {
         key: "opacity",
@@ -49,6 +50,7 @@ pub static PARAMS: &[Param<InteriorConfig>] = &[
         auto: "",
         get: |c| Some(Value::Real(c.opacity as f64)),
         set: |c, v| c.opacity = v.real() as f32,
+        ignored: never,
     },
     Param {
         key: "object_colour",
@@ -60,6 +62,7 @@ pub static PARAMS: &[Param<InteriorConfig>] = &[
         auto: "",
         get: |c| Some(Value::Rgb(c.color)),
         set: |c, v| c.color = v.rgb(),
+        ignored: never,
     },
     Param {
         key: "off",
@@ -75,6 +78,7 @@ pub static PARAMS: &[Param<InteriorConfig>] = &[
                 c.off = m;
             }
         },
+        ignored: never,
     },
     Param {
         key: "coff",
@@ -86,6 +90,7 @@ pub static PARAMS: &[Param<InteriorConfig>] = &[
         auto: "",
         get: |c| Some(Value::Flag(c.coff)),
         set: |c, v| c.coff = v.flag(),
+        ignored: never,
     },
     Param {
         key: "scale",
@@ -97,6 +102,7 @@ pub static PARAMS: &[Param<InteriorConfig>] = &[
         auto: "",
         get: |c| Some(Value::Real(c.scale as f64)),
         set: |c, v| c.scale = v.real() as f32,
+        ignored: never,
     },
     Param {
         key: "rot",
@@ -108,6 +114,7 @@ pub static PARAMS: &[Param<InteriorConfig>] = &[
         auto: "",
         get: |c| Some(f64s(c.rot)),
         set: |c, v| c.rot = f32s(v),
+        ignored: never,
     },
     Param {
         key: "ior",
@@ -119,6 +126,7 @@ pub static PARAMS: &[Param<InteriorConfig>] = &[
         auto: "",
         get: |c| Some(Value::Real(c.ior as f64)),
         set: |c, v| c.ior = v.real() as f32,
+        ignored: never,
     },
     Param {
         key: "shininess",
@@ -130,6 +138,7 @@ pub static PARAMS: &[Param<InteriorConfig>] = &[
         auto: "",
         get: |c| Some(Value::Real(c.shininess as f64)),
         set: |c, v| c.shininess = v.real() as f32,
+        ignored: never,
     },
     Param {
         key: "atten",
@@ -141,6 +150,7 @@ pub static PARAMS: &[Param<InteriorConfig>] = &[
         auto: "",
         get: |c| Some(Value::Real(c.atten as f64)),
         set: |c, v| c.atten = v.real() as f32,
+        ignored: never,
     },
     Param {
         key: "light_pos",
@@ -152,6 +162,7 @@ pub static PARAMS: &[Param<InteriorConfig>] = &[
         auto: "the mesh's centre; (0,0,-2) in the Cornell box",
         get: |c| c.light.map(f64s),
         set: |c, v| c.light = Some(f32s(v)),
+        ignored: never,
     },
     Param {
         key: "ka",
@@ -163,6 +174,7 @@ pub static PARAMS: &[Param<InteriorConfig>] = &[
         auto: "",
         get: |c| Some(Value::Real(c.ka as f64)),
         set: |c, v| c.ka = v.real() as f32,
+        ignored: never,
     },
     Param {
         key: "kd",
@@ -174,6 +186,7 @@ pub static PARAMS: &[Param<InteriorConfig>] = &[
         auto: "",
         get: |c| Some(Value::Real(c.kd as f64)),
         set: |c, v| c.kd = v.real() as f32,
+        ignored: never,
     },
     Param {
         key: "ks",
@@ -185,6 +198,7 @@ pub static PARAMS: &[Param<InteriorConfig>] = &[
         auto: "",
         get: |c| Some(Value::Real(c.ks as f64)),
         set: |c, v| c.ks = v.real() as f32,
+        ignored: never,
     },
     Param {
         key: "specular_opacity",
@@ -196,6 +210,7 @@ pub static PARAMS: &[Param<InteriorConfig>] = &[
         auto: "",
         get: |c| Some(pick(c.specular_opacity)),
         set: |c, v| c.specular_opacity = v.choice(),
+        ignored: never,
     },
     Param {
         key: "size",
@@ -207,6 +222,7 @@ pub static PARAMS: &[Param<InteriorConfig>] = &[
         auto: "",
         get: |c| Some(Value::Size([c.width, c.height])),
         set: |c, v| [c.width, c.height] = v.size(),
+        ignored: never,
     },
     Param {
         key: "background",
@@ -218,6 +234,7 @@ pub static PARAMS: &[Param<InteriorConfig>] = &[
         auto: "",
         get: |c| Some(Value::Rgb(c.background)),
         set: |c, v| c.background = v.rgb(),
+        ignored: never,
     },
     Param {
         key: "scene",
@@ -229,6 +246,7 @@ pub static PARAMS: &[Param<InteriorConfig>] = &[
         auto: "",
         get: |c| Some(pick(c.scene)),
         set: |c, v| c.scene = v.choice(),
+        ignored: never,
     },
     Param {
         key: "spp",
@@ -240,6 +258,7 @@ pub static PARAMS: &[Param<InteriorConfig>] = &[
         auto: "",
         get: |c| Some(Value::Count(c.spp as u64)),
         set: |c, v| c.spp = v.count() as u32,
+        ignored: never,
     },
     Param {
         key: "offset",
@@ -251,6 +270,7 @@ pub static PARAMS: &[Param<InteriorConfig>] = &[
         auto: "",
         get: |c| Some(Value::Real(c.offset as f64)),
         set: |c, v| c.offset = v.real() as f32,
+        ignored: never,
     },
     Param {
         key: "accel",
@@ -262,6 +282,7 @@ pub static PARAMS: &[Param<InteriorConfig>] = &[
         auto: "",
         get: |c| Some(pick(c.accel)),
         set: |c, v| c.accel = v.choice(),
+        ignored: never,
     },
     Param {
         key: "seed",
@@ -273,6 +294,7 @@ pub static PARAMS: &[Param<InteriorConfig>] = &[
         auto: "",
         get: |c| Some(Value::Count(c.seed)),
         set: |c, v| c.seed = v.count(),
+        ignored: |c| (c.spp == 1).then(|| "one sample a pixel looks through its centre; --seed jitters only with --spp above 1".to_string()),
     },
     Param {
         key: "threads",
@@ -284,6 +306,7 @@ pub static PARAMS: &[Param<InteriorConfig>] = &[
         auto: "",
         get: |c| Some(Value::Count(c.threads as u64)),
         set: |c, v| c.threads = v.count() as usize,
+        ignored: never,
     },
 ];
 

@@ -192,6 +192,21 @@ pub struct Param<C: 'static> {
     pub get: fn(&C) -> Option<Value>,
     /// Sets a value that passed the kind's checks.
     pub set: fn(&mut C, &Value),
+    /// Why, in configuration `c`, setting this parameter would change
+    /// nothing (a flag the run ignores is refused, not silently dropped);
+    /// `None` where it is used.
+    pub ignored: fn(&C) -> Option<String>,
+}
+
+/// A parameter every configuration uses.
+pub fn never<C>(_: &C) -> Option<String> {
+    None
+}
+
+/// The first of `keys` (the parameters a user set) that `c` would ignore,
+/// and why: the caller names it as its input does (a flag, a file's line).
+pub fn first_ignored<'k, C>(params: &'static [Param<C>], keys: impl IntoIterator<Item = &'k str>, c: &C) -> Option<(&'static Param<C>, String)> {
+    keys.into_iter().filter_map(|k| find(params, k)).find_map(|p| (p.ignored)(c).map(|why| (p, why)))
 }
 
 impl<C> Param<C> {

@@ -1,7 +1,7 @@
 //! The parameters of a spectral run (`refract prism`, prism scene files and
 //! experiments): one row each. Defaults come from `SpectralConfig::new`.
 
-use super::{choices, pick, End, Kind, Param, Value};
+use super::{choices, never, pick, End, Kind, Param, Value};
 use crate::optics::glass;
 use crate::optics::ior::IorKind;
 use crate::photon::gather::Filter;
@@ -38,6 +38,49 @@ fn glass_value(g: &glass::Glass) -> Value {
     Value::Choice(i, glass::catalogue()[i].name.as_str())
 }
 
+/// `ignored` rules: why a parameter set by the user would change nothing.
+fn amici_only(c: &SpectralConfig) -> Option<String> {
+    let amici = matches!(c.scene.kind, SceneKind::AmiciScreen | SceneKind::AmiciLamp | SceneKind::AmiciBench);
+    (!amici).then(|| format!("the {} scene has no Amici prism (amici-screen, amici-lamp and amici-bench have one)", c.scene.kind.name()))
+}
+
+fn has_faces(c: &SpectralConfig) -> Option<String> {
+    let sphere = matches!(c.scene.kind, SceneKind::SphereArealight | SceneKind::SphereMetal | SceneKind::SpheresFinal);
+    sphere.then(|| format!("the {} scene's glass is a sphere: it has no entry face to set an angle of incidence on", c.scene.kind.name()))
+}
+
+fn has_glass(c: &SpectralConfig) -> Option<String> {
+    c.scene.no_prism.then(|| "--no-prism leaves no glass in the scene".to_string())
+}
+
+fn photons_used(c: &SpectralConfig) -> Option<String> {
+    c.exact.then(|| "--exact computes the image without photons or eye samples".to_string())
+}
+
+fn seed_used(c: &SpectralConfig) -> Option<String> {
+    c.exact.then(|| "--exact draws nothing at random: it is the same image whatever the seed".to_string())
+}
+
+fn exact_only(c: &SpectralConfig) -> Option<String> {
+    (!c.exact).then(|| "only --exact uses it".to_string())
+}
+
+fn film_kernel_used(c: &SpectralConfig) -> Option<String> {
+    photons_used(c).or_else(|| match (c.map, c.passes) {
+        (MapKind::Film, 0 | 1) => None,
+        (MapKind::Film, _) => Some("under --passes the film has no kernel (the passes' shrinking radius does its work)".to_string()),
+        (m, _) => Some(format!("only --map film has a kernel; --map {} gathers with --radius and --filter", m.name())),
+    })
+}
+
+fn split_used(c: &SpectralConfig) -> Option<String> {
+    photons_used(c).or_else(|| (c.eye == EyeMode::Hero).then(|| "--eye hero takes one wavelength; only --eye split and --eye lines split a ray".to_string()))
+}
+
+fn gain_used(c: &SpectralConfig) -> Option<String> {
+    c.exposure.map(|_| "--exposure sets the exposure; the gain multiplies only the automatic one".to_string())
+}
+
 const SCENE: &str = "Scene";
 const LIGHT: &str = "Light pass (photon map)";
 const EYE: &str = "Eye pass";
@@ -56,6 +99,7 @@ pub static PARAMS: &[Param<SpectralConfig>] = &[
         auto: "",
         get: |c| Some(pick(c.scene.kind)),
         set: |c, v| c.scene.kind = v.choice(),
+        ignored: never,
     },
     Param {
         key: "glass",
@@ -67,6 +111,7 @@ pub static PARAMS: &[Param<SpectralConfig>] = &[
         auto: "",
         get: |c| Some(glass_value(c.scene.crown)),
         set: |c, v| c.scene.crown = glass_of(v),
+        ignored: never,
     },
     Param {
         key: "flint",
@@ -78,6 +123,7 @@ pub static PARAMS: &[Param<SpectralConfig>] = &[
         auto: "",
         get: |c| Some(glass_value(c.scene.flint)),
         set: |c, v| c.scene.flint = glass_of(v),
+        ignored: amici_only,
     },
     Param {
         key: "flint_apex",
@@ -89,6 +135,7 @@ pub static PARAMS: &[Param<SpectralConfig>] = &[
         auto: "",
         get: |c| Some(Value::Real(c.scene.flint_apex_deg)),
         set: |c, v| c.scene.flint_apex_deg = v.real(),
+        ignored: amici_only,
     },
     Param {
         key: "ior_model",
@@ -100,6 +147,7 @@ pub static PARAMS: &[Param<SpectralConfig>] = &[
         auto: "",
         get: |c| Some(pick(c.scene.ior)),
         set: |c, v| c.scene.ior = v.choice(),
+        ignored: has_glass,
     },
     Param {
         key: "light_spectrum",
@@ -111,6 +159,7 @@ pub static PARAMS: &[Param<SpectralConfig>] = &[
         auto: "the scene's own (d65 beams, cfl-lines lamp, black bodies for report 001)",
         get: |c| c.scene.light.as_ref().map(|l| Value::Text(l.name.clone())),
         set: |c, v| c.scene.light = NamedSpectrum::parse(v.text()).ok(),
+        ignored: never,
     },
     Param {
         key: "incidence",
@@ -122,6 +171,7 @@ pub static PARAMS: &[Param<SpectralConfig>] = &[
         auto: "the design: along the Amici's axis; minimum deviation at d for the other prisms",
         get: |c| c.scene.incidence_deg.map(Value::Real),
         set: |c, v| c.scene.incidence_deg = Some(v.real()),
+        ignored: has_faces,
     },
     Param {
         key: "haze",
@@ -133,6 +183,7 @@ pub static PARAMS: &[Param<SpectralConfig>] = &[
         auto: "the scene's: clear air, except the laser's Cornell box (cornell-laser)",
         get: |c| c.scene.haze.map(Value::Real),
         set: |c, v| c.scene.haze = Some(v.real()),
+        ignored: never,
     },
     Param {
         key: "indirect_gather",
@@ -144,6 +195,7 @@ pub static PARAMS: &[Param<SpectralConfig>] = &[
         auto: "the scene's: 8 in report 003's Cornell boxes, else 1",
         get: |c| c.scene.indirect_gather.map(Value::Real),
         set: |c, v| c.scene.indirect_gather = Some(v.real()),
+        ignored: never,
     },
     Param {
         key: "no_prism",
@@ -155,6 +207,7 @@ pub static PARAMS: &[Param<SpectralConfig>] = &[
         auto: "",
         get: |c| Some(Value::Flag(c.scene.no_prism)),
         set: |c, v| c.scene.no_prism = v.flag(),
+        ignored: never,
     },
     Param {
         key: "no_dispersion",
@@ -166,6 +219,7 @@ pub static PARAMS: &[Param<SpectralConfig>] = &[
         auto: "",
         get: |c| Some(Value::Flag(c.scene.no_dispersion)),
         set: |c, v| c.scene.no_dispersion = v.flag(),
+        ignored: has_glass,
     },
     Param {
         key: "obj",
@@ -177,6 +231,7 @@ pub static PARAMS: &[Param<SpectralConfig>] = &[
         auto: "none: the scene's own prism",
         get: |c| c.scene.obj.clone().map(Value::Path),
         set: |c, v| c.scene.obj = Some(v.path()),
+        ignored: has_glass,
     },
     Param {
         key: "size",
@@ -188,6 +243,7 @@ pub static PARAMS: &[Param<SpectralConfig>] = &[
         auto: "",
         get: |c| Some(Value::Size([c.scene.width, c.scene.height])),
         set: |c, v| [c.scene.width, c.scene.height] = v.size(),
+        ignored: never,
     },
     Param {
         key: "photons",
@@ -199,6 +255,7 @@ pub static PARAMS: &[Param<SpectralConfig>] = &[
         auto: "",
         get: |c| Some(Value::Count(c.photons)),
         set: |c, v| c.photons = v.count(),
+        ignored: photons_used,
     },
     Param {
         key: "passes",
@@ -210,6 +267,7 @@ pub static PARAMS: &[Param<SpectralConfig>] = &[
         auto: "",
         get: |c| Some(Value::Count(c.passes as u64)),
         set: |c, v| c.passes = v.count() as u32,
+        ignored: photons_used,
     },
     Param {
         key: "exact",
@@ -221,6 +279,7 @@ pub static PARAMS: &[Param<SpectralConfig>] = &[
         auto: "",
         get: |c| Some(Value::Flag(c.exact)),
         set: |c, v| c.exact = v.flag(),
+        ignored: never,
     },
     Param {
         key: "exact_wavelengths",
@@ -232,6 +291,7 @@ pub static PARAMS: &[Param<SpectralConfig>] = &[
         auto: "",
         get: |c| Some(Value::Count(c.exact_wavelengths as u64)),
         set: |c, v| c.exact_wavelengths = v.count() as usize,
+        ignored: exact_only,
     },
     Param {
         key: "exact_subsamples",
@@ -243,6 +303,7 @@ pub static PARAMS: &[Param<SpectralConfig>] = &[
         auto: "",
         get: |c| Some(Value::Count(c.exact_subsamples as u64)),
         set: |c, v| c.exact_subsamples = v.count() as usize,
+        ignored: exact_only,
     },
     Param {
         key: "map",
@@ -254,6 +315,7 @@ pub static PARAMS: &[Param<SpectralConfig>] = &[
         auto: "",
         get: |c| Some(pick(c.map)),
         set: |c, v| c.map = v.choice(),
+        ignored: photons_used,
     },
     Param {
         key: "filter",
@@ -265,6 +327,7 @@ pub static PARAMS: &[Param<SpectralConfig>] = &[
         auto: "",
         get: |c| Some(pick(c.filter)),
         set: |c, v| c.filter = v.choice(),
+        ignored: photons_used,
     },
     Param {
         key: "radius",
@@ -276,6 +339,7 @@ pub static PARAMS: &[Param<SpectralConfig>] = &[
         auto: "two pixels' footprint on the screen",
         get: |c| c.radius.map(Value::Real),
         set: |c, v| c.radius = Some(v.real()),
+        ignored: photons_used,
     },
     Param {
         key: "k",
@@ -287,6 +351,7 @@ pub static PARAMS: &[Param<SpectralConfig>] = &[
         auto: "none: all photons within --radius",
         get: |c| c.k.map(|k| Value::Count(k as u64)),
         set: |c, v| c.k = Some(v.count() as usize),
+        ignored: photons_used,
     },
     Param {
         key: "film_kernel",
@@ -298,6 +363,7 @@ pub static PARAMS: &[Param<SpectralConfig>] = &[
         auto: "chosen from the film's two halves of the photons (hold-out; docs/physics.md §20)",
         get: |c| c.film_kernel.map(Value::Real),
         set: |c, v| c.film_kernel = Some(v.real()),
+        ignored: film_kernel_used,
     },
     Param {
         key: "spp",
@@ -309,6 +375,7 @@ pub static PARAMS: &[Param<SpectralConfig>] = &[
         auto: "",
         get: |c| Some(Value::Count(c.spp as u64)),
         set: |c, v| c.spp = v.count() as u32,
+        ignored: photons_used,
     },
     Param {
         key: "eye",
@@ -320,17 +387,19 @@ pub static PARAMS: &[Param<SpectralConfig>] = &[
         auto: "",
         get: |c| Some(pick(c.eye)),
         set: |c, v| c.eye = v.choice(),
+        ignored: photons_used,
     },
     Param {
         key: "split",
         aliases: &[],
         section: EYE,
-        help: "Monochromatic rays per split with --eye split",
+        help: "Monochromatic rays a split makes with --eye split, and for the continuum with --eye lines",
         unit: "rays",
         kind: Kind::Count { min: 1, max: 1024 },
         auto: "",
         get: |c| Some(Value::Count(c.split as u64)),
         set: |c, v| c.split = v.count() as u32,
+        ignored: split_used,
     },
     Param {
         key: "exposure",
@@ -342,6 +411,7 @@ pub static PARAMS: &[Param<SpectralConfig>] = &[
         auto: "automatic, the 99.5th percentile at full scale",
         get: |c| c.exposure.map(Value::Real),
         set: |c, v| c.exposure = Some(v.real()),
+        ignored: never,
     },
     Param {
         key: "exposure_gain",
@@ -353,6 +423,7 @@ pub static PARAMS: &[Param<SpectralConfig>] = &[
         auto: "",
         get: |c| Some(Value::Real(c.exposure_gain)),
         set: |c, v| c.exposure_gain = v.real(),
+        ignored: gain_used,
     },
     Param {
         key: "gamut",
@@ -364,6 +435,7 @@ pub static PARAMS: &[Param<SpectralConfig>] = &[
         auto: "",
         get: |c| Some(pick(c.gamut)),
         set: |c, v| c.gamut = v.choice(),
+        ignored: never,
     },
     Param {
         key: "colour_map",
@@ -375,6 +447,7 @@ pub static PARAMS: &[Param<SpectralConfig>] = &[
         auto: "",
         get: |c| Some(pick(c.colours)),
         set: |c, v| c.colours = v.choice(),
+        ignored: never,
     },
     Param {
         key: "seed",
@@ -386,6 +459,7 @@ pub static PARAMS: &[Param<SpectralConfig>] = &[
         auto: "",
         get: |c| Some(Value::Count(c.seed)),
         set: |c, v| c.seed = v.count(),
+        ignored: seed_used,
     },
     Param {
         key: "threads",
@@ -397,6 +471,7 @@ pub static PARAMS: &[Param<SpectralConfig>] = &[
         auto: "",
         get: |c| Some(Value::Count(c.threads as u64)),
         set: |c, v| c.threads = v.count() as usize,
+        ignored: never,
     },
 ];
 
@@ -406,7 +481,60 @@ pub fn defaults() -> SpectralConfig {
     SpectralConfig::new(SceneOptions::new(SceneKind::AmiciScreen), PathBuf::new())
 }
 
-/// The keys that shape the scene (all `refract prism trace` takes).
+/// The keys that shape the prism and the rays through it (all `refract
+/// prism trace` takes): not the image's size, the light, the haze or the
+/// gather.
 pub fn is_scene(p: &Param<SpectralConfig>) -> bool {
-    p.section == SCENE && p.key != "size" && p.key != "light_spectrum"
+    p.section == SCENE && !["size", "light_spectrum", "haze", "indirect_gather"].contains(&p.key)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::names::Named;
+
+    /// A built scene's faces, lights and camera, as text (or the builder's
+    /// refusal, which shows it read the option too).
+    fn world(o: &SceneOptions) -> Result<String, String> {
+        let w = crate::scenes::build(o).map_err(|e| e.to_string())?;
+        Ok(format!("{:?} {:?} {:?}", w.faces, w.lights, w.camera))
+    }
+
+    /// The rules that refuse a scene flag agree with the scene builders: a
+    /// flag called ignored leaves every face, light and the camera as they
+    /// were, and a flag called used changes something.
+    #[test]
+    fn scene_flags_are_refused_exactly_where_the_scene_ignores_them() {
+        let row = |key: &str| PARAMS.iter().find(|p| p.key == key).unwrap();
+        for &(kind, name, _) in SceneKind::VALUES {
+            let mut c = defaults();
+            c.scene.kind = kind;
+            let base = world(&c.scene).unwrap();
+            type Change = fn(&mut SceneOptions);
+            let changes: [(&str, Change); 3] = [
+                ("flint", |o| o.flint = crate::optics::glass::by_name("F2").unwrap()),
+                ("flint_apex", |o| o.flint_apex_deg = 80.0),
+                ("incidence", |o| o.incidence_deg = Some(o.incidence_deg.unwrap_or(0.0) + 1.0)),
+            ];
+            for (key, change) in changes {
+                let mut o = c.scene.clone();
+                change(&mut o);
+                let changed = world(&o) != Ok(base.clone());
+                let refused = (row(key).ignored)(&c);
+                assert_eq!(changed, refused.is_none(), "{name}: --{key} changes the scene: {changed}; refused: {refused:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn exact_and_photon_flags_exclude_each_other() {
+        let row = |key: &str| PARAMS.iter().find(|p| p.key == key).unwrap();
+        let mut c = defaults();
+        assert!((row("exact_wavelengths").ignored)(&c).is_some() && (row("photons").ignored)(&c).is_none());
+        c.exact = true;
+        assert!((row("exact_wavelengths").ignored)(&c).is_none());
+        for key in ["photons", "passes", "map", "filter", "radius", "k", "film_kernel", "spp", "eye", "split", "seed"] {
+            assert!((row(key).ignored)(&c).is_some(), "--{key} under --exact");
+        }
+    }
 }

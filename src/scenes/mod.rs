@@ -128,6 +128,11 @@ pub fn build(o: &SceneOptions) -> Result<World> {
         SceneKind::DarkSide => cornell::dark_side(o)?,
     };
     if let Some(h) = o.haze {
+        // Haze shows beams only (`spectral::haze`): elsewhere it would
+        // change nothing.
+        if h > 0.0 && !scene.lights.iter().any(|l| matches!(l.emission, Emission::Beam { .. })) {
+            bail!("--haze: the {} scene has no collimated beam, and haze shows only beams", o.kind.name());
+        }
         scene.haze = h;
     }
     if let Some(g) = o.indirect_gather {

@@ -166,6 +166,24 @@ mod tests {
     use crate::world::{Camera, Face, Light, Medium};
     use glam::DVec2;
 
+    /// `--haze` is refused by the scene builder exactly where the haze
+    /// would draw nothing (no beam to show).
+    #[test]
+    fn haze_is_refused_exactly_where_it_would_draw_nothing() {
+        use crate::names::Named;
+        use crate::scenes::{build, SceneKind, SceneOptions};
+        for &(kind, name, _) in SceneKind::VALUES {
+            let mut o = SceneOptions::new(kind);
+            o.haze = Some(0.5);
+            let refused = build(&o).is_err();
+            o.haze = None;
+            let mut w = build(&o).unwrap();
+            w.haze = 0.5;
+            let drawn = !Haze::new(&w, ColorMap::Cie).segments.is_empty();
+            assert_eq!(refused, !drawn, "{name}: refused {refused}, drawn {drawn}");
+        }
+    }
+
     /// A 1 W, 532 nm beam along +x from x = -1 to a matte wall at x = 1,
     /// seen from 2 m along -y (camera 100 px high, 10 degrees).
     fn beam_world() -> World {
