@@ -80,6 +80,9 @@ fn glass_cli_prints_catalogue_indices() {
     assert_eq!(list.lines().count(), 10, "{list}");
     let o = run(&["glass", "BK9"], "", &repo(""));
     assert_clean_failure(&o, "unknown glass `BK9`; valid: N-BK7");
+    // The list takes no model or wavelengths, which it would ignore.
+    let o = run(&["glass", "--list", "--model", "cauchy"], "", &repo(""));
+    assert_clean_failure(&o, "the argument '--list' cannot be used with '--model <MODEL>'");
 }
 
 #[test]

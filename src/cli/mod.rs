@@ -301,7 +301,7 @@ pub struct GlassArgs {
     #[arg(long, value_delimiter = ',', value_parser = parse_wavelength, default_value = "656.2725,587.5618,486.1327")]
     pub wavelengths: Vec<f64>,
     /// List the catalogue: name, n_d, Abbe number, source
-    #[arg(long)]
+    #[arg(long, conflicts_with_all = ["name", "model", "wavelengths"])]
     pub list: bool,
 }
 

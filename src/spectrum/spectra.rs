@@ -58,12 +58,17 @@ pub fn wien_peak_nm(kelvin: f64) -> f64 {
     2.897_771_955e-3 / kelvin * 1e9
 }
 
-/// An unknown spectrum name, with the names that exist.
+/// The light spectra `Spectrum::light` knows.
+const LIGHT_NAMES: &str = "E, D65, FL1..FL12, FL3.1..FL3.15, blackbody:K (e.g. blackbody:6500), cfl-lines, laser:NM (e.g. laser:532)";
+
+/// A light spectrum's name that names none: unknown, or a black body or a
+/// laser whose number is not one (or out of range).
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error("unknown light spectrum `{name}`; valid: {valid}")]
-pub struct UnknownSpectrum {
-    pub name: String,
-    pub valid: String,
+pub enum UnknownSpectrum {
+    #[error("unknown light spectrum `{0}`; valid: {LIGHT_NAMES}")]
+    Name(String),
+    #[error("light spectrum `{name}`: {what} `{value}` is not a number from {range}")]
+    Number { name: String, what: &'static str, value: String, range: &'static str },
 }
 
 impl Spectrum {
@@ -142,18 +147,18 @@ impl Spectrum {
     /// A light spectrum by name: `E`, `D65`, `FL1`..`FL12`, `FL3.1`..`FL3.15`,
     /// `blackbody:K`, `cfl-lines`, `laser:NM` (case does not matter).
     pub fn light(name: &str) -> Result<Spectrum, UnknownSpectrum> {
-        let unknown = || UnknownSpectrum {
-            name: name.to_string(),
-            valid: "E, D65, FL1..FL12, FL3.1..FL3.15, blackbody:K (e.g. blackbody:6500), cfl-lines, laser:NM (e.g. laser:532)".into(),
+        let unknown = || UnknownSpectrum::Name(name.to_string());
+        // The number after `blackbody:` or `laser:`, within `range`.
+        let number = |text: &str, what: &'static str, (lo, hi): (f64, f64), range: &'static str| match text.trim().parse::<f64>() {
+            Ok(v) if (lo..=hi).contains(&v) => Ok(v),
+            _ => Err(UnknownSpectrum::Number { name: name.trim().to_string(), what, value: text.to_string(), range }),
         };
         let lower = name.trim().to_ascii_lowercase();
         if let Some(k) = lower.strip_prefix("blackbody:") {
-            let k: f64 = k.parse().map_err(|_| unknown())?;
-            return if k.is_finite() && (100.0..=1e6).contains(&k) { Ok(Spectrum::Blackbody { kelvin: k }) } else { Err(unknown()) };
+            return Ok(Spectrum::Blackbody { kelvin: number(k, "temperature", (100.0, 1e6), "100 to 1000000 K")? });
         }
         if let Some(nm) = lower.strip_prefix("laser:") {
-            let nm: f64 = nm.parse().map_err(|_| unknown())?;
-            return if (360.0..=830.0).contains(&nm) { Ok(laser(nm)) } else { Err(unknown()) };
+            return Ok(laser(number(nm, "wavelength", (360.0, 830.0), "360 to 830 nm")?));
         }
         match lower.as_str() {
             "e" => Ok(Spectrum::Constant(1.0)),
@@ -266,9 +271,20 @@ mod tests {
             let s = Spectrum::light(n).unwrap();
             assert!(s.to_xyz().0.y > 0.0, "{n}");
         }
-        for bad in ["FL13", "FL3.16", "blackbody:x", "blackbody:-5", "laser:1000", "sun"] {
+        for bad in ["FL13", "FL3.16", "sun", "laser", "black-body:6500"] {
             let e = Spectrum::light(bad).unwrap_err().to_string();
             assert!(e.contains(bad) && e.contains("D65, FL1..FL12"), "{e}");
+        }
+        // A known form with a bad number says which number and its range.
+        for (bad, says) in [
+            ("blackbody:x", "temperature `x` is not a number from 100 to 1000000 K"),
+            ("blackbody:-5", "temperature `-5` is not"),
+            ("blackbody:inf", "temperature `inf` is not"),
+            ("laser:1000", "wavelength `1000` is not a number from 360 to 830 nm"),
+            ("laser:NaN", "wavelength `nan` is not"),
+        ] {
+            let e = Spectrum::light(bad).unwrap_err().to_string();
+            assert!(e.contains(&format!("`{bad}`")) && e.contains(says), "{e}");
         }
     }
 
