@@ -81,6 +81,15 @@ pub fn prism_config(given: &[(String, Value)]) -> Result<SpectralConfig> {
     Ok(cfg)
 }
 
+/// Why a run with these parameters would ignore `key` (`None`: it uses it,
+/// or its configuration is refused anyway, which the run reports).
+pub fn ignored(mode: Mode, given: &[(String, Value)], key: &str) -> Option<String> {
+    match mode {
+        Mode::Interior => (params::find(interior::PARAMS, key)?.ignored)(&interior_config(given).ok()?),
+        Mode::Prism => (params::find(prism::PARAMS, key)?.ignored)(&prism_config(given).ok()?),
+    }
+}
+
 /// A value as a CSV cell: strings bare, lists space-separated.
 pub fn cell(v: &Value) -> String {
     match v {

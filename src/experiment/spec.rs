@@ -231,6 +231,36 @@ impl Experiment {
                 format!("the experiment has {runs} runs (cases x sweep values x repeats); at most {MAX_RUNS}: split it into several files or narrow an axis"),
             ));
         }
+        // A key no run would use varies nothing the sweep measures: refused
+        // now, on its line. A key only some runs use is fine, since grids
+        // cross keys that apply to some of their cases only (`split` under
+        // the hero wavelength in eye-split.toml).
+        let grid = super::grid::expand(&e);
+        for key in e.param_names() {
+            let mut why = None;
+            let used = grid.iter().filter(|r| r.params.iter().any(|(k, _)| *k == key)).any(|r| match params::ignored(r.mode, &r.params, &key) {
+                Some(w) => {
+                    why.get_or_insert(w);
+                    false
+                }
+                None => true,
+            });
+            if let (false, Some(why)) = (used, why) {
+                let (section, nth) = if e.fixed.iter().any(|(k, _)| *k == key) {
+                    ("fixed", 0)
+                } else if e.sweep.iter().any(|(k, _)| *k == key) {
+                    ("sweep", 0)
+                } else {
+                    ("case", e.cases.iter().position(|c| c.params.iter().any(|(k, _)| *k == key)).unwrap_or(0))
+                };
+                return Err(p.err(section, nth, &key, format!("no run of the experiment uses it: {why}")));
+            }
+        }
+        if let (Some(over), Some(given)) = (&e.reference, e.reference_params()) {
+            if let Some((key, why)) = over.iter().find_map(|(k, _)| params::ignored(e.mode, &given, k).map(|w| (k, w))) {
+                return Err(p.err("reference", 0, key, format!("the reference run would ignore it: {why}")));
+            }
+        }
         Ok(e)
     }
 
@@ -553,9 +583,15 @@ sweep = { trace = [0] }
             // A plot's columns are checked against runs.csv's before any run.
             (format!("{GOOD}[[outputs.plot]]\nx = \"param_trace\"\ny = \"render_s\"\nfile = \"a\"\n[[outputs.plot]]\nx = \"param_ior\"\ny = \"rendr_s\"\nfile = \"b\"\n"), "t.toml:18: `y`: `rendr_s` is not a column of runs.csv; columns: run_id, mode, case, repeat, param_trace, param_ior, param_off"),
             (format!("{GOOD}[[outputs.plot]]\nx = \"param_trace\"\ny = \"render_s\"\nseries = [\"param_colour\"]\nfile = \"a\"\n"), "t.toml:15: `series`: `param_colour` is not a column"),
+            // A key no run uses (one sample a pixel ignores the seed).
+            (GOOD.replace("size = [16, 16]", "size = [16, 16]\nseed = 3"), "t.toml:7: `seed`: no run of the experiment uses it: one sample a pixel"),
+            (format!("{GOOD}[reference]\nseed = 3\n"), "t.toml:13: `seed`: the reference run would ignore it"),
         ] {
             let e = Experiment::parse(&bad, "t.toml", false).unwrap_err().to_string();
             assert!(e.starts_with(needle), "{e}\n  expected: {needle}");
         }
+        // A key some runs use is kept.
+        let some = GOOD.replace("size = [16, 16]", "size = [16, 16]\nseed = 3").replace("trace = [0, 2]", "trace = [0, 2]\nspp = [1, 4]");
+        Experiment::parse(&some, "t.toml", false).unwrap();
     }
 }
