@@ -61,12 +61,26 @@ fn seed_used(c: &SpectralConfig) -> Option<String> {
     c.exact.then(|| "--exact draws nothing at random: it is the same image whatever the seed".to_string())
 }
 
+/// The scenes with no matte surface, so no photon map: the camera sees the
+/// lights through the glass directly (checked against the built scenes in
+/// a test below).
+fn no_matte_surface(kind: SceneKind) -> bool {
+    matches!(kind, SceneKind::AmiciLamp | SceneKind::SphereArealight)
+}
+
+fn light_pass_used(c: &SpectralConfig) -> Option<String> {
+    photons_used(c).or_else(|| {
+        no_matte_surface(c.scene.kind)
+            .then(|| format!("the {} scene has no matte surface to store photons on: the camera sees its lights through the glass", c.scene.kind.name()))
+    })
+}
+
 fn exact_only(c: &SpectralConfig) -> Option<String> {
     (!c.exact).then(|| "only --exact uses it".to_string())
 }
 
 fn film_kernel_used(c: &SpectralConfig) -> Option<String> {
-    photons_used(c).or_else(|| match (c.map, c.passes) {
+    light_pass_used(c).or_else(|| match (c.map, c.passes) {
         (MapKind::Film, 0 | 1) => None,
         (MapKind::Film, _) => Some("under --passes the film has no kernel (the passes' shrinking radius does its work)".to_string()),
         (m, _) => Some(format!("only --map film has a kernel; --map {} gathers with --radius and --filter", m.name())),
@@ -255,7 +269,7 @@ pub static PARAMS: &[Param<SpectralConfig>] = &[
         auto: "",
         get: |c| Some(Value::Count(c.photons)),
         set: |c, v| c.photons = v.count(),
-        ignored: photons_used,
+        ignored: light_pass_used,
     },
     Param {
         key: "passes",
@@ -315,7 +329,7 @@ pub static PARAMS: &[Param<SpectralConfig>] = &[
         auto: "",
         get: |c| Some(pick(c.map)),
         set: |c, v| c.map = v.choice(),
-        ignored: photons_used,
+        ignored: light_pass_used,
     },
     Param {
         key: "filter",
@@ -327,7 +341,7 @@ pub static PARAMS: &[Param<SpectralConfig>] = &[
         auto: "",
         get: |c| Some(pick(c.filter)),
         set: |c, v| c.filter = v.choice(),
-        ignored: photons_used,
+        ignored: light_pass_used,
     },
     Param {
         key: "radius",
@@ -339,7 +353,7 @@ pub static PARAMS: &[Param<SpectralConfig>] = &[
         auto: "two pixels' footprint on the screen",
         get: |c| c.radius.map(Value::Real),
         set: |c, v| c.radius = Some(v.real()),
-        ignored: photons_used,
+        ignored: light_pass_used,
     },
     Param {
         key: "k",
@@ -351,7 +365,7 @@ pub static PARAMS: &[Param<SpectralConfig>] = &[
         auto: "none: all photons within --radius",
         get: |c| c.k.map(|k| Value::Count(k as u64)),
         set: |c, v| c.k = Some(v.count() as usize),
-        ignored: photons_used,
+        ignored: light_pass_used,
     },
     Param {
         key: "film_kernel",
@@ -523,6 +537,15 @@ mod tests {
                 let refused = (row(key).ignored)(&c);
                 assert_eq!(changed, refused.is_none(), "{name}: --{key} changes the scene: {changed}; refused: {refused:?}");
             }
+        }
+    }
+
+    /// The scenes said to have no matte surface are those built without one.
+    #[test]
+    fn light_pass_flags_are_refused_where_nothing_stores_photons() {
+        for &(kind, name, _) in SceneKind::VALUES {
+            let w = crate::scenes::build(&SceneOptions::new(kind)).unwrap();
+            assert_eq!(no_matte_surface(kind), w.maps.is_empty(), "{name}");
         }
     }
 
