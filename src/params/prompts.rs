@@ -22,8 +22,15 @@ pub enum PromptError {
     TooLong(String),
     #[error("line {line} of standard input: `{answer}` is no answer to \"{prompt}\": {reason}")]
     BadAnswer { line: usize, prompt: String, answer: String, reason: String },
+    // No `#[from]`: as a source the reason would be printed twice.
     #[error("reading standard input: {0}")]
-    Io(#[from] std::io::Error),
+    Io(std::io::Error),
+}
+
+impl From<std::io::Error> for PromptError {
+    fn from(e: std::io::Error) -> Self {
+        PromptError::Io(e)
+    }
 }
 
 /// Where the answers come from: the input, where the questions go, the
@@ -169,5 +176,8 @@ mod tests {
         let text = format!("0\n25\n255\n255\n255\nout.png\n{readme}\n0\n1\n0\n0\n0\n1.4\n");
         let e = ask_all(&mut Prompter::new(&mut text.as_bytes(), &mut Vec::new(), false), base()).unwrap_err().to_string();
         assert!(e.starts_with(&format!("line 7 of standard input: `{readme}` is no answer to \"File name of .off file\": {readme}:")), "{e}");
+        // Unreadable input: the reason once, as the program prints errors.
+        let e = anyhow::Error::from(ask_all(&mut Prompter::new(&mut &b"\xff\xfe\n"[..], &mut Vec::new(), false), base()).unwrap_err());
+        assert_eq!(format!("{e:#}"), "reading standard input: stream did not contain valid UTF-8");
     }
 }
