@@ -109,9 +109,24 @@ fn shards_merged_equal_the_unsharded_run() {
     let host = h.iter().position(|c| c == "host").unwrap();
     assert!(r.iter().all(|r| !r[host].is_empty() && !r[h.iter().position(|c| c == "cores").unwrap()].is_empty()));
 
-    // Merge checks what it joins. A run in two shards:
+    // Merge checks what it joins. A folder given twice:
     let o = sweep(&["merge", &d("shard0"), &d("shard0"), "--out", &d("twice")], &repo(""));
-    assert_clean_failure(&o, &format!("run 0 is in both {} and {}; each run belongs to one shard", d("shard0"), d("shard0")));
+    assert_clean_failure(&o, &format!("{} is given twice", d("shard0")));
+    // A run in two shards:
+    std::fs::create_dir(d("copy0")).unwrap();
+    std::fs::copy(Path::new(&d("shard0")).join("runs.csv"), Path::new(&d("copy0")).join("runs.csv")).unwrap();
+    let o = sweep(&["merge", &d("shard0"), &d("copy0"), "--out", &d("twice")], &repo(""));
+    assert_clean_failure(&o, &format!("run 0 is in both {} and {}; each run belongs to one shard", d("shard0"), d("copy0")));
+    // A shard cut off mid-row (its last row loses its last cells), and a
+    // file that is not a runs.csv:
+    let text = std::fs::read_to_string(Path::new(&d("shard1")).join("runs.csv")).unwrap();
+    let cut = &text[..text.trim_end().rfind(',').unwrap()];
+    std::fs::write(Path::new(&d("copy0")).join("runs.csv"), cut).unwrap();
+    let o = sweep(&["merge", &d("shard0"), &d("copy0"), "--out", &d("twice")], &repo(""));
+    assert_clean_failure(&o, &format!("{}/runs.csv:{}: not a whole run", d("copy0"), text.trim_end().lines().count()));
+    std::fs::write(Path::new(&d("copy0")).join("runs.csv"), "x,y\n1,2\n").unwrap();
+    let o = sweep(&["merge", &d("shard0"), &d("copy0"), "--out", &d("twice")], &repo(""));
+    assert_clean_failure(&o, &format!("{}/runs.csv:1: not a sweep's runs.csv (its first column is `x`, not run_id)", d("copy0")));
     // A shard missing:
     let o = sweep(&["merge", &d("shard0"), "--out", &d("half"), "--experiment", &tiny()], &repo(""));
     assert_clean_failure(

@@ -443,17 +443,36 @@ pub fn merge(dirs: &[PathBuf], out: &Path, experiment: Option<&Experiment>, resu
     let mut header: Option<Vec<String>> = None;
     let mut rows: Vec<(Vec<String>, usize)> = Vec::new();
     for (k, d) in dirs.iter().enumerate() {
+        if dirs[..k].contains(d) {
+            bail!("{} is given twice", d.display());
+        }
         let p = d.join("runs.csv");
         let text = crate::data::read_input_text(&p).with_context(|| format!("cannot read {}", p.display()))?;
         let mut r = csv::Reader::from_reader(text.as_bytes());
-        let h: Vec<String> = r.headers()?.iter().map(str::to_string).collect();
+        let h: Vec<String> = r.headers().with_context(|| format!("{}: unreadable header", p.display()))?.iter().map(str::to_string).collect();
+        if h.first().map(String::as_str) != Some("run_id") {
+            bail!("{}:1: not a sweep's runs.csv (its first column is `{}`, not run_id)", p.display(), h.first().map_or("", String::as_str));
+        }
         match &header {
             Some(x) if *x != h => bail!("{}: its columns differ from {}", p.display(), dirs[0].join("runs.csv").display()),
             _ => header = Some(h.clone()),
         }
-        rows.extend(
-            r.records().filter_map(|x| x.ok()).map(|x| x.iter().map(str::to_string).collect::<Vec<_>>()).filter(|x| x.len() == h.len()).map(|x| (x, k)),
-        );
+        // Every row is a whole run: a short or unreadable one (a shard
+        // stopped mid-write) is named, not dropped.
+        for record in r.records() {
+            let x = record.map_err(|e| {
+                let at = e.position().map_or(0, |at| at.line());
+                match e.kind() {
+                    csv::ErrorKind::UnequalLengths { len, .. } => anyhow::anyhow!("{}:{at}: not a whole run ({len} of {} cells)", p.display(), h.len()),
+                    _ => anyhow::anyhow!("{}:{at}: unreadable row: {e}", p.display()),
+                }
+            })?;
+            let at = x.position().map_or(0, |at| at.line());
+            if x.len() != h.len() || x[0].parse::<usize>().is_err() {
+                bail!("{}:{at}: not a whole run ({} of {} cells, run id `{}`)", p.display(), x.len(), h.len(), &x[0]);
+            }
+            rows.push((x.iter().map(str::to_string).collect(), k));
+        }
     }
     let header = header.ok_or_else(|| anyhow::anyhow!("no folders to merge"))?;
     if let Some(col) = header.iter().position(|h| h == "experiment") {
