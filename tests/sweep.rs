@@ -329,3 +329,22 @@ fn the_next_run_removes_stale_temporary_files() {
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(!img.exists());
 }
+
+/// A plan has no shard without work: asked for more shards than the grid
+/// has chains it refuses, naming the most; by default it makes 4, or as
+/// many as there are chains if fewer.
+#[test]
+fn plans_have_no_empty_shard() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = |name: &str| dir.path().join(name).display().to_string();
+    let spread = repo("tests/data/spread.toml").display().to_string();
+    let o = sweep(&["plan", &spread, "--engine", "parallel", "--shards", "9", "--out", &out("nine")], &repo(""));
+    assert_clean_failure(&o, "--shards: 9 is more than the 8 chains of runs this grid holds");
+    assert!(!dir.path().join("nine").exists(), "nothing written");
+    let o = sweep(&["plan", &spread, "--engine", "parallel", "--shards", "8", "--out", &out("eight")], &repo(""));
+    assert!(o.status.success() && String::from_utf8_lossy(&o.stdout).contains("24 runs in 8 shards"), "{}", stderr(&o));
+    let lab = repo("experiments/lab-ior.toml").display().to_string();
+    let o = sweep(&["plan", &lab, "--quick", "--engine", "slurm", "--out", &out("one")], &repo(""));
+    assert!(o.status.success() && String::from_utf8_lossy(&o.stdout).contains("5 runs in 1 shard "), "{}", stderr(&o));
+    assert!(std::fs::read_to_string(dir.path().join("one/merge.sh")).unwrap().contains("\nN=1\n"));
+}

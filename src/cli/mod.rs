@@ -233,9 +233,9 @@ pub struct PlanArgs {
     /// What runs the shards
     #[arg(long, value_parser = param_args::named::<Engine>(), ignore_case = true)]
     pub engine: Engine,
-    /// Number of shards (balanced by estimated cost; each holds whole chains along the first sweep axis)
-    #[arg(long, default_value_t = 4)]
-    pub shards: usize,
+    /// Number of shards (balanced by estimated cost; each holds whole chains along the first sweep axis, so at most as many shards as chains) [default: 4, or the chains if fewer]
+    #[arg(long)]
+    pub shards: Option<usize>,
     /// Folder for the plan, the shards (in shards/I) and the merged results [default: results/NAME]
     #[arg(long)]
     pub out: Option<PathBuf>,

@@ -53,15 +53,26 @@ pub fn cost(mode: Mode, params: &[(String, toml::Value)]) -> Cost {
 }
 
 /// The shard (0..n) of every run, by run id.
+/// What stays fixed along a chain (the runs along the first sweep axis,
+/// which go together: each run's changed_px compares it with the one before).
+type ChainKey = (String, u32, Vec<usize>);
+
+fn chain_key(r: &RunSpec) -> ChainKey {
+    (r.case.clone(), r.repeat, r.at.iter().skip(1).copied().collect())
+}
+
+/// How many chains the grid holds: the most shards that all have work.
+pub fn chain_count(runs: &[RunSpec]) -> usize {
+    runs.iter().map(chain_key).collect::<std::collections::BTreeSet<_>>().len()
+}
+
 pub fn assign(runs: &[RunSpec], n: usize) -> Vec<usize> {
     let n = n.max(1);
     // Chains, keyed by what stays fixed along the first axis: (first run
     // id, run ids, estimated seconds).
-    type Key = (String, u32, Vec<usize>);
-    let mut chains: BTreeMap<Key, (usize, Vec<usize>, f64)> = BTreeMap::new();
+    let mut chains: BTreeMap<ChainKey, (usize, Vec<usize>, f64)> = BTreeMap::new();
     for r in runs {
-        let key = (r.case.clone(), r.repeat, r.at.iter().skip(1).copied().collect());
-        let c = chains.entry(key).or_insert((r.id, Vec::new(), 0.0));
+        let c = chains.entry(chain_key(r)).or_insert((r.id, Vec::new(), 0.0));
         c.1.push(r.id);
         c.2 += cost(r.mode, &r.params).seconds;
     }
@@ -95,7 +106,8 @@ crate::named_enum! {
 pub struct PlanOptions {
     pub file: PathBuf,
     pub engine: Engine,
-    pub shards: usize,
+    /// `None`: `DEFAULT_SHARDS`, or the grid's chains if fewer.
+    pub shards: Option<usize>,
     pub out: Option<PathBuf>,
     pub quick: bool,
     /// Slurm: partition, time limit (as sbatch takes it), CPUs and memory
@@ -107,6 +119,14 @@ pub struct PlanOptions {
     /// The refract binary the script runs.
     pub refract: PathBuf,
 }
+
+/// `n` and its noun, singular or plural.
+fn plural(n: usize, one: &str, many: &str) -> String {
+    format!("{n} {}", if n == 1 { one } else { many })
+}
+
+/// Shards when `--shards` is not given.
+pub const DEFAULT_SHARDS: usize = 4;
 
 /// The most shards a plan makes (a job array larger than this is a typo).
 pub const MAX_SHARDS: usize = 10_000;
@@ -142,9 +162,18 @@ pub fn loads(e: &Experiment, n: usize) -> Vec<ShardLoad> {
 
 /// Writes the plan's script into its folder; returns what to tell the user.
 pub fn write(e: &Experiment, o: &PlanOptions) -> Result<String> {
-    if o.shards == 0 || o.shards > MAX_SHARDS {
-        bail!("--shards: {} is not between 1 and {MAX_SHARDS}", o.shards);
-    }
+    // A shard with no run would be a job doing nothing: at most as many
+    // shards as the grid has chains (each chain stays in one shard).
+    let chains = chain_count(&expand(e)).max(1);
+    let n = match o.shards {
+        None => DEFAULT_SHARDS.min(chains),
+        Some(n) if n == 0 || n > MAX_SHARDS => bail!("--shards: {n} is not between 1 and {MAX_SHARDS}"),
+        Some(n) if n > chains => bail!(
+            "--shards: {n} is more than the {} this grid holds (the runs along its first sweep axis stay in one shard); at most {chains}",
+            plural(chains, "chain of runs", "chains of runs")
+        ),
+        Some(n) => n,
+    };
     if o.cpus_per_task == 0 || o.cpus_per_task > 1024 {
         bail!("--cpus-per-task: {} is not between 1 and 1024", o.cpus_per_task);
     }
@@ -153,8 +182,7 @@ pub fn write(e: &Experiment, o: &PlanOptions) -> Result<String> {
     let dir = absolute(&dir)?;
     let file = absolute(&o.file)?;
     let workdir = std::env::current_dir().context("cannot read the current folder")?;
-    let loads = loads(e, o.shards);
-    let n = o.shards;
+    let loads = loads(e, n);
     let quick = if o.quick { " --quick" } else { "" };
     let busiest = loads.iter().map(|l| l.seconds).fold(0.0, f64::max);
     let head = |what: &str| {
@@ -241,9 +269,10 @@ pub fn write(e: &Experiment, o: &PlanOptions) -> Result<String> {
     let mut msg = String::new();
     let _ = writeln!(
         msg,
-        "{}: {} runs in {n} shards (estimated seconds on one core, with the reference run each shard renders):",
+        "{}: {} in {} (estimated seconds on one core, with the reference run each shard renders):",
         e.name,
-        loads.iter().map(|l| l.runs).sum::<usize>()
+        plural(loads.iter().map(|l| l.runs).sum::<usize>(), "run", "runs"),
+        plural(n, "shard", "shards")
     );
     for (i, l) in loads.iter().enumerate() {
         let _ = writeln!(msg, "  shard {i}: {} runs, about {:.1} s, {:.1} MB", l.runs, l.seconds, l.bytes / 1e6);
