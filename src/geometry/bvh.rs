@@ -302,7 +302,7 @@ const MAX_DEPTH: usize = 60;
 const DEEPEST: usize = MAX_DEPTH + 32;
 // A leaf is two packets (`Bvh::build`).
 const _: () = assert!(MAX_LEAF.div_ceil(4) == 2);
-/// Cost of visiting a node relative to one packet test (four triangles).
+/// Cost of visiting a node relative to one leaf pass (up to eight triangles).
 const TRAVERSAL_COST: f32 = 1.0;
 
 /// Bytes asked for ahead of a child's visit: a node, or a full leaf's
@@ -737,7 +737,7 @@ fn build_rec(nodes: &mut Vec<Node>, at: usize, prims: &mut [BuildPrim], ids: &mu
             if cnt == 0 || rc == 0 {
                 continue;
             }
-            let cost = packets_of(cnt) * acc.aabb().area() + packets_of(rc) * ra;
+            let cost = passes_of(cnt) * acc.aabb().area() + passes_of(rc) * ra;
             if cost < best.0 {
                 best = (cost, axis, i);
             }
@@ -745,7 +745,7 @@ fn build_rec(nodes: &mut Vec<Node>, at: usize, prims: &mut [BuildPrim], ids: &mu
     }
     let (mid, left_extent, right_extent) = if best.0.is_finite() {
         let split_cost = TRAVERSAL_COST + best.0 / bounds.area().max(f32::MIN_POSITIVE);
-        if n <= MAX_LEAF && split_cost >= packets_of(n) {
+        if n <= MAX_LEAF && split_cost >= passes_of(n) {
             return make_leaf(nodes);
         }
         let (axis, split) = (best.1, best.2);
@@ -784,10 +784,11 @@ fn split(
     build_rec(nodes, left + 1, rp, ri, first + mid, depth + 1, right_extent);
 }
 
-/// The cost of testing `n` triangles: one per packet of four.
+/// The cost of testing `n` triangles: one 8-lane pass per eight (a leaf's
+/// two packets are met in one pass, whether it holds one triangle or eight).
 #[inline]
-fn packets_of(n: usize) -> f32 {
-    n.div_ceil(4) as f32
+fn passes_of(n: usize) -> f32 {
+    n.div_ceil(8) as f32
 }
 
 #[inline]
