@@ -85,7 +85,7 @@ impl<S: ParamSet> Given<S> {
     /// Refuses a flag that `c` (the run these flags describe) would ignore,
     /// naming it and why.
     pub fn check_used(&self, c: &S::Config) -> Result<(), String> {
-        match S::params().into_iter().filter(|p| self.has(p.key)).find_map(|p| (p.ignored)(c).map(|why| (p, why))) {
+        match params::first_ignored(S::params().into_iter().filter(|p| self.has(p.key)), c) {
             Some((p, why)) => Err(format!("--{}: {why}", p.flag())),
             None => Ok(()),
         }

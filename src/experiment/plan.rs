@@ -52,7 +52,6 @@ pub fn cost(mode: Mode, params: &[(String, toml::Value)]) -> Cost {
     }
 }
 
-/// The shard (0..n) of every run, by run id.
 /// What stays fixed along a chain (the runs along the first sweep axis,
 /// which go together: each run's changed_px compares it with the one before).
 type ChainKey = (String, u32, Vec<usize>);
@@ -66,6 +65,7 @@ pub fn chain_count(runs: &[RunSpec]) -> usize {
     runs.iter().map(chain_key).collect::<std::collections::BTreeSet<_>>().len()
 }
 
+/// The shard (0..n) of every run, by run id.
 pub fn assign(runs: &[RunSpec], n: usize) -> Vec<usize> {
     let n = n.max(1);
     // Chains, keyed by what stays fixed along the first axis: (first run

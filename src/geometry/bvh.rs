@@ -10,7 +10,7 @@
 //! instructions (as Embree's Triangle4 leaves; Wald et al. 2014), or a
 //! leaf's eight in one pass of AVX2 registers: every leaf holds two
 //! packets, a leaf of four triangles or fewer a second one of none, so the
-//! leaf test takes no branch on its size (3-5 % more incoherent rays a
+//! leaf test takes no branch on its size (1.5-5 % more incoherent rays a
 //! second through 1280 triangles, `results/bench/README.md`).
 
 use super::aabb::GAMMA3;

@@ -203,10 +203,10 @@ pub fn never<C>(_: &C) -> Option<String> {
     None
 }
 
-/// The first of `keys` (the parameters a user set) that `c` would ignore,
+/// The first of `set` (the parameters a user set) that `c` would ignore,
 /// and why: the caller names it as its input does (a flag, a file's line).
-pub fn first_ignored<'k, C>(params: &'static [Param<C>], keys: impl IntoIterator<Item = &'k str>, c: &C) -> Option<(&'static Param<C>, String)> {
-    keys.into_iter().filter_map(|k| find(params, k)).find_map(|p| (p.ignored)(c).map(|why| (p, why)))
+pub fn first_ignored<C>(set: impl IntoIterator<Item = &'static Param<C>>, c: &C) -> Option<(&'static Param<C>, String)> {
+    set.into_iter().find_map(|p| (p.ignored)(c).map(|why| (p, why)))
 }
 
 impl<C> Param<C> {
