@@ -203,7 +203,7 @@ pub static PARAMS: &[Param<SpectralConfig>] = &[
         key: "indirect_gather",
         aliases: &[],
         section: SCENE,
-        help: "Where the scene computes direct light by shadow rays (report 003's rooms), light that reached a surface by a diffuse bounce or by mirrors alone is kept in a second photon map and gathered over this many times the radius; light through glass keeps the radius. 1: one map for all",
+        help: "Where the scene computes direct light by shadow rays (report 003's rooms), light that reached a surface by a diffuse bounce or by mirrors alone is kept in a second photon map and gathered over this many times the radius (under --map film, in every scene, all light but the caustics is); light through glass keeps the radius. 1: one map for all",
         unit: "times the radius",
         kind: Kind::Real { lo: End::Closed(1.0), hi: End::Closed(100.0) },
         auto: "the scene's: 8 in report 003's Cornell boxes, else 1",
