@@ -81,13 +81,21 @@ pub fn prism_config(given: &[(String, Value)]) -> Result<SpectralConfig> {
     Ok(cfg)
 }
 
+/// The first of `keys` that the run these parameters describe would
+/// ignore, and why; an error if the configuration itself is refused.
+pub fn first_ignored<'k>(mode: Mode, given: &[(String, Value)], keys: impl IntoIterator<Item = &'k str>) -> Result<Option<(String, String)>> {
+    let keys = keys.into_iter();
+    Ok(match mode {
+        Mode::Interior => params::first_ignored(keys.filter_map(|k| params::find(interior::PARAMS, k)), &interior_config(given)?).map(|(p, why)| (p.key, why)),
+        Mode::Prism => params::first_ignored(keys.filter_map(|k| params::find(prism::PARAMS, k)), &prism_config(given)?).map(|(p, why)| (p.key, why)),
+    }
+    .map(|(key, why)| (key.to_string(), why)))
+}
+
 /// Why a run with these parameters would ignore `key` (`None`: it uses it,
 /// or its configuration is refused anyway, which the run reports).
 pub fn ignored(mode: Mode, given: &[(String, Value)], key: &str) -> Option<String> {
-    match mode {
-        Mode::Interior => (params::find(interior::PARAMS, key)?.ignored)(&interior_config(given).ok()?),
-        Mode::Prism => (params::find(prism::PARAMS, key)?.ignored)(&prism_config(given).ok()?),
-    }
+    first_ignored(mode, given, [key]).ok().flatten().map(|(_, why)| why)
 }
 
 /// A value as a CSV cell: strings bare, lists space-separated.

@@ -61,7 +61,7 @@ fn chain_key(r: &RunSpec) -> ChainKey {
 }
 
 /// How many chains the grid holds: the most shards that all have work.
-pub fn chain_count(runs: &[RunSpec]) -> usize {
+fn chain_count(runs: &[RunSpec]) -> usize {
     runs.iter().map(chain_key).collect::<std::collections::BTreeSet<_>>().len()
 }
 
@@ -140,9 +140,9 @@ pub struct ShardLoad {
     pub bytes: f64,
 }
 
-pub fn loads(e: &Experiment, n: usize) -> Vec<ShardLoad> {
-    let runs = expand(e);
-    let shard = assign(&runs, n);
+/// The loads of `n` shards of `runs`, the grid of `e`.
+pub fn loads(e: &Experiment, runs: &[RunSpec], n: usize) -> Vec<ShardLoad> {
+    let shard = assign(runs, n);
     let reference = e.reference_params().map(|p| cost(e.mode, &p));
     let mut out = vec![ShardLoad::default(); n];
     for (r, &s) in runs.iter().zip(&shard) {
@@ -164,7 +164,8 @@ pub fn loads(e: &Experiment, n: usize) -> Vec<ShardLoad> {
 pub fn write(e: &Experiment, o: &PlanOptions) -> Result<String> {
     // A shard with no run would be a job doing nothing: at most as many
     // shards as the grid has chains (each chain stays in one shard).
-    let chains = chain_count(&expand(e)).max(1);
+    let runs = expand(e);
+    let chains = chain_count(&runs).max(1);
     let n = match o.shards {
         None => DEFAULT_SHARDS.min(chains),
         Some(n) if n == 0 || n > MAX_SHARDS => bail!("--shards: {n} is not between 1 and {MAX_SHARDS}"),
@@ -182,7 +183,7 @@ pub fn write(e: &Experiment, o: &PlanOptions) -> Result<String> {
     let dir = absolute(&dir)?;
     let file = absolute(&o.file)?;
     let workdir = std::env::current_dir().context("cannot read the current folder")?;
-    let loads = loads(e, n);
+    let loads = loads(e, &runs, n);
     let quick = if o.quick { " --quick" } else { "" };
     let busiest = loads.iter().map(|l| l.seconds).fold(0.0, f64::max);
     let head = |what: &str| {

@@ -94,13 +94,7 @@ impl SceneFile {
     /// A parameter the run would ignore (the scene has no use for it), and
     /// why: a file's key, as a flag, is refused rather than dropped.
     fn ignored(&self) -> Result<Option<(String, String)>> {
-        use crate::params::{find, first_ignored, interior, prism};
-        let keys = self.params.iter().map(|(k, _)| k.as_str());
-        Ok(match self.mode {
-            Mode::Interior => first_ignored(keys.filter_map(|k| find(interior::PARAMS, k)), &interior_config(&self.params)?).map(|(p, why)| (p.key, why)),
-            Mode::Prism => first_ignored(keys.filter_map(|k| find(prism::PARAMS, k)), &prism_config(&self.params)?).map(|(p, why)| (p.key, why)),
-        }
-        .map(|(key, why)| (key.to_string(), why)))
+        super::params::first_ignored(self.mode, &self.params, self.params.iter().map(|(k, _)| k.as_str()))
     }
 
     /// Renders to `out`; returns the render time in seconds (light pass,

@@ -257,8 +257,8 @@ impl Experiment {
             }
         }
         if let (Some(over), Some(given)) = (&e.reference, e.reference_params()) {
-            if let Some((key, why)) = over.iter().find_map(|(k, _)| params::ignored(e.mode, &given, k).map(|w| (k, w))) {
-                return Err(p.err("reference", 0, key, format!("the reference run would ignore it: {why}")));
+            if let Ok(Some((key, why))) = params::first_ignored(e.mode, &given, over.iter().map(|(k, _)| k.as_str())) {
+                return Err(p.err("reference", 0, &key, format!("the reference run would ignore it: {why}")));
             }
         }
         Ok(e)
