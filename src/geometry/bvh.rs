@@ -38,7 +38,7 @@ struct Node {
 const WIDTH: usize = 8;
 
 /// A node of the 8-wide tree: per child slot its box (`lo`/`hi`, one
-/// array per axis) and a `Ref` to a node or a leaf's packets. Unused
+/// array per axis) and a `Ref` to a node or a leaf. Unused
 /// slots hold `EMPTY` and an empty box, which no ray enters. 224 bytes,
 /// aligned to four cache lines.
 #[derive(Copy, Clone, Debug)]
@@ -79,7 +79,7 @@ impl BoxTest {
 pub struct Bvh {
     nodes: Vec<Wide>,
     bounds: Aabb,
-    packets: Vec<Tri4>,
+    leaves: Vec<Leaf>,
     boxes: BoxTest,
 }
 
@@ -224,6 +224,12 @@ impl Tri4 {
     }
 }
 
+/// A leaf's two packets, on five cache lines of their own (a `Vec` of
+/// packets alone is aligned to 16 bytes: a leaf could straddle six).
+#[derive(Copy, Clone, Debug)]
+#[repr(C, align(64))]
+struct Leaf([Tri4; 2]);
+
 /// Two packets (the eight triangles of a full leaf) met in one AVX2
 /// register a value, lane for lane the operations of `Tri4::intersect`
 /// (so the same bits). Testing the second packet against the `t_max` from
@@ -312,7 +318,7 @@ const TRAVERSAL_COST: f32 = 1.0;
 /// Bytes asked for ahead of a child's visit: a node, or a full leaf's
 /// packets, whichever is longer.
 const PREFETCH_BYTES: usize = {
-    let leaf = MAX_LEAF.div_ceil(4) * std::mem::size_of::<Tri4>();
+    let leaf = std::mem::size_of::<Leaf>();
     let node = std::mem::size_of::<Wide>();
     if leaf > node {
         leaf
@@ -401,19 +407,17 @@ impl Bvh {
     fn build_from(tris: &[Triangle], depth: usize) -> Self {
         let (binary, ids) = binary_tree(tris, depth);
         let mut nodes = Vec::with_capacity(tris.len() / 2 + 1);
-        let mut packets = Vec::with_capacity(tris.len() / 2 + 1);
+        let mut leaves = Vec::with_capacity(tris.len() / 4 + 1);
         let bounds = if !tris.is_empty() {
             // Each leaf's triangles, in leaf order, four to a packet.
-            let mut pack = |first: u32, count: u32| -> (u32, u32) {
-                let start = packets.len() as u32;
-                for chunk in ids[first as usize..(first + count) as usize].chunks(4) {
-                    packets.push(Tri4::new(chunk, tris));
-                }
+            let mut pack = |first: u32, count: u32| -> u32 {
+                let mut chunks = ids[first as usize..(first + count) as usize].chunks(4);
+                let a = Tri4::new(chunks.next().expect("a leaf holds a triangle"), tris);
                 // Two packets a leaf (see the module's comment).
-                if packets.len() as u32 - start == 1 {
-                    packets.push(Tri4::NONE);
-                }
-                (start, packets.len() as u32 - start)
+                let b = chunks.next().map_or(Tri4::NONE, |c| Tri4::new(c, tris));
+                debug_assert!(chunks.next().is_none());
+                leaves.push(Leaf([a, b]));
+                leaves.len() as u32 - 1
             };
             collapse(&binary, &Spread::of(&binary), 0, &mut nodes, &mut pack);
             Aabb { min: binary[0].min, max: binary[0].max }
@@ -422,7 +426,7 @@ impl Bvh {
             nodes.push(Wide::EMPTY);
             Aabb { min: Vec3::splat(f32::INFINITY), max: Vec3::splat(f32::NEG_INFINITY) }
         };
-        Bvh { nodes, bounds, packets, boxes: BoxTest::detect() }
+        Bvh { nodes, bounds, leaves, boxes: BoxTest::detect() }
     }
 
     /// The same tree, its boxes met by `boxes` (AVX2 only where the
@@ -450,7 +454,7 @@ impl Bvh {
 
     /// Nearest hit in `(ray.t_min, ray.t_max]`.
     pub fn intersect(&self, ray: &Ray) -> Option<Hit> {
-        if self.packets.is_empty() {
+        if self.leaves.is_empty() {
             return None;
         }
         match self.boxes {
@@ -493,7 +497,7 @@ impl Bvh {
         &self,
         ray: &Ray,
         boxes: impl Fn(&Wide, &RayBoxes, f32) -> (u32, [f32; WIDTH]),
-        leaf: impl Fn(&[Tri4], &[f32; 3], &[f32; 3], f32, &mut f32, &mut Option<Hit>),
+        leaf: impl Fn(&[Tri4; 2], &[f32; 3], &[f32; 3], f32, &mut f32, &mut Option<Hit>),
     ) -> Option<Hit> {
         let inv = ray.inv_dir();
         let r = RayBoxes { down: inv.to_array().map(f32::is_sign_negative), o: ray.origin.to_array(), inv: inv.to_array(), t_min: ray.t_min };
@@ -510,8 +514,7 @@ impl Bvh {
         let mut at = Slot { child: Ref::node(0), near: ray.t_min };
         loop {
             if at.child.is_leaf() {
-                let (first, count) = (at.child.index(), at.child.packets());
-                leaf(&self.packets[first..first + count], &o, &d, ray.t_min, &mut t_max, &mut best);
+                leaf(&self.leaves[at.child.index()].0, &o, &d, ray.t_min, &mut t_max, &mut best);
             } else {
                 let node = &self.nodes[at.child.index()];
                 let (mut mask, near) = boxes(node, &r, t_max);
@@ -573,7 +576,7 @@ impl Bvh {
         #[cfg(target_arch = "x86_64")]
         {
             use std::arch::x86_64::{_mm_prefetch, _MM_HINT_T0};
-            let leaf = self.packets.as_ptr().wrapping_add(s.child.index()) as *const i8;
+            let leaf = self.leaves.as_ptr().wrapping_add(s.child.index()) as *const i8;
             let node = self.nodes.as_ptr().wrapping_add(s.child.index()) as *const i8;
             let p = if s.child.is_leaf() { leaf } else { node };
             for line in 0..PREFETCH_BYTES.div_ceil(64) {
@@ -595,40 +598,31 @@ struct Slot {
     near: f32,
 }
 
-/// A child of a wide node in one word: a node's index, or a leaf's first
-/// packet, shifted up two bits; the low two bits hold the leaf's packet
-/// count (1 to 3), or 0 for a node.
+/// A child of a wide node in one word: a node's or a leaf's index,
+/// shifted up one bit; the low bit is set for a leaf.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 struct Ref(u32);
 
-// A full leaf's packets fit the two bits.
-const _: () = assert!(MAX_LEAF.div_ceil(4) <= 3);
-
 impl Ref {
-    /// Indices must stay below 2^30 (a billion packets: far beyond memory).
+    /// Indices must stay below 2^31 (far beyond memory).
     fn node(index: u32) -> Ref {
-        assert!(index < 1 << 30, "BVH node index {index}");
-        Ref(index << 2)
+        assert!(index < 1 << 31, "BVH node index {index}");
+        Ref(index << 1)
     }
 
-    fn leaf(first: u32, packets: u32) -> Ref {
-        assert!(first < 1 << 30 && (1..=3).contains(&packets), "BVH leaf {first}+{packets}");
-        Ref(first << 2 | packets)
+    fn leaf(index: u32) -> Ref {
+        assert!(index < 1 << 31, "BVH leaf index {index}");
+        Ref(index << 1 | 1)
     }
 
     #[inline(always)]
     fn is_leaf(self) -> bool {
-        self.0 & 3 != 0
+        self.0 & 1 != 0
     }
 
     #[inline(always)]
     fn index(self) -> usize {
-        (self.0 >> 2) as usize
-    }
-
-    #[inline(always)]
-    fn packets(self) -> usize {
-        (self.0 & 3) as usize
+        (self.0 >> 1) as usize
     }
 }
 
@@ -721,9 +715,8 @@ impl Spread {
 /// Turns the binary subtree under `at` (an inner node, or the root leaf)
 /// into 8-wide nodes appended to `wide`, its children's subtrees spread
 /// over the eight slots as `spread` found cheapest; returns its node's
-/// index. `pack` stores a leaf's triangles and returns its first packet
-/// and count.
-fn collapse(binary: &[Node], spread: &Spread, at: usize, wide: &mut Vec<Wide>, pack: &mut impl FnMut(u32, u32) -> (u32, u32)) -> u32 {
+/// index. `pack` stores a leaf's triangles and returns its index.
+fn collapse(binary: &[Node], spread: &Spread, at: usize, wide: &mut Vec<Wide>, pack: &mut impl FnMut(u32, u32) -> u32) -> u32 {
     let node = binary[at];
     let mut slots = Vec::with_capacity(WIDTH);
     if node.count > 0 {
@@ -740,12 +733,7 @@ fn collapse(binary: &[Node], spread: &Spread, at: usize, wide: &mut Vec<Wide>, p
             wide[me].lo[a][k] = b.min[a];
             wide[me].hi[a][k] = b.max[a];
         }
-        wide[me].child[k] = if b.count > 0 {
-            let (first, packets) = pack(b.first, b.count);
-            Ref::leaf(first, packets)
-        } else {
-            Ref::node(collapse(binary, spread, c, wide, pack))
-        };
+        wide[me].child[k] = if b.count > 0 { Ref::leaf(pack(b.first, b.count)) } else { Ref::node(collapse(binary, spread, c, wide, pack)) };
     }
     me as u32
 }
@@ -1033,7 +1021,7 @@ mod tests {
                 let b = Aabb { min: Vec3::new(w.lo[0][k], w.lo[1][k], w.lo[2][k]), max: Vec3::new(w.hi[0][k], w.hi[1][k], w.hi[2][k]) };
                 let c = w.child[k];
                 sum += if c.is_leaf() {
-                    let packets = &bvh.packets[c.index()..c.index() + c.packets()];
+                    let packets = &bvh.leaves[c.index()].0;
                     b.area() * passes_of(packets.iter().flat_map(|p| p.ids).filter(|&id| id != EMPTY).count())
                 } else {
                     cost(bvh, c.index(), b.area())
