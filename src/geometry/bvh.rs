@@ -9,13 +9,13 @@
 //! register a bound where the processor has it, two SSE halves where it
 //! has not, the same bits either way; no AVX-512 needed), and the nearer
 //! children are visited first (as Embree's BVH8 on AVX2).
-//! A leaf's triangles are stored four to a packet, one array per
-//! coordinate, and a ray meets the four in one pass of vector
-//! instructions (as Embree's Triangle4 leaves; Wald et al. 2014), or a
-//! leaf's eight in one pass of AVX2 registers: every leaf holds two
-//! packets, a leaf of four triangles or fewer a second one of none, so the
-//! leaf test takes no branch on its size (1.5-5 % more incoherent rays a
-//! second through 1280 triangles, `results/bench/README.md`).
+//! A leaf's triangles (up to eight) are stored side by side, a row of
+//! eight per coordinate, and a ray meets all eight in one pass of AVX2
+//! registers (as Embree's Triangle4 leaves meet four; Wald et al. 2014),
+//! or in two halves of four in SSE: the lanes a leaf does not use hold a
+//! triangle of zero size, so the test takes no branch on the leaf's size
+//! (1.5-5 % more incoherent rays a second through 1280 triangles,
+//! `results/bench/README.md`).
 
 use super::aabb::GAMMA3;
 use super::{Aabb, Hit, Ray, Triangle};
@@ -160,25 +160,6 @@ struct Tri4 {
 }
 
 impl Tri4 {
-    /// A packet of four triangles of zero size, which no ray hits.
-    const NONE: Tri4 = Tri4 { v0: [Vec4::ZERO; 3], e1: [Vec4::ZERO; 3], e2: [Vec4::ZERO; 3], ids: [EMPTY; 4] };
-
-    /// Up to four triangles of `tris`, by id, in one packet.
-    fn new(ids: &[u32], tris: &[Triangle]) -> Tri4 {
-        debug_assert!(!ids.is_empty() && ids.len() <= 4);
-        let lane = |f: &dyn Fn(&Triangle) -> Vec3| -> [Vec4; 3] {
-            let mut c = [[0.0f32; 4]; 3];
-            for (k, &id) in ids.iter().enumerate() {
-                let v = f(&tris[id as usize]);
-                (c[0][k], c[1][k], c[2][k]) = (v.x, v.y, v.z);
-            }
-            c.map(Vec4::from_array)
-        };
-        let mut lanes = [EMPTY; 4];
-        lanes[..ids.len()].copy_from_slice(ids);
-        Tri4 { v0: lane(&|t| t.v0), e1: lane(&|t| t.e1), e2: lane(&|t| t.e2), ids: lanes }
-    }
-
     /// Moller-Trumbore on the four lanes at once, each step the same
     /// operations in the same order as `Triangle::intersect` (so the same
     /// bits): the nearest hit in `(t_min, t_max]` replaces `best` when it
@@ -224,27 +205,61 @@ impl Tri4 {
     }
 }
 
-/// A leaf's two packets, on five cache lines of their own (a `Vec` of
-/// packets alone is aligned to 16 bytes: a leaf could straddle six).
+/// A leaf's triangles (up to eight) side by side, one lane each (vertex 0
+/// and the two edges, a row of eight per coordinate), and their mesh ids.
+/// Unused lanes hold a triangle of zero size, which no ray hits. 320
+/// bytes on five cache lines of their own.
 #[derive(Copy, Clone, Debug)]
 #[repr(C, align(64))]
-struct Leaf([Tri4; 2]);
+struct Leaf {
+    v0: [[f32; 8]; 3],
+    e1: [[f32; 8]; 3],
+    e2: [[f32; 8]; 3],
+    ids: [u32; 8],
+}
 
-/// Two packets (the eight triangles of a full leaf) met in one AVX2
-/// register a value, lane for lane the operations of `Tri4::intersect`
-/// (so the same bits). Testing the second packet against the `t_max` from
-/// before the first changes nothing: a hit of the second beyond the
-/// first's nearest is not closer, and one as near is kept by the same
-/// lower-id rule either way.
+impl Leaf {
+    /// The triangles of `tris` with these ids (one to eight).
+    fn new(ids: &[u32], tris: &[Triangle]) -> Leaf {
+        debug_assert!(!ids.is_empty() && ids.len() <= 8);
+        let rows = |f: &dyn Fn(&Triangle) -> Vec3| -> [[f32; 8]; 3] {
+            let mut c = [[0.0f32; 8]; 3];
+            for (k, &id) in ids.iter().enumerate() {
+                let v = f(&tris[id as usize]);
+                (c[0][k], c[1][k], c[2][k]) = (v.x, v.y, v.z);
+            }
+            c
+        };
+        let mut lanes = [EMPTY; 8];
+        lanes[..ids.len()].copy_from_slice(ids);
+        Leaf { v0: rows(&|t| t.v0), e1: rows(&|t| t.e1), e2: rows(&|t| t.e2), ids: lanes }
+    }
+
+    /// Lanes `4 h` to `4 h + 3` as a packet of four.
+    fn half(&self, h: usize) -> Tri4 {
+        let lanes = 4 * h..4 * h + 4;
+        let q = |rows: &[[f32; 8]; 3]| rows.map(|r| Vec4::from_slice(&r[lanes.clone()]));
+        let mut ids = [EMPTY; 4];
+        ids.copy_from_slice(&self.ids[lanes.clone()]);
+        Tri4 { v0: q(&self.v0), e1: q(&self.e1), e2: q(&self.e2), ids }
+    }
+}
+
+/// A leaf's eight lanes met in one AVX2 register a value, lane for lane
+/// the operations of `Tri4::intersect` (so the same bits). Meeting the
+/// second half against the `t_max` from before the first (as the portable
+/// test does not) changes nothing: a hit of the second beyond the first's
+/// nearest is not closer, and one as near is kept by the same lower-id
+/// rule either way.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
 #[inline]
-fn pair_avx2(a: &Tri4, b: &Tri4, o: &[f32; 3], d: &[f32; 3], t_min: f32, t_max: f32, best: &mut Option<Hit>) {
+fn leaf_avx2(leaf: &Leaf, o: &[f32; 3], d: &[f32; 3], t_min: f32, t_max: f32, best: &mut Option<Hit>) {
     use std::arch::x86_64::*;
-    // Lanes 0-3 from `a`, 4-7 from `b`.
     macro_rules! join {
         ($f:ident, $k:expr) => {
-            _mm256_set_m128(b.$f[$k].into(), a.$f[$k].into())
+            // SAFETY: a row of eight f32s, 32-byte aligned in the 64-byte-aligned leaf.
+            unsafe { _mm256_load_ps(leaf.$f[$k].as_ptr()) }
         };
     }
     let (sub, mul, add) = (_mm256_sub_ps, _mm256_mul_ps, _mm256_add_ps);
@@ -294,8 +309,7 @@ fn pair_avx2(a: &Tri4, b: &Tri4, o: &[f32; 3], d: &[f32; 3], t_min: f32, t_max: 
     while mask != 0 {
         let k = mask.trailing_zeros() as usize;
         mask &= mask - 1;
-        let tri = if k < 4 { a.ids[k] } else { b.ids[k - 4] };
-        let h = Hit { t: ts[k], tri, u: us[k], v: vs[k] };
+        let h = Hit { t: ts[k], tri: leaf.ids[k], u: us[k], v: vs[k] };
         if best.is_none_or(|b| h.closer_than(&b)) {
             *best = Some(h);
         }
@@ -310,13 +324,13 @@ const MAX_DEPTH: usize = 60;
 /// The deepest a binary node can be: `MAX_DEPTH`, then halvings of at most
 /// 2^32 triangles.
 const DEEPEST: usize = MAX_DEPTH + 32;
-// A leaf is two packets (`Bvh::build`).
-const _: () = assert!(MAX_LEAF.div_ceil(4) == 2);
+// A leaf is eight lanes (`Leaf`).
+const _: () = assert!(MAX_LEAF == 8);
 /// Cost of visiting a node relative to one leaf pass (up to eight triangles).
 const TRAVERSAL_COST: f32 = 1.0;
 
-/// Bytes asked for ahead of a child's visit: a node, or a full leaf's
-/// packets, whichever is longer.
+/// Bytes asked for ahead of a child's visit: a node, or a leaf,
+/// whichever is longer.
 const PREFETCH_BYTES: usize = {
     let leaf = std::mem::size_of::<Leaf>();
     let node = std::mem::size_of::<Wide>();
@@ -409,14 +423,9 @@ impl Bvh {
         let mut nodes = Vec::with_capacity(tris.len() / 2 + 1);
         let mut leaves = Vec::with_capacity(tris.len() / 4 + 1);
         let bounds = if !tris.is_empty() {
-            // Each leaf's triangles, in leaf order, four to a packet.
+            // Each leaf's triangles, in leaf order, side by side.
             let mut pack = |first: u32, count: u32| -> u32 {
-                let mut chunks = ids[first as usize..(first + count) as usize].chunks(4);
-                let a = Tri4::new(chunks.next().expect("a leaf holds a triangle"), tris);
-                // Two packets a leaf (see the module's comment).
-                let b = chunks.next().map_or(Tri4::NONE, |c| Tri4::new(c, tris));
-                debug_assert!(chunks.next().is_none());
-                leaves.push(Leaf([a, b]));
+                leaves.push(Leaf::new(&ids[first as usize..(first + count) as usize], tris));
                 leaves.len() as u32 - 1
             };
             collapse(&binary, &Spread::of(&binary), 0, &mut nodes, &mut pack);
@@ -463,9 +472,9 @@ impl Bvh {
             BoxTest::Avx2 => unsafe { self.intersect_avx2(ray) },
             _ => {
                 let (o4, d4) = (ray.origin.to_array().map(Vec4::splat), ray.dir.to_array().map(Vec4::splat));
-                self.walk(ray, boxes_portable, |packets, _, _, t_min, t_max, best| {
-                    // (A leaf's padding packet holds no triangle.)
-                    for p in packets.iter().filter(|p| p.ids[0] != EMPTY) {
+                self.walk(ray, boxes_portable, |leaf, _, _, t_min, t_max, best| {
+                    // (The second half of a leaf of four or fewer is empty.)
+                    for p in [leaf.half(0), leaf.half(1)].iter().filter(|p| p.ids[0] != EMPTY) {
                         p.intersect(&o4, &d4, t_min, *t_max, best);
                         *t_max = best.map_or(*t_max, |b| b.t);
                     }
@@ -474,30 +483,29 @@ impl Bvh {
         }
     }
 
-    /// `walk` compiled for AVX2, its box test and a full leaf's two
-    /// packets in AVX2 registers.
+    /// `walk` compiled for AVX2, its box test and a leaf's eight lanes in
+    /// AVX2 registers.
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2")]
     fn intersect_avx2(&self, ray: &Ray) -> Option<Hit> {
         self.walk(
             ray,
             |n, r, t| boxes_avx2(n, r, t),
-            |packets, o, d, t_min, t_max, best| {
-                // Every leaf holds two packets.
-                pair_avx2(&packets[0], &packets[1], o, d, t_min, *t_max, best);
+            |leaf, o, d, t_min, t_max, best| {
+                leaf_avx2(leaf, o, d, t_min, *t_max, best);
                 *t_max = best.map_or(*t_max, |b| b.t);
             },
         )
     }
 
-    /// The traversal: children entered nearest first, leaves' packets met
+    /// The traversal: children entered nearest first, leaves met
     /// as soon as their box is entered.
     #[inline(always)]
     fn walk(
         &self,
         ray: &Ray,
         boxes: impl Fn(&Wide, &RayBoxes, f32) -> (u32, [f32; WIDTH]),
-        leaf: impl Fn(&[Tri4; 2], &[f32; 3], &[f32; 3], f32, &mut f32, &mut Option<Hit>),
+        leaf: impl Fn(&Leaf, &[f32; 3], &[f32; 3], f32, &mut f32, &mut Option<Hit>),
     ) -> Option<Hit> {
         let inv = ray.inv_dir();
         let r = RayBoxes { down: inv.to_array().map(f32::is_sign_negative), o: ray.origin.to_array(), inv: inv.to_array(), t_min: ray.t_min };
@@ -514,7 +522,7 @@ impl Bvh {
         let mut at = Slot { child: Ref::node(0), near: ray.t_min };
         loop {
             if at.child.is_leaf() {
-                leaf(&self.leaves[at.child.index()].0, &o, &d, ray.t_min, &mut t_max, &mut best);
+                leaf(&self.leaves[at.child.index()], &o, &d, ray.t_min, &mut t_max, &mut best);
             } else {
                 let node = &self.nodes[at.child.index()];
                 let (mut mask, near) = boxes(node, &r, t_max);
@@ -848,8 +856,8 @@ fn split(
     build_rec(nodes, left + 1, rp, ri, first + mid, depth + 1, right_extent);
 }
 
-/// The cost of testing `n` triangles: one 8-lane pass per eight (a leaf's
-/// two packets are met in one pass, whether it holds one triangle or eight).
+/// The cost of testing `n` triangles: one 8-lane pass per eight (a leaf
+/// is met in one pass, whether it holds one triangle or eight).
 #[inline]
 fn passes_of(n: usize) -> f32 {
     n.div_ceil(8) as f32
@@ -1021,8 +1029,7 @@ mod tests {
                 let b = Aabb { min: Vec3::new(w.lo[0][k], w.lo[1][k], w.lo[2][k]), max: Vec3::new(w.hi[0][k], w.hi[1][k], w.hi[2][k]) };
                 let c = w.child[k];
                 sum += if c.is_leaf() {
-                    let packets = &bvh.leaves[c.index()].0;
-                    b.area() * passes_of(packets.iter().flat_map(|p| p.ids).filter(|&id| id != EMPTY).count())
+                    b.area() * passes_of(bvh.leaves[c.index()].ids.iter().filter(|&&id| id != EMPTY).count())
                 } else {
                     cost(bvh, c.index(), b.area())
                 };
