@@ -660,10 +660,10 @@ fn binary_tree(tris: &[Triangle], depth: usize) -> (Vec<Node>, Vec<u32>) {
 /// per node and slot count `j` (1 to 8, at index `j - 1`), how many slots
 /// the subtree's cheapest form in at most `j` takes (by the SAH), and,
 /// spread over its two children, how many of them go to the left.
-/// Worked out bottom-up (Ylitie et al. 2017, "Efficient incoherent ray
-/// traversal on GPUs through compressed wide BVHs", section 3.1): a slot
-/// holds a leaf, or an inner node paying one box test and spreading its
-/// own subtree over eight slots below.
+/// Worked out bottom-up (Ylitie et al. 2017, section 3.1; the recurrence
+/// in docs/architecture.md, "The BVH's wide tree"): a slot holds a leaf,
+/// or an inner node paying one box test and spreading its own subtree
+/// over eight slots below.
 struct Spread {
     used: Vec<[u8; WIDTH]>,
     left: Vec<[u8; WIDTH]>,
