@@ -687,7 +687,10 @@ impl Spread {
             for j in 2..=WIDTH {
                 for k in 1..j {
                     let c = cost[l][k - 1] + cost[r][j - k - 1];
-                    if c < spread[j - 1] {
+                    // (The first share is taken whatever its cost: boxes of
+                    // coordinates near f32's range have infinite or NaN
+                    // areas, and every share must still name its slots.)
+                    if k == 1 || c < spread[j - 1] {
                         spread[j - 1] = c;
                         left[at][j - 1] = k as u8;
                     }
@@ -1048,6 +1051,40 @@ mod tests {
                 assert!((got - want).abs() <= 1e-5 * want, "{n} triangles: the wide tree costs {got}, the best cut {want}");
             }
         }
+    }
+
+    /// Coordinates near the end of f32's range, where boxes' areas
+    /// overflow to infinity (or NaN, infinity times zero): the tree still
+    /// builds, and finds what the scan finds.
+    #[test]
+    fn boxes_of_infinite_area_still_make_a_tree() {
+        let mut rng = crate::sampling::Rng::new(1, 2, 3);
+        let mut tris: Vec<Triangle> = (0..300)
+            .map(|_| {
+                let c = point(&mut rng) * 1e19;
+                Triangle::new(c, c + point(&mut rng) * 1e17, c + point(&mut rng) * 1e17)
+            })
+            .collect();
+        // Flat along z: zero depth times an infinite extent.
+        tris.extend((0..50).map(|_| {
+            let c = point(&mut rng).with_z(0.0) * 3e19;
+            Triangle::new(c, c + Vec3::X * 1e18, c + Vec3::Y * 1e18)
+        }));
+        assert!(!Aabb::from_points(tris.iter().flat_map(|t| t.vertices())).area().is_finite());
+        let mut hits = 0;
+        for boxes in [BoxTest::detect(), BoxTest::Portable] {
+            let bvh = Bvh::build(&tris).with_box_test(boxes);
+            for _ in 0..500 {
+                let t = &tris[(rng.next_u64() % tris.len() as u64) as usize];
+                let o = point(&mut rng) * 2e19;
+                let ray = Ray::new(o, (t.v0 + 0.3 * t.e1 + 0.3 * t.e2 - o).normalize());
+                let hit = bvh.intersect(&ray);
+                assert_eq!(hit, linear_intersect(&tris, &ray), "{boxes:?}, ray from {o}");
+                hits += hit.is_some() as usize;
+            }
+        }
+        // (Far from the origin most products overflow and rays miss.)
+        assert!(hits > 20, "the test must exercise hits, got {hits}");
     }
 
     /// A deep tree (a soup of 20 000 small triangles, several levels of
