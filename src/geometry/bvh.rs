@@ -1053,9 +1053,9 @@ mod tests {
         }
     }
 
-    /// Coordinates near the end of f32's range, where boxes' areas
-    /// overflow to infinity (or NaN, infinity times zero): the tree still
-    /// builds, and finds what the scan finds.
+    /// Coordinates far enough out that boxes' areas overflow to infinity
+    /// (the programme's costs with them): the tree still builds, and finds
+    /// what the scan finds.
     #[test]
     fn boxes_of_infinite_area_still_make_a_tree() {
         let mut rng = crate::sampling::Rng::new(1, 2, 3);
@@ -1065,7 +1065,7 @@ mod tests {
                 Triangle::new(c, c + point(&mut rng) * 1e17, c + point(&mut rng) * 1e17)
             })
             .collect();
-        // Flat along z: zero depth times an infinite extent.
+        // And flat ones, along z.
         tris.extend((0..50).map(|_| {
             let c = point(&mut rng).with_z(0.0) * 3e19;
             Triangle::new(c, c + Vec3::X * 1e18, c + Vec3::Y * 1e18)
