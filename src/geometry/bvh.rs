@@ -471,17 +471,23 @@ impl Bvh {
             #[cfg(target_arch = "x86_64")]
             // SAFETY: `Avx2` is only chosen where the processor has AVX2.
             BoxTest::Avx2 => unsafe { self.intersect_avx2(ray) },
-            _ => {
-                let (o4, d4) = (ray.origin.to_array().map(Vec4::splat), ray.dir.to_array().map(Vec4::splat));
-                self.walk(ray, boxes_portable, |leaf, _, _, t_min, t_max, best| {
-                    // (The second half of a leaf of four or fewer is empty.)
-                    for p in [leaf.half(0), leaf.half(1)].iter().filter(|p| p.ids[0] != EMPTY) {
-                        p.intersect(&o4, &d4, t_min, *t_max, best);
-                        *t_max = best.map_or(*t_max, |b| b.t);
-                    }
-                })
-            }
+            _ => self.intersect_portable(ray),
         }
+    }
+
+    /// `walk` with the SSE box test and a leaf met in two halves of four.
+    /// Kept out of `intersect`, so that rays on the AVX2 path do not set
+    /// up (and probe) its stack frame as well as their own.
+    #[inline(never)]
+    fn intersect_portable(&self, ray: &Ray) -> Option<Hit> {
+        let (o4, d4) = (ray.origin.to_array().map(Vec4::splat), ray.dir.to_array().map(Vec4::splat));
+        self.walk(ray, boxes_portable, |leaf, _, _, t_min, t_max, best| {
+            // (The second half of a leaf of four or fewer is empty.)
+            for p in [leaf.half(0), leaf.half(1)].iter().filter(|p| p.ids[0] != EMPTY) {
+                p.intersect(&o4, &d4, t_min, *t_max, best);
+                *t_max = best.map_or(*t_max, |b| b.t);
+            }
+        })
     }
 
     /// `walk` compiled for AVX2, its box test and a leaf's eight lanes in
