@@ -124,3 +124,26 @@ fn figures_twice_write_the_same_bytes() {
     let changed: Vec<&String> = runs[0].iter().filter(|(k, v)| runs[1][*k] != **v).map(|(k, _)| k).collect();
     assert!(changed.is_empty(), "changed on the second run: {changed:?}");
 }
+
+/// `bench prism --quick` is a smoke run: it writes its CSV and plot to the
+/// ignored `results/quick/bench`, never over the measurement recorded in
+/// `results/bench`; the CSV has the columns, a row per measured
+/// point, and finite errors.
+#[test]
+fn a_quick_prism_bench_leaves_the_recorded_one_alone() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let o = run(&["bench", "prism", "--quick"], "", d);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(!d.join("results/bench").exists(), "a quick run wrote into results/bench");
+    let csv = std::fs::read_to_string(d.join("results/quick/bench/prism-error-vs-time.csv")).unwrap();
+    let mut lines = csv.lines();
+    assert_eq!(lines.next(), Some("method,photons,seconds,rel_error"));
+    let rows: Vec<&str> = lines.collect();
+    assert!(rows.len() >= 10, "{} rows", rows.len());
+    for row in rows {
+        let err: f64 = row.rsplit(',').next().unwrap().parse().unwrap();
+        assert!(err.is_finite() && err > 0.0, "{row}");
+    }
+    assert!(d.join("results/quick/bench/prism-error-vs-time.png").is_file());
+}

@@ -110,9 +110,11 @@ pub enum BenchCommand {
         /// Fewer, smaller runs (a smoke run, not a measurement).
         #[arg(long)]
         quick: bool,
-        /// Folder for the CSV and the plot
-        #[arg(long, default_value = "results/bench")]
-        out: PathBuf,
+        /// Folder for the CSV and the plot [default: results/bench, or
+        /// results/quick/bench with --quick, so that a smoke run leaves
+        /// the recorded measurement alone]
+        #[arg(long)]
+        out: Option<PathBuf>,
     },
     /// Whether the photograph-like figures have converged: each rendered
     /// at two seeds, the relative RMSE of luminance between them (target
@@ -390,7 +392,10 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Spectrum { which } => run_spectrum(which),
         Command::Glass(args) => run_glass(args),
         Command::Bench { which: BenchCommand::Interior { quick } } => write_stdout(&crate::bench::interior(quick)?),
-        Command::Bench { which: BenchCommand::Prism { quick, out } } => write_stdout(&crate::bench::prism(quick, &out)?),
+        Command::Bench { which: BenchCommand::Prism { quick, out } } => {
+            let out = out.unwrap_or_else(|| PathBuf::from(if quick { "results/quick/bench" } else { "results/bench" }));
+            write_stdout(&crate::bench::prism(quick, &out)?)
+        }
         Command::Bench { which: BenchCommand::Figures { quick, only, scenes } } => write_stdout(&crate::bench::figures(quick, &scenes, &only)?),
     }
 }
