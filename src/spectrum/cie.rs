@@ -153,6 +153,11 @@ crate::named_enum! {
         /// no channel is negative, then, if a channel exceeds 1, scale the whole
         /// colour down (never clip one channel alone).
         Desaturate = "desaturate",
+        /// Filmic, of the AgX kind (docs/physics.md §23): hue kept as for
+        /// desaturate, then log encoding in an inset gamut, a sigmoid and an
+        /// outset, so the brightest saturated light rolls smoothly toward
+        /// white as on film and nothing posterises.
+        Agx = "agx",
     }
 }
 
@@ -174,8 +179,53 @@ impl GamutMap {
                     v
                 }
             }
+            GamutMap::Agx => agx(desaturate(v)),
         }
     }
+}
+
+/// AgX's inset (docs/physics.md §23): each colour mixed 20 % of the way
+/// toward a weighted grey of itself, white unmoved (Sobotka's matrix has
+/// this form: 1 - s on the diagonal plus s times the weights).
+const AGX_INSET: f64 = 0.2;
+const AGX_WEIGHTS: DVec3 = DVec3::new(0.2117, 0.3922, 0.3961);
+/// The log encoding's range in stops about 1.0: 0.18 (mid grey) lands at
+/// 10 / 16.5 of it, as in Blender's AgX (log2 range -10 to +6.5 about 0.18).
+const AGX_MIN_EV: f64 = -12.473931188332412;
+const AGX_MAX_EV: f64 = 4.026068811667588;
+/// Linear input that the figures' exposure brings to 1 (the 99.5th
+/// percentile under automatic exposure) is shown 2 stops under AgX's
+/// white, at about 92 % of full scale: what is brighter still rolls on.
+const AGX_HEADROOM: f64 = 4.0;
+
+/// The filmic curve on linear sRGB with no negative channel: inset, log2
+/// encoding, sigmoid per channel, outset (§23). Returns display-linear
+/// values in [0, 1].
+pub fn agx(v: DVec3) -> DVec3 {
+    let s = AGX_INSET;
+    let inset = |c: DVec3| (1.0 - s) * c + DVec3::splat(s * AGX_WEIGHTS.dot(c));
+    // The inverse of the inset (Sherman-Morrison; the weights sum to 1).
+    let outset = |c: DVec3| (c - DVec3::splat(s * AGX_WEIGHTS.dot(c))) / (1.0 - s);
+    let c = inset(v.max(DVec3::ZERO) * AGX_HEADROOM);
+    let encode = |x: f64| ((x.max(1e-10).log2() - AGX_MIN_EV) / (AGX_MAX_EV - AGX_MIN_EV)).clamp(0.0, 1.0);
+    let y = DVec3::new(agx_sigmoid(encode(c.x)), agx_sigmoid(encode(c.y)), agx_sigmoid(encode(c.z)));
+    outset(y.powf(2.4)).clamp(DVec3::ZERO, DVec3::ONE)
+}
+
+/// AgX's sigmoid (§23) on the log-encoded x in [0, 1], giving a display
+/// value (encoded with power 2.4): slope 2.4 through mid grey at
+/// (x_p, 0.18^(1/2.4)), each side bent by (1 + (k |x - x_p|)^1.5)^(-1/1.5)
+/// with k chosen so that the curve meets (0, 0) and (1, 1).
+pub fn agx_sigmoid(x: f64) -> f64 {
+    const P: f64 = 1.5;
+    const SLOPE: f64 = 2.4;
+    let x_p = -AGX_MIN_EV / (AGX_MAX_EV - AGX_MIN_EV) + 0.18f64.log2() / (AGX_MAX_EV - AGX_MIN_EV);
+    let y_p = 0.18f64.powf(1.0 / 2.4);
+    let d = x - x_p;
+    // The end the curve bends toward, and k that makes it arrive there.
+    let (end_d, end_y) = if d < 0.0 { (x_p, y_p) } else { (1.0 - x_p, 1.0 - y_p) };
+    let k = ((SLOPE * end_d / end_y).powf(P) - 1.0).powf(1.0 / P) / end_d;
+    y_p + SLOPE * d / (1.0 + (k * d.abs()).powf(P)).powf(1.0 / P)
 }
 
 /// Moves a colour toward the grey of its own luminance just far enough
@@ -228,6 +278,68 @@ mod tests {
         assert!((SRGB_LUMA.dot(m) - c.luminance()).abs() < 1e-12);
         assert!(m.min_element().abs() < 1e-12);
         assert_eq!(GamutMap::Clip.apply(LinearRgb(DVec3::new(f64::NAN, 0.0, 0.0))), DVec3::ZERO);
+    }
+
+    #[test]
+    fn agx_sigmoid_meets_its_three_points_and_rises() {
+        let x_p = 10.0 / 16.5;
+        assert!(agx_sigmoid(0.0).abs() < 1e-12);
+        assert!((agx_sigmoid(1.0) - 1.0).abs() < 1e-12);
+        assert!((agx_sigmoid(x_p) - 0.18f64.powf(1.0 / 2.4)).abs() < 1e-12);
+        // Blender's curve (EaryChow's AgX_LUT_Gen, its published constants
+        // evaluated independently) at two points.
+        assert!((agx_sigmoid(0.3) - 0.0884922242427314).abs() < 1e-9, "{}", agx_sigmoid(0.3));
+        assert!((agx_sigmoid(0.8) - 0.8407495052554047).abs() < 1e-9, "{}", agx_sigmoid(0.8));
+        let ys: Vec<f64> = (0..=1000).map(|i| agx_sigmoid(i as f64 / 1000.0)).collect();
+        assert!(ys.windows(2).all(|w| w[1] > w[0]));
+    }
+
+    #[test]
+    fn agx_keeps_greys_grey_and_rolls_bright_colours_toward_white() {
+        for e in [0.01, 0.1, 1.0, 10.0] {
+            let g = agx(DVec3::splat(e));
+            assert!((g.x - g.y).abs() < 1e-9 && (g.y - g.z).abs() < 1e-9, "{e}: {g:?}");
+        }
+        // The exposure's white (a quarter of AgX's headroom) to about 92 %
+        // of full scale once encoded.
+        let w = srgb_encode(agx(DVec3::ONE).x);
+        assert!((0.85..0.97).contains(&w), "{w}");
+        // A saturated green brightens and whitens as it is exposed more:
+        // its weakest channel rises toward its strongest.
+        let green = Xyz(cmf(520.0)).to_linear_srgb().0;
+        let (dim, bright) = (GamutMap::Agx.apply(LinearRgb(green * 0.3)), GamutMap::Agx.apply(LinearRgb(green * 30.0)));
+        let sat = |v: DVec3| 1.0 - v.min_element() / v.max_element();
+        assert!(sat(bright) < 0.5 * sat(dim), "{dim:?} {bright:?}");
+        assert!(bright.max_element() > dim.max_element());
+        // Never out of [0, 1], NaN to black.
+        for nm in (380..=780).step_by(5) {
+            for e in [1e-6, 1e-2, 1.0, 1e2, 1e6] {
+                let v = GamutMap::Agx.apply(LinearRgb(Xyz(cmf(nm as f64)).to_linear_srgb().0 * e));
+                assert!(v.min_element() >= 0.0 && v.max_element() <= 1.0, "{nm} {e}: {v:?}");
+            }
+        }
+        assert_eq!(GamutMap::Agx.apply(LinearRgb(DVec3::new(f64::NAN, 1.0, 1.0))), DVec3::ZERO);
+    }
+
+    #[test]
+    fn agx_shows_an_overexposed_spectrum_without_flat_blocks() {
+        // The spectrum 400-700 nm at 1 nm, exposed so its peak is 8 times
+        // full scale: clipping turns long runs of it into identical 8-bit
+        // colours (flat blocks); AgX changes colour from step to step.
+        let peak = (400..=700).map(|nm| desaturate(Xyz(cmf(nm as f64)).to_linear_srgb().0).max_element()).fold(0.0, f64::max);
+        let runs = |map: GamutMap| {
+            let px: Vec<[u8; 3]> = (400..=700).map(|nm| to_srgb8(Xyz(cmf(nm as f64)).to_linear_srgb(), 8.0 / peak, map)).collect();
+            let mut longest = 1;
+            let mut run = 1;
+            for w in px.windows(2) {
+                run = if w[0] == w[1] { run + 1 } else { 1 };
+                longest = longest.max(run);
+            }
+            longest
+        };
+        let (clip, agx) = (runs(GamutMap::Clip), runs(GamutMap::Agx));
+        assert!(clip >= 10, "clip's longest flat run: {clip} nm");
+        assert!(agx <= 4 && agx * 3 <= clip, "AgX's longest flat run: {agx} nm, clip's {clip} nm");
     }
 
     #[test]
