@@ -4,9 +4,9 @@
 //! figure beside the report's caption, its parameters and its render time.
 //!
 //! Renderings come from the scene files in `scenes/` (editable, and
-//! renderable alone with `refract render`); three figures are drawn here:
-//! the ray diagram (css552-p2), the scene overview (css552-p3) and the
-//! colour-map comparison (pm-spectra-compare).
+//! renderable alone with `refract render`); two figures are drawn here:
+//! the ray diagram (css552-p2) and the colour-map comparison
+//! (pm-spectra-compare).
 
 use super::scene_file::SceneFile;
 use crate::image_io::{atomic_write, write_rgb8};
@@ -18,13 +18,12 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 /// Figures drawn in code rather than from a scene file.
-const DRAWN: [(&str, &str, &str); 3] = [
+const DRAWN: [(&str, &str, &str); 2] = [
     (
         "css552-p2",
         "000",
         "Picture 2: direction of a monochromatic ray by Snell's law (a white ray splitting through the Amici prism; angles past the prism drawn 5x larger)",
     ),
-    ("css552-p3", "000", "Picture 3: the scene (light, prism, screen, camera), seen from above"),
     (
         "pm-spectra-compare",
         "003",
@@ -345,7 +344,6 @@ fn write_index(out: &Path, ids: &[String], records: &BTreeMap<String, Record>, q
 fn draw(id: &str, png: &Path, quick: bool) -> Result<String> {
     match id {
         "css552-p2" => ray_diagram(png),
-        "css552-p3" => overview(png),
         _ => colour_compare(png, quick),
     }
 }
@@ -418,63 +416,6 @@ fn ray_diagram(png: &Path) -> Result<String> {
     }
     write_rgb8(png, w as usize, h as usize, &buf)?;
     Ok("N-BK7 | N-SF11 | N-BK7, flint apex 90 deg, Sellmeier; deviation past the prism drawn 5x".into())
-}
-
-fn overview(png: &Path) -> Result<String> {
-    super::plot::register();
-    let s = amici()?;
-    let (w, h) = (900u32, 420u32);
-    let mut buf = vec![0u8; (w * h * 3) as usize];
-    {
-        let root = BitMapBackend::with_buffer(&mut buf, (w, h)).into_drawing_area();
-        root.fill(&WHITE).map_err(plot_err)?;
-        let mut c = ChartBuilder::on(&root)
-            .caption("amici-screen, seen from above: beam, prism, screen, camera", ("sans-serif", 20))
-            .margin(12)
-            .x_label_area_size(36)
-            .y_label_area_size(56)
-            .build_cartesian_2d(-0.5f64..2.3f64, -0.45f64..0.75f64)
-            .map_err(plot_err)?;
-        c.configure_mesh().x_desc("x (m)").y_desc("y (m)").label_style(("sans-serif", 13)).draw().map_err(plot_err)?;
-        for seg in outline(&s) {
-            c.draw_series(LineSeries::new(seg, BLACK.stroke_width(2))).map_err(plot_err)?;
-        }
-        let screen = &s.faces[s.maps[0]];
-        let (lo, hi) = (screen.verts.iter().map(|v| v.y).fold(f64::INFINITY, f64::min), screen.verts.iter().map(|v| v.y).fold(f64::NEG_INFINITY, f64::max));
-        let sx = screen.verts[0].x;
-        c.draw_series(LineSeries::new([(sx, lo), (sx, hi)], RGBColor(120, 120, 120).stroke_width(5)))
-            .map_err(plot_err)?
-            .label("matte screen")
-            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], RGBColor(120, 120, 120).stroke_width(5)));
-        for (nm, colour) in [(450.0, RGBColor(40, 60, 255)), (587.5618, RGBColor(0, 0, 0)), (650.0, RGBColor(230, 0, 0))] {
-            let p = crate::world::probe::probe(&s, nm);
-            let t = (sx - p.exit_point.x) / p.exit_dir.x;
-            let mut pts: Vec<(f64, f64)> = p.path.iter().map(|v| (v.x, v.y)).collect();
-            pts.push((sx, p.exit_point.y + t * p.exit_dir.y));
-            c.draw_series(LineSeries::new(pts, colour.stroke_width(1)))
-                .map_err(plot_err)?
-                .label(format!("beam at {nm} nm"))
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], colour.stroke_width(2)));
-        }
-        let cam = s.camera.pos;
-        c.draw_series(std::iter::once(Circle::new((cam.x, cam.y), 6, RGBColor(0, 150, 0).filled())))
-            .map_err(plot_err)?
-            .label("camera")
-            .legend(|(x, y)| Circle::new((x + 9, y), 5, RGBColor(0, 150, 0).filled()));
-        for v in [lo, hi] {
-            c.draw_series(LineSeries::new([(cam.x, cam.y), (sx, v)], RGBColor(0, 150, 0).stroke_width(1))).map_err(plot_err)?;
-        }
-        c.configure_series_labels()
-            .position(SeriesLabelPosition::UpperLeft)
-            .background_style(WHITE.mix(0.9))
-            .border_style(BLACK)
-            .label_font(("sans-serif", 13))
-            .draw()
-            .map_err(plot_err)?;
-        root.present().map_err(plot_err)?;
-    }
-    write_rgb8(png, w as usize, h as usize, &buf)?;
-    Ok("amici-screen geometry (metres), probe rays at 450, 587.6 and 650 nm".into())
 }
 
 fn colour_compare(png: &Path, quick: bool) -> Result<String> {

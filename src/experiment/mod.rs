@@ -3,6 +3,8 @@
 pub mod charts;
 pub mod figures;
 pub mod grid;
+pub mod inset;
+pub mod labels;
 pub mod metrics;
 pub mod params;
 pub mod plan;

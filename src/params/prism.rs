@@ -6,7 +6,7 @@ use crate::optics::glass;
 use crate::optics::ior::IorKind;
 use crate::photon::gather::Filter;
 use crate::photon::map::MapKind;
-use crate::scenes::{SceneKind, SceneOptions};
+use crate::scenes::{SceneKind, SceneOptions, View};
 use crate::spectral::options::EyeMode;
 use crate::spectral::SpectralConfig;
 use crate::spectrum::cie::GamutMap;
@@ -47,6 +47,10 @@ fn amici_only(c: &SpectralConfig) -> Option<String> {
 fn has_faces(c: &SpectralConfig) -> Option<String> {
     let sphere = matches!(c.scene.kind, SceneKind::SphereArealight | SceneKind::SphereMetal | SceneKind::SpheresFinal);
     sphere.then(|| format!("the {} scene's glass is a sphere: it has no entry face to set an angle of incidence on", c.scene.kind.name()))
+}
+
+fn bench_only(c: &SpectralConfig) -> Option<String> {
+    (c.scene.kind != SceneKind::AmiciBench).then(|| format!("the {} scene has one view (amici-bench has three)", c.scene.kind.name()))
 }
 
 fn has_glass(c: &SpectralConfig) -> Option<String> {
@@ -198,6 +202,18 @@ pub static PARAMS: &[Param<SpectralConfig>] = &[
         get: |c| c.scene.haze.map(Value::Real),
         set: |c, v| c.scene.haze = Some(v.real()),
         ignored: never,
+    },
+    Param {
+        key: "view",
+        aliases: &[],
+        section: SCENE,
+        help: "Where the camera stands in amici-bench",
+        unit: "",
+        kind: Kind::Choice(choices::<View>),
+        auto: "",
+        get: |c| Some(pick(c.scene.view)),
+        set: |c, v| c.scene.view = v.choice(),
+        ignored: bench_only,
     },
     Param {
         key: "indirect_gather",
@@ -499,7 +515,7 @@ pub fn defaults() -> SpectralConfig {
 /// prism trace` takes): not the image's size, the light, the haze or the
 /// gather.
 pub fn is_scene(p: &Param<SpectralConfig>) -> bool {
-    p.section == SCENE && !["size", "light_spectrum", "haze", "indirect_gather"].contains(&p.key)
+    p.section == SCENE && !["size", "light_spectrum", "haze", "indirect_gather", "view"].contains(&p.key)
 }
 
 #[cfg(test)]

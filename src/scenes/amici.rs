@@ -13,7 +13,7 @@
 //! `amici-lamp`, the camera looks through the prism at a fluorescent tube
 //! 1 m away: one image of the tube per spectral line (Picture 1).
 
-use super::{glass_medium, light_spectrum, rotate_z, SceneKind, SceneOptions};
+use super::{glass_medium, light_spectrum, rotate_z, SceneKind, SceneOptions, View};
 use crate::optics::ior::IorKind;
 use crate::world::probe::{probe, probe_ray, ProbeRay};
 use crate::world::{Albedo, Camera, Emission, Face, Light, Medium, Surface, World};
@@ -63,7 +63,8 @@ pub fn build(o: &SceneOptions) -> Result<World> {
         o.width,
         o.height,
     );
-    scene.add_extruded("amici", &[(prism.parts[0], 1), (prism.parts[1], 2), (prism.parts[2], 1)], -0.015, 0.015);
+    let half = prism.size / 2.0;
+    scene.add_extruded("amici", &[(prism.parts[0], 1), (prism.parts[1], 2), (prism.parts[2], 1)], -half, half);
     scene.probe = (prism.start, prism.dir);
     // Screen and camera are placed from the glasses' Sellmeier dispersion
     // whatever index model is chosen, so --no-prism, --no-dispersion and
@@ -78,7 +79,7 @@ pub fn build(o: &SceneOptions) -> Result<World> {
         SceneKind::AmiciScreen => add_screen(&mut scene, o, &prism, &design, &d_line, 2.0)?,
         SceneKind::AmiciBench => {
             add_screen(&mut scene, o, &prism, &design, &d_line, BENCH_SCREEN_DISTANCE)?;
-            add_bench(&mut scene, o)?;
+            add_bench(&mut scene, o, &prism)?;
         }
         _ => add_lamp(&mut scene, o, &prism, &design, &d_line)?,
     }
@@ -96,6 +97,8 @@ struct AmiciPrism {
     incidence: f64,
     start: DVec3,
     dir: DVec3,
+    /// The cross-sections' height and the extrusion's depth, m.
+    size: f64,
 }
 
 impl AmiciPrism {
@@ -115,7 +118,10 @@ impl AmiciPrism {
                 o.flint_apex_deg
             );
         };
-        let parts = cross_sections(a1, a2, 0.03);
+        // The bench's prism is larger (5 cm), as a photograph of it needs;
+        // elsewhere 3 cm.
+        let size = if o.kind == SceneKind::AmiciBench { 0.05 } else { 0.03 };
+        let parts = cross_sections(a1, a2, size);
         // Incidence on the entry face, whose inward normal is at h - a1 from +x.
         let h = a2 / 2.0;
         let incidence = o.incidence_deg.map_or(a1 - h, f64::to_radians);
@@ -123,7 +129,7 @@ impl AmiciPrism {
         // Aim the beam at the middle of the entry face.
         let entry_mid = (parts[0][0] + parts[0][1]) / 2.0;
         let start = DVec3::new(entry_mid.x, entry_mid.y, 0.0) - dir * 0.3;
-        Ok(AmiciPrism { parts, a1, h, incidence, start, dir })
+        Ok(AmiciPrism { parts, a1, h, incidence, start, dir, size })
     }
 }
 
@@ -165,88 +171,100 @@ fn add_screen(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism, design: &
 /// that prism and strip are both large in one view.
 const BENCH_SCREEN_DISTANCE: f64 = 0.8;
 
-/// Pictures 4-6 as a photograph of the bench would show them: a grey
-/// table strip under the prism (which stands on it), the beam's path and
-/// the screen, lit from above and behind by a broad, dim, collimated light
-/// (sunlight through a window: every photon lands where the camera looks),
-/// and the camera behind the prism and above the table, looking past the
-/// prism at the screen, so the prism (or its absence) and the strip (or
-/// the white patch) are both in view.
-fn add_bench(scene: &mut World, o: &SceneOptions) -> Result<()> {
+/// Pictures 3-6 as photographs of an optics bench would show them: a grey
+/// table under the prism (which stands on it); a lamp housing whose slit
+/// sends the white beam (4 mm x 2 cm here, wide enough to see as a patch
+/// on the screen) down the bench; the beam's path shown by a thin haze,
+/// white up to the prism and a narrow fan of colours after it; a white
+/// screen standing on the table 0.8 m past the prism; the room lit dimly
+/// from above and behind by a broad collimated light (daylight through a
+/// window: every photon lands where the camera looks, and the haze leaves
+/// it out). The view (`View`) is the bench from behind and above the lamp
+/// (Pictures 4-6), the screen close up, or the whole bench from high above
+/// its side (Picture 3).
+fn add_bench(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism) -> Result<()> {
     let Some(&screen) = scene.maps.first() else { bail!("the bench view needs the screen") };
     let (corner, eu, ev) = scene.faces[screen].frame.expect("the screen is a parallelogram");
-    let centre = corner + (eu + ev) / 2.0;
-    // The table: just under the prism's base (z = -0.015), from behind the
-    // prism to the screen's foot, normal +z.
-    let z = -0.0151;
-    let (x0, x1) = (-0.4, centre.x + 0.02);
-    let (y0, y1) = (centre.y - 0.35, centre.y + 0.35);
-    let map = scene.maps.len();
-    scene.faces.push(Face::rect(
-        "table",
-        DVec3::new(x0, y0, z),
-        DVec3::new(x1 - x0, 0.0, 0.0),
-        DVec3::new(0.0, y1 - y0, 0.0),
-        Surface::Diffuse { albedo: Albedo::new([0.5; 3]), map },
-    ));
-    scene.maps.push(scene.faces.len() - 1);
-    // The screen stands on the table: stretch it down to the table top.
-    let bottom = corner.z.min((corner + ev).z);
-    if bottom > z && ev.z > 0.0 {
-        let grow = ev.normalize() * (bottom - z);
-        scene.faces[screen] = Face::rect("screen", corner - grow, eu, ev + grow, scene.faces[screen].surface.clone());
-    }
+    let strip_centre = corner + (eu + ev) / 2.0;
+    // The table top, just under the prism's base.
+    let z = -prism.size / 2.0 - 1e-4;
+    // The screen: 24 cm wide, standing on the table, 14 cm tall, centred
+    // across the strip. Normal -x (facing the prism): u along -y, v up.
+    let (sw, sh) = (0.24, 0.14);
+    let surface = scene.faces[screen].surface.clone();
+    scene.faces[screen] =
+        Face::rect("screen", DVec3::new(strip_centre.x, strip_centre.y + sw / 2.0, z), DVec3::new(0.0, -sw, 0.0), DVec3::new(0.0, 0.0, sh), surface);
+    // The slit: the beam 4 mm wide.
+    let Emission::Beam { centre: start, half, .. } = &mut scene.lights[0].emission else { bail!("the bench's first light is the slit beam") };
+    *half = DVec2::new(0.002, half.y);
+    let start = *start;
+    let (x0, x1) = (start.x - 0.2, strip_centre.x + 0.06);
+    let (y0, y1) = (strip_centre.y.min(0.0) - 0.3, strip_centre.y.max(0.0) + 0.3);
+    super::matte(scene, "table", DVec3::new(x0, y0, z), DVec3::new(x1 - x0, 0.0, 0.0), DVec3::new(0.0, y1 - y0, 0.0), [0.35; 3]);
+    // The lamp housing: a dark box whose front face (with the slit) stands
+    // 1 mm behind where the beam starts, so the beam leaves through it.
+    let (bx, bd, bw, bh) = (start.x - 0.001, 0.12, 0.08, 0.07);
+    let (by0, by1) = (start.y - bw / 2.0, start.y + bw / 2.0);
+    let housing = [0.12; 3];
+    // Outward normals: front +x, back -x, sides -y / +y, top +z.
+    super::matte(scene, "lamp front", DVec3::new(bx, by0, z), DVec3::new(0.0, bw, 0.0), DVec3::new(0.0, 0.0, bh), housing);
+    super::matte(scene, "lamp back", DVec3::new(bx - bd, by0, z), DVec3::new(0.0, 0.0, bh), DVec3::new(0.0, bw, 0.0), housing);
+    super::matte(scene, "lamp side", DVec3::new(bx - bd, by0, z), DVec3::new(bd, 0.0, 0.0), DVec3::new(0.0, 0.0, bh), housing);
+    super::matte(scene, "lamp side", DVec3::new(bx - bd, by1, z), DVec3::new(0.0, 0.0, bh), DVec3::new(bd, 0.0, 0.0), housing);
+    super::matte(scene, "lamp top", DVec3::new(bx - bd, by0, z + bh), DVec3::new(bd, 0.0, 0.0), DVec3::new(0.0, bw, 0.0), housing);
     // The window light: down onto the table, 20 degrees from behind the
-    // camera, so the screen's face is lit too. Its footprint covers the
+    // lamp, so the screen's face is lit too. Its footprint covers the
     // table; photons are shared half and half with the beam.
     let dir = DVec3::new(20f64.to_radians().sin(), 0.0, -20f64.to_radians().cos());
     let mid = DVec3::new((x0 + x1) / 2.0, (y0 + y1) / 2.0, z);
     let v = DVec3::Y.cross(dir).normalize();
     let half = DVec2::new((y1 - y0) / 2.0 + 0.02, (x1 - x0) / 2.0 * dir.z.abs() + 0.05);
+    scene.haze_skip.push(scene.lights.len());
     scene.lights.push(Light {
         name: "window light".into(),
         emission: Emission::Beam { centre: mid - dir * 1.5, dir, u: DVec3::Y, v, half, disc: false, polarisation: None },
         spectrum: light_spectrum(o, "D65")?,
-        power: 45.0,
+        power: 200.0,
     });
     scene.photon_shares = Some(vec![0.5, 0.5]);
     // Light straight from either beam by shadow rays (docs/physics.md
     // §13): the table and the white slit image come out without photon
     // noise; the photons carry what crosses the prism.
     scene.direct_lighting = true;
-    // Above and behind the prism, looking down the bench: the prism near
-    // (from above, its three glass parts and cemented faces show), the
-    // screen beyond; the view is framed on both, with a margin.
-    let cam = DVec3::new(-0.35, -0.12, 0.12);
-    let (to_prism, to_screen) = ((DVec3::ZERO - cam).normalize(), (centre - cam).normalize());
-    let fwd = (to_prism + to_screen).normalize();
-    let right = fwd.cross(DVec3::Z).normalize();
-    let up = right.cross(fwd);
-    let angle = |d: DVec3, axis: DVec3| (d.dot(axis) / d.dot(fwd)).atan();
-    let (h, v) = ((angle(to_prism, right) - angle(to_screen, right)).abs(), (angle(to_prism, up) - angle(to_screen, up)).abs());
+    // A thin haze shows the beam (docs/physics.md §17), but for the close
+    // view of the screen, which looks along the beam.
+    scene.haze = if o.view == View::Screen { 0.0 } else { BENCH_HAZE };
     let aspect = o.width as f64 / o.height as f64;
-    // Half the span plus room for the prism's and the screen's own size.
-    let half_v = (v / 2.0 + 0.12).max((h / 2.0 + 0.14) / aspect);
-    scene.camera = Camera::look_at(cam, cam + fwd, DVec3::Z, (2.0 * half_v).to_degrees(), o.width, o.height);
+    let (cam, target, hfov): (DVec3, DVec3, f64) = match o.view {
+        // Behind the lamp and to its side, above the table: the lamp near,
+        // the beam running away down the bench, the prism, the screen.
+        View::Scene => (DVec3::new(start.x - 0.5, -0.36, 0.3), DVec3::new(0.15, strip_centre.y * 0.5, -0.04), 50.0),
+        // Square on to the strip from 40 cm: the strip across the frame.
+        View::Screen => (strip_centre - DVec3::new(0.4, 0.0, 0.0), strip_centre, 2.0 * (0.5 * 0.17 / 0.4f64).atan().to_degrees()),
+        // High above the bench's side.
+        View::Overview => (DVec3::new(0.18, -0.75, 1.05), DVec3::new(0.17, 0.02, -0.08), 66.0),
+    };
+    let vfov = 2.0 * ((hfov.to_radians() / 2.0).tan() / aspect).atan();
+    scene.camera = Camera::look_at(cam, target, DVec3::Z, vfov.to_degrees(), o.width, o.height);
     Ok(())
 }
 
-/// Picture 1: a compact fluorescent lamp 3 m past the prism, and the
-/// camera just before the entry face looking back through the prism at it.
-/// The lamp is a folded tube, as real ones are: two legs of 4 mm tubing
-/// 10 mm apart joined by a bend at the top, 0.27 degrees wide in all as
-/// seen through the prism, so lines farther apart than that make separate
-/// images of it.
+/// The bench's haze, per metre: enough that the beam shows over the
+/// table's dim light, too little to veil the screen.
+const BENCH_HAZE: f64 = 9.0;
+
+/// Picture 1: a compact fluorescent lamp across the room past the prism,
+/// and the camera just before the entry face looking back through the
+/// prism at it. The lamp is a spiral CFL seen from the side, as real ones
+/// are: a helix of glowing tube, each turn's near half crossing the axis
+/// one way and its far half, behind, the other way. Its width as seen
+/// through the prism (`LAMP_WIDTH` at `LAMP_DISTANCE`, 0.23 degrees) is
+/// just under the gap between the orange (587 nm) and red (611 nm) copies
+/// with the 80 degree flint, the closest pair, so every copy stands apart.
 fn add_lamp(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism, design: &World, d_line: &ProbeRay) -> Result<()> {
     let x = d_line.exit_point.x + LAMP_DISTANCE;
     let spectrum = light_spectrum(o, "cfl-lines")?;
-    let (d, gap, tall) = (0.004, 0.006, 0.1);
-    // Emitting faces toward -x (the prism): the two legs and the bend.
-    let parts = [
-        (DVec3::new(x, -gap / 2.0 - d, -tall / 2.0), DVec3::new(0.0, 0.0, tall), DVec3::new(0.0, d, 0.0)),
-        (DVec3::new(x, gap / 2.0, -tall / 2.0), DVec3::new(0.0, 0.0, tall), DVec3::new(0.0, d, 0.0)),
-        (DVec3::new(x, -gap / 2.0 - d, tall / 2.0), DVec3::new(0.0, 0.0, d), DVec3::new(0.0, gap + 2.0 * d, 0.0)),
-    ];
+    let parts = spiral_lamp(x);
     let area: f64 = parts.iter().map(|(_, u, v)| u.cross(*v).length()).sum();
     for (k, (corner, eu, ev)) in parts.into_iter().enumerate() {
         let light = scene.lights.len();
@@ -259,18 +277,20 @@ fn add_lamp(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism, design: &Wo
             power: eu.cross(ev).length() / area,
         });
     }
-    // The camera frames the lamp's images from the violet mercury line to
+    // The camera frames the lamp's images from the blue mercury line to
     // the deep red europium line (where each appears, found by tracing back
-    // through the prism), with 5 % to spare on each side.
+    // through the prism), with 5 % to spare on each side. The violet 404.7
+    // nm image lies beyond the blue one, outside the frame: to the eye
+    // (the CIE observer) it is about 70 times fainter than the 435.8 nm
+    // image (a third of the power, a fortieth of the luminous efficiency),
+    // black in any exposure that does not blow out the rest.
     let cam = DVec3::new(prism.parts[0][1].x - 0.03, 0.0, 0.0);
-    // (Through the flint's cemented face the violet line may lie beyond
-    // total internal reflection; then the frame starts at the blue line.)
-    let blue = lamp_image_angle(design, cam, x, 404.656).or_else(|| lamp_image_angle(design, cam, x, 435.834));
+    let blue = lamp_image_angle(design, cam, x, 435.834);
     let (Some(blue), Some(red)) = (blue, lamp_image_angle(design, cam, x, 711.0)) else {
         bail!("--incidence: the lamp cannot be seen through the prism at 405-711 nm");
     };
     let look = rotate_z(DVec3::X, (blue + red) / 2.0);
-    let hfov = (blue - red).abs() * 1.1 + (d + gap + d) * 2.0 / LAMP_DISTANCE;
+    let hfov = (blue - red).abs() * 1.1 + 2.0 * LAMP_WIDTH / LAMP_DISTANCE;
     let vfov = 2.0 * ((hfov / 2.0).tan() * o.height as f64 / o.width as f64).atan();
     scene.camera = Camera::look_at(cam, cam + look, DVec3::Z, vfov.to_degrees(), o.width, o.height);
     scene.probe = (cam, DVec3::X);
@@ -303,7 +323,35 @@ pub fn lamp_image_angle(design: &World, cam: DVec3, lamp_x: f64, nm: f64) -> Opt
 }
 
 /// How far the lamp stands past the prism's exit face, m.
-pub const LAMP_DISTANCE: f64 = 3.0;
+pub const LAMP_DISTANCE: f64 = 10.0;
+/// The spiral's outer diameter and height, the tube's diameter, m, and its
+/// turns: a small (11 W) spiral CFL.
+pub const LAMP_WIDTH: f64 = 0.04;
+const LAMP_HEIGHT: f64 = 0.09;
+const LAMP_TUBE: f64 = 0.008;
+const LAMP_TURNS: usize = 5;
+
+/// The spiral lamp at distance `x` along the axis, as emitting
+/// parallelograms facing -x (corner, edge along the tube, edge across it):
+/// each turn's near half (in the plane x, from +y down-slope to -y) and its
+/// far half (a tube's width behind, back from -y to +y), which shows
+/// between the near halves as a helix seen from the side does.
+fn spiral_lamp(x: f64) -> Vec<(DVec3, DVec3, DVec3)> {
+    let r = (LAMP_WIDTH - LAMP_TUBE) / 2.0;
+    let pitch = (LAMP_HEIGHT - LAMP_TUBE) / LAMP_TURNS as f64;
+    let across = DVec3::new(0.0, 0.0, LAMP_TUBE);
+    let mut parts = Vec::new();
+    for k in 0..LAMP_TURNS {
+        let z = -LAMP_HEIGHT / 2.0 + k as f64 * pitch;
+        // Near half: +y to -y while rising half a pitch; each edge pair's
+        // cross product is -x (the emitting side faces the prism).
+        parts.push((DVec3::new(x, r + LAMP_TUBE / 2.0, z), DVec3::new(0.0, -2.0 * r - LAMP_TUBE, pitch / 2.0), across));
+        // Far half, behind: from -y back to +y, rising the other half.
+        let top = DVec3::new(x + LAMP_WIDTH - LAMP_TUBE, r + LAMP_TUBE / 2.0, z + pitch);
+        parts.push((top, DVec3::new(0.0, -2.0 * r - LAMP_TUBE, -pitch / 2.0), across));
+    }
+    parts
+}
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -46,6 +46,19 @@ crate::named_enum! {
 
 impl SceneKind {}
 
+crate::named_enum! {
+    /// Where the camera stands (amici-bench has three views; every other
+    /// scene has its own one).
+    pub enum View {
+        /// The scene's own camera (amici-bench: behind the lamp, above the table, down the bench).
+        Scene = "scene",
+        /// amici-bench: the screen close up, square on.
+        Screen = "screen",
+        /// amici-bench: the whole bench from high above its side.
+        Overview = "overview",
+    }
+}
+
 /// Everything that shapes a scene.
 #[derive(Clone, Debug)]
 pub struct SceneOptions {
@@ -62,6 +75,7 @@ pub struct SceneOptions {
     pub incidence_deg: Option<f64>,
     pub no_prism: bool,
     pub no_dispersion: bool,
+    pub view: View,
     /// Haze in the air, per metre; `None` = the scene's own.
     pub haze: Option<f64>,
     /// Gather factor for bounced and mirrored light; `None` = the scene's.
@@ -84,6 +98,7 @@ impl SceneOptions {
             incidence_deg: None,
             no_prism: false,
             no_dispersion: false,
+            view: View::Scene,
             haze: None,
             indirect_gather: None,
             obj: None,

@@ -53,8 +53,11 @@ impl Haze {
         if scene.haze <= 0.0 {
             return haze;
         }
-        for light in &scene.lights {
+        for (k, light) in scene.lights.iter().enumerate() {
             let Emission::Beam { centre, dir, half, polarisation, .. } = light.emission else { continue };
+            if scene.haze_skip.contains(&k) {
+                continue;
+            }
             let beam = Beam { scene, sampler: WavelengthSampler::new(&light.spectrum), colours, sigma: 0.5 * (half.x * half.y).sqrt(), polarisation };
             beam.follow(centre, dir, None, light.power, 0, None, 0, &mut haze.segments);
         }

@@ -60,6 +60,9 @@ pub struct World {
     /// shows the beams' paths to the camera; 0 is clear air
     /// (`spectral::haze`).
     pub haze: f64,
+    /// Lights the haze does not draw: broad fills that stand in for
+    /// daylight, whose even veil is left out as every other light's is.
+    pub haze_skip: Vec<usize>,
     /// Where the scene computes direct light (`direct_lighting`), photons
     /// that reach a matte surface by a diffuse bounce or mirrors only are
     /// kept in a second map per surface and gathered over this many times
@@ -129,6 +132,7 @@ impl World {
             direct_lighting: false,
             accel: None,
             haze: 0.0,
+            haze_skip: Vec::new(),
             indirect_gather: 1.0,
             caustics_apart: false,
             cells: Cells::default(),

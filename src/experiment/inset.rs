@@ -1,0 +1,140 @@
+//! An inset on a figure: a second render of the same scene file with a few
+//! parameters changed (a close view of what the figure is about, e.g. the
+//! screen's strip), pasted into a corner with a thin frame, as a paper's
+//! figure enlarges a detail. Placed by fractions of the figure's size, so
+//! one table serves the full and the quick size.
+//!
+//! ```toml
+//! [inset]
+//! at = [0.02, 0.03]    # top-left corner: x from the left, y from the top
+//! width = 0.45         # fraction of the figure's width
+//! aspect = 2.5         # the inset's width over its height
+//! label = "the screen, enlarged"
+//! [inset.params]       # what differs from the figure's parameters
+//! view = "screen"
+//! ```
+
+use toml::Value;
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Inset {
+    /// Parameters that differ from the figure's.
+    pub params: Vec<(String, Value)>,
+    /// Top-left corner, fractions of the figure's width and height.
+    pub at: [f64; 2],
+    /// Width, a fraction of the figure's width.
+    pub width: f64,
+    /// Width over height.
+    pub aspect: f64,
+    pub label: Option<String>,
+}
+
+fn fraction(v: Option<&Value>) -> Option<f64> {
+    v.and_then(|v| v.as_float().or_else(|| v.as_integer().map(|i| i as f64)))
+}
+
+/// Reads a scene file's `[inset]` table; the error names the key.
+pub fn parse(v: &Value) -> Result<Inset, String> {
+    let Value::Table(t) = v else { return Err("must be a table ([inset])".into()) };
+    if let Some(k) = t.keys().find(|k| !["at", "width", "aspect", "label", "params"].contains(&k.as_str())) {
+        return Err(format!("unknown key `{k}`; expected at, width, aspect, label and params"));
+    }
+    let at = match t.get("at") {
+        Some(Value::Array(a)) if a.len() == 2 => match (fraction(a.first()), fraction(a.get(1))) {
+            (Some(x), Some(y)) if (0.0..1.0).contains(&x) && (0.0..1.0).contains(&y) => [x, y],
+            _ => return Err("`at` must be two fractions of the figure, each from 0 to under 1".into()),
+        },
+        _ => return Err("`at` must be [x, y], the top-left corner as fractions of the figure".into()),
+    };
+    let width = match fraction(t.get("width")) {
+        Some(w) if w > 0.05 && at[0] + w <= 1.0 => w,
+        _ => return Err("`width` must be a fraction of the figure's width above 0.05 that keeps the inset inside it".into()),
+    };
+    let aspect = match fraction(t.get("aspect")) {
+        Some(a) if (0.2..=10.0).contains(&a) => a,
+        None => 16.0 / 9.0,
+        _ => return Err("`aspect` (width over height) must be from 0.2 to 10".into()),
+    };
+    let label = match t.get("label") {
+        None => None,
+        Some(Value::String(s)) if !s.trim().is_empty() && s.len() <= 40 => Some(s.clone()),
+        _ => return Err("`label` must be a string of 1 to 40 characters".into()),
+    };
+    let params = match t.get("params") {
+        Some(Value::Table(p)) if !p.is_empty() => p.iter().map(|(k, v)| (k.clone(), v.clone())).collect(),
+        _ => return Err("`params` must be a table of what differs from the figure ([inset.params]), not empty".into()),
+    };
+    Ok(Inset { params, at, width, aspect, label })
+}
+
+impl Inset {
+    /// The inset's size in pixels on a `w` x `h` figure, and its top-left
+    /// corner; `None` if it would not fit below the corner.
+    pub fn place(&self, w: usize, h: usize) -> Option<([usize; 2], [usize; 2])> {
+        let iw = (self.width * w as f64).round().max(8.0) as usize;
+        let ih = (iw as f64 / self.aspect).round().max(4.0) as usize;
+        let (x, y) = ((self.at[0] * w as f64).round() as usize, (self.at[1] * h as f64).round() as usize);
+        (x + iw <= w && y + ih <= h).then_some(([iw, ih], [x, y]))
+    }
+}
+
+/// Pastes the `iw` x `ih` RGB image `inset` into `buf` (`w` wide) at
+/// `at`, inside a light frame 2 pixels wide (drawn over the figure).
+pub fn paste(buf: &mut [u8], w: usize, inset: &[u8], [iw, ih]: [usize; 2], [x, y]: [usize; 2]) {
+    for r in 0..ih {
+        let dst = ((y + r) * w + x) * 3;
+        buf[dst..dst + iw * 3].copy_from_slice(&inset[r * iw * 3..(r + 1) * iw * 3]);
+    }
+    let h = buf.len() / 3 / w;
+    let mut set = |px: isize, py: isize| {
+        if px >= 0 && py >= 0 && (px as usize) < w && (py as usize) < h {
+            let i = (py as usize * w + px as usize) * 3;
+            buf[i..i + 3].copy_from_slice(&[225, 225, 225]);
+        }
+    };
+    let (x, y, iw, ih) = (x as isize, y as isize, iw as isize, ih as isize);
+    for d in 1..=2 {
+        for px in x - d..x + iw + d {
+            set(px, y - d);
+            set(px, y + ih - 1 + d);
+        }
+        for py in y - d..y + ih + d {
+            set(x - d, py);
+            set(x + iw - 1 + d, py);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn parses_an_inset_and_names_the_bad_key() {
+        let v: Value = toml::from_str("[inset]\nat = [0.1, 0.2]\nwidth = 0.4\naspect = 2\n[inset.params]\nview = \"screen\"").unwrap();
+        let i = parse(&v["inset"]).unwrap();
+        assert_eq!((i.at, i.width, i.aspect, i.params.len()), ([0.1, 0.2], 0.4, 2.0, 1));
+        assert_eq!(i.place(1000, 500), Some(([400, 200], [100, 100])));
+        assert_eq!(Inset { at: [0.1, 0.8], ..i }.place(1000, 500), None, "runs off the bottom");
+        for (bad, says) in [
+            ("[inset]\nat = [0.7, 0]\nwidth = 0.4\n[inset.params]\nview = \"screen\"", "`width`"),
+            ("[inset]\nat = [0, 0]\nwidth = 0.4", "`params`"),
+            ("[inset]\nat = [0, 0]\nwidth = 0.4\nzoom = 2\n[inset.params]\nview = \"screen\"", "unknown key `zoom`"),
+        ] {
+            let v: Value = toml::from_str(bad).unwrap();
+            let e = parse(&v["inset"]).unwrap_err();
+            assert!(e.contains(says), "{bad}: {e}");
+        }
+    }
+
+    #[test]
+    fn pastes_inside_a_frame() {
+        let (w, h) = (20, 10);
+        let mut buf = vec![0u8; w * h * 3];
+        paste(&mut buf, w, &[100u8; 4 * 3 * 3], [4, 3], [5, 4]);
+        let px = |x: usize, y: usize| buf[(y * w + x) * 3];
+        assert_eq!((px(5, 4), px(8, 6)), (100, 100), "the inset's corners");
+        assert_eq!((px(4, 4), px(3, 3), px(9, 7)), (225, 225, 225), "the frame");
+        assert_eq!((px(2, 2), px(12, 4)), (0, 0), "outside the frame");
+    }
+}
