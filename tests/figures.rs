@@ -9,7 +9,7 @@ fn quick_figures_render_and_the_gallery_lists_every_id() {
     let out = dir.path().join("results");
     let o = run(&["figures", "--quick", "--only", "css552-p5,lab-ior3.0,pm-dark-side,css552-p2", "--out", out.to_str().unwrap()], "", &repo(""));
     assert!(o.status.success(), "{}", stderr(&o));
-    for (id, w, h) in [("css552-p5", 320, 180), ("lab-ior3.0", 201, 201), ("pm-dark-side", 240, 180), ("css552-p2", 900, 520)] {
+    for (id, w, h) in [("css552-p5", 320, 180), ("lab-ior3.0", 301, 301), ("pm-dark-side", 240, 180), ("css552-p2", 900, 520)] {
         let img = image::open(out.join("figures").join(format!("{id}.png"))).unwrap().to_rgb8();
         assert_eq!(img.dimensions(), (w, h), "{id}");
         let mut colours: Vec<[u8; 3]> = img.pixels().map(|p| p.0).collect();
@@ -47,7 +47,7 @@ fn render_takes_a_scene_file_and_names_a_bad_line() {
     let dir = tempfile::tempdir().unwrap();
     let o = run(&["render", repo("scenes/lab-ior1.4.toml").to_str().unwrap(), "--quick", "--out", dir.path().join("x.png").to_str().unwrap()], "", &repo(""));
     assert!(o.status.success(), "{}", stderr(&o));
-    assert_eq!(image::open(dir.path().join("x.png")).unwrap().width(), 201);
+    assert_eq!(image::open(dir.path().join("x.png")).unwrap().width(), 301);
     let bad = dir.path().join("bad.toml");
     std::fs::write(&bad, "id = \"b\"\nmode = \"prism\"\n[params]\nscene = \"amici-screen\"\nphotons = \"many\"\n").unwrap();
     let o = run(&["render", bad.to_str().unwrap()], "", dir.path());

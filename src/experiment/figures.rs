@@ -43,6 +43,13 @@ const SWEEPS: [(&str, &str); 8] = [
     ("stability", "Where the methods fail"),
 ];
 
+/// Images the gallery shows that are not figures of FIGURES.md, each with
+/// the figure it stands beside: a scene file rendered whenever that figure
+/// is (or when named by `--only`), shown in that figure's group. Report
+/// 004's argument needs a trace-count-0 image of the trace figures' mesh,
+/// which the report describes ("from 0") but does not show.
+pub const EXTRAS: [(&str, &str); 1] = [("lab-trace0", "lab-trace5")];
+
 #[derive(Clone, Debug, Default)]
 pub struct FigureOptions {
     pub quick: bool,
@@ -159,19 +166,26 @@ pub fn run(o: &FigureOptions) -> Result<Outcome> {
     let md_path = o.scenes.join("FIGURES.md");
     let md = std::fs::read_to_string(&md_path).with_context(|| format!("cannot read {}", md_path.display()))?;
     let ids = figure_ids(&md);
+    let is_extra = |id: &str| EXTRAS.iter().any(|e| e.0 == id);
     for id in &o.only {
-        if !ids.contains(id) {
+        if !ids.contains(id) && !is_extra(id) {
             return Err(anyhow!("--only: unknown figure `{id}`; valid: {}", ids.join(", ")));
         }
     }
-    let todo: Vec<&String> = ids.iter().filter(|id| o.only.is_empty() || o.only.contains(id)).collect();
+    let wanted = |id: &str| o.only.is_empty() || o.only.iter().any(|o| o == id);
+    let mut todo: Vec<String> = ids.iter().filter(|id| wanted(id)).cloned().collect();
+    for (extra, companion) in EXTRAS {
+        if wanted(extra) || todo.iter().any(|t| t == companion) {
+            todo.push(extra.to_string());
+        }
+    }
     crate::image_io::create_folder(&o.out).context("--out")?;
     let dir = o.out.join("figures");
     crate::image_io::create_folder(&dir)?;
     let mut records = read_records(&o.out);
     let bar = crate::terminal::counter(todo.len() as u64, "figures", "");
     let mut failed = Vec::new();
-    for id in todo {
+    for id in &todo {
         bar.set_message(id.clone());
         let png = dir.join(format!("{id}.png"));
         let result: Result<Record> = match DRAWN.iter().find(|d| d.0 == id) {
@@ -229,18 +243,36 @@ const GROUPS: [(&str, &[&str], &str); 8] = [
         &["css552-p4", "css552-p5", "css552-p6"],
         "One view of the bench: no prism and a white slit image; the prism and the rainbow strip; the prism with its index held at n_d and a white slit image in the same place as without it (a direct-vision prism leaves the d line undeviated).",
     ),
-    ("004", &["lab-ior1.1-noatten", "lab-ior1.1-atten"], "Look at the corners of the faces: distance attenuation darkens them."),
-    ("004", &["lab-ior1.4", "lab-ior1.4-n8"], "The highlight widens at shininess 8."),
+    (
+        "004",
+        &["lab-ior1.1-noatten", "lab-ior1.1-atten"],
+        "The same cube and light (upper left, inside): without attenuation the front face stays bright to its lower right corner; with it, the faces darken away from the light.",
+    ),
+    (
+        "004",
+        &["lab-ior1.1-atten", "lab-ior1.4", "lab-ior1.8", "lab-ior2.0", "lab-ior3.0"],
+        "The index series, one cube and light: the hot spot where the light leaves the front face toward the eye shrinks as the index rises (1.1, 1.4, 1.8, 2.0); at 3.0, drawn with a flat specular term, the whole circle inside which light can leave at all, its edge set by total internal reflection.",
+    ),
+    ("004", &["lab-ior1.4", "lab-ior1.4-n8"], "The hot spot widens at shininess 8."),
     ("004", &["lab-ior1.8", "lab-ior1.8-blue"], "The same index in white and in blue."),
-    ("004", &["lab-ior2.0", "lab-ior3.0", "lab-low-ior"], "As the index rises, total internal reflection confines the light leaving each face to a smaller circle; below 1 the object acts like a mirror."),
-    ("004", &["lab-trace5", "lab-trace10", "lab-trace10-fixed"], "At higher trace counts the report's compositing dims the object; its fix restores it."),
-    ("004", &["lab-cornell-trace0", "lab-cornell-trace10"], "Only when rays are followed does the sphere show the red and green walls, inverted at its rim."),
+    (
+        "004",
+        &["lab-trace0", "lab-trace5", "lab-trace10", "lab-trace10-fixed"],
+        "The same sphere at trace counts 0, 5 and 10: followed rays dim it (the report's compositing scales the highlight by the opacity; at 5 and 10 the same, since every ray has left the sphere after two hits); the report's fix restores the highlight.",
+    ),
+    ("004", &["lab-cornell-trace0", "lab-cornell-trace10"], "Only when rays are followed does the sphere show the room: the red and green walls inverted at its rim, the tiled floor along its top."),
     ("003", &["pm-pointlight-faint", "pm-mirror-tube"], "A bare point light gives a faint rainbow; the mirror tube concentrates it."),
 ];
 
-fn figure_html(h: &mut String, out: &Path, id: &str, r: &Record) -> Result<()> {
+/// One figure with its caption; `anchor` on its first appearance only (a
+/// figure may stand in two comparisons).
+fn figure_html(h: &mut String, out: &Path, id: &str, r: &Record, anchor: bool) -> Result<()> {
     let png = out.join("figures").join(format!("{id}.png"));
-    writeln!(h, "<figure id=\"{id}\">")?;
+    if anchor {
+        writeln!(h, "<figure id=\"{id}\">")?;
+    } else {
+        writeln!(h, "<figure>")?;
+    }
     if png.exists() {
         writeln!(h, "<a href=\"figures/{id}.png\"><img src=\"figures/{id}.png\" alt=\"{id}\"></a>")?;
     } else {
@@ -291,23 +323,26 @@ fn write_index(out: &Path, ids: &[String], records: &BTreeMap<String, Record>, q
     for (rep, title) in reports {
         writeln!(h, "<h2 id=\"report-{rep}\">{}</h2>", esc(title))?;
         let mut shown: Vec<&str> = Vec::new();
+        let mut groups_done: Vec<usize> = Vec::new();
         for id in ids.iter().filter(|id| report_of(id) == rep) {
-            if shown.contains(&id.as_str()) {
-                continue;
+            // Every comparison this figure stands in, the first time one of
+            // its members comes up; a figure in two comparisons is shown in
+            // both (anchored at the first).
+            for (g, (_, members, look)) in GROUPS.iter().enumerate() {
+                if groups_done.contains(&g) || !members.contains(&id.as_str()) {
+                    continue;
+                }
+                groups_done.push(g);
+                writeln!(h, "<div class=\"group\"><p class=\"look\">Compare: {}</p>", esc(look))?;
+                for m in members.iter().filter(|m| ids.iter().any(|i| i == *m) || EXTRAS.iter().any(|e| e.0 == **m)) {
+                    figure_html(&mut h, out, m, records.get(*m).unwrap_or(&none), !shown.contains(m))?;
+                    shown.push(m);
+                }
+                h.push_str("</div>\n");
             }
-            match GROUPS.iter().find(|g| g.1.contains(&id.as_str())) {
-                Some((_, members, look)) => {
-                    writeln!(h, "<div class=\"group\"><p class=\"look\">Compare: {}</p>", esc(look))?;
-                    for m in members.iter().filter(|m| ids.iter().any(|i| i == *m)) {
-                        figure_html(&mut h, out, m, records.get(*m).unwrap_or(&none))?;
-                        shown.push(m);
-                    }
-                    h.push_str("</div>\n");
-                }
-                None => {
-                    figure_html(&mut h, out, id, records.get(id).unwrap_or(&none))?;
-                    shown.push(id);
-                }
+            if !shown.contains(&id.as_str()) {
+                figure_html(&mut h, out, id, records.get(id).unwrap_or(&none), true)?;
+                shown.push(id);
             }
         }
     }

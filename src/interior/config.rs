@@ -26,6 +26,9 @@ crate::named_enum! {
         Mesh = "mesh",
         /// The mesh inside a Cornell box (red left wall, green right wall).
         Cornell = "cornell",
+        /// The Cornell box with a floor of dark and light tiles, so that a
+        /// reflection of the room reads at a glance.
+        CornellTiled = "cornell-tiled",
     }
 }
 
@@ -57,6 +60,10 @@ pub struct InteriorConfig {
     pub width: usize,
     pub height: usize,
     pub background: [u8; 3],
+    /// The camera's exposure: every pixel's colour is multiplied by it
+    /// before the 8-bit image is written (a display setting, not part of
+    /// the report's model; 1 = the model's colour as it is).
+    pub exposure: f32,
     pub specular_opacity: SpecularOpacity,
     pub scene: SceneKind,
     pub accel: AccelKind,
@@ -95,6 +102,7 @@ impl InteriorConfig {
             width: 401,
             height: 401,
             background: [0, 0, 0],
+            exposure: 1.0,
             specular_opacity: SpecularOpacity::Report,
             scene: SceneKind::Mesh,
             accel: AccelKind::Bvh,

@@ -70,8 +70,9 @@ impl InteriorScene {
 
         let mut triangles = mesh.build_triangles();
         let mut wall_colors = Vec::new();
-        if cfg.scene == SceneKind::Cornell {
-            for (quad, colour) in cornell_walls() {
+        if cfg.scene != SceneKind::Mesh {
+            let tiles = if cfg.scene == SceneKind::CornellTiled { 8 } else { 0 };
+            for (quad, colour) in cornell_walls(tiles) {
                 for t in [[0, 1, 2], [0, 2, 3]] {
                     triangles.push(Triangle::new(quad[t[0]], quad[t[1]], quad[t[2]]));
                     wall_colors.push(colour);
@@ -113,18 +114,32 @@ impl InteriorScene {
 }
 
 /// Five walls of a box round the mesh, open toward the camera, each as a
-/// quad wound so its normal faces into the box.
-fn cornell_walls() -> Vec<([Vec3; 4], Rgb)> {
+/// quad wound so its normal faces into the box; with `tiles` above 0 the
+/// floor is a `tiles` x `tiles` checkerboard of light and dark tiles.
+fn cornell_walls(tiles: usize) -> Vec<([Vec3; 4], Rgb)> {
     let (x, y, z0, z1) = (1.6f32, 1.6f32, -3.8f32, -0.2f32);
     let white = Rgb::new(0.75, 0.75, 0.75);
     let v = |a: f32, b: f32, c: f32| Vec3::new(a, b, c);
-    vec![
+    let mut walls = vec![
         ([v(-x, -y, z0), v(x, -y, z0), v(x, y, z0), v(-x, y, z0)], white),                      // back
-        ([v(-x, -y, z1), v(x, -y, z1), v(x, -y, z0), v(-x, -y, z0)], white),                    // floor
         ([v(-x, y, z0), v(x, y, z0), v(x, y, z1), v(-x, y, z1)], white),                        // ceiling
         ([v(-x, -y, z1), v(-x, -y, z0), v(-x, y, z0), v(-x, y, z1)], Rgb::new(0.75, 0.1, 0.1)), // left, red
         ([v(x, -y, z0), v(x, -y, z1), v(x, y, z1), v(x, y, z0)], Rgb::new(0.1, 0.6, 0.1)),      // right, green
-    ]
+    ];
+    if tiles == 0 {
+        walls.insert(1, ([v(-x, -y, z1), v(x, -y, z1), v(x, -y, z0), v(-x, -y, z0)], white));
+    // floor
+    } else {
+        let (dx, dz) = (2.0 * x / tiles as f32, (z1 - z0) / tiles as f32);
+        for i in 0..tiles {
+            for j in 0..tiles {
+                let (xa, za) = (-x + i as f32 * dx, z1 - j as f32 * dz);
+                let colour = if (i + j) % 2 == 0 { white } else { Rgb::new(0.12, 0.12, 0.14) };
+                walls.push(([v(xa, -y, za), v(xa + dx, -y, za), v(xa + dx, -y, za - dz), v(xa, -y, za - dz)], colour));
+            }
+        }
+    }
+    walls
 }
 
 #[cfg(test)]
@@ -143,7 +158,7 @@ mod tests {
 
     #[test]
     fn cornell_walls_face_inward() {
-        for (q, _) in cornell_walls() {
+        for (q, _) in cornell_walls(0).into_iter().chain(cornell_walls(8)) {
             let n = (q[1] - q[0]).cross(q[2] - q[0]);
             let c = (q[0] + q[2]) * 0.5;
             assert!(n.dot(Vec3::new(0.0, 0.0, -2.0) - c) > 0.0);

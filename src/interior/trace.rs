@@ -47,6 +47,7 @@ pub struct Tracer<'a> {
     pub background: Rgb,
     pub use_file_colors: bool,
     pub offset: f32,
+    pub exposure: f32,
 }
 
 impl<'a> Tracer<'a> {
@@ -60,6 +61,7 @@ impl<'a> Tracer<'a> {
             background: Rgb::from_u8(cfg.background),
             use_file_colors: cfg.coff,
             offset: cfg.offset,
+            exposure: cfg.exposure,
         }
     }
 
@@ -137,7 +139,7 @@ impl<'a> Tracer<'a> {
                         rays += r;
                         tir += t;
                     }
-                    *px = sum * (1.0 / spp as f32);
+                    *px = sum * (self.exposure / spp as f32);
                 }
                 (rays, tir)
             })

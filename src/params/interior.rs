@@ -237,6 +237,18 @@ pub static PARAMS: &[Param<InteriorConfig>] = &[
         ignored: never,
     },
     Param {
+        key: "exposure",
+        aliases: &[],
+        section: SCENE,
+        help: "Exposure: every pixel's colour is multiplied by this before the 8-bit image (a camera setting; 1 = the model's colour)",
+        unit: "times",
+        kind: Kind::above(0.0, 1e6),
+        auto: "",
+        get: |c| Some(Value::Real(c.exposure as f64)),
+        set: |c, v| c.exposure = v.real() as f32,
+        ignored: never,
+    },
+    Param {
         key: "scene",
         aliases: &[],
         section: SCENE,
