@@ -15,7 +15,7 @@
 //! ```
 
 use super::params::{interior_config, prism_config, Mode};
-use super::spec::{line_of, parse_toml};
+use super::reader::{line_of, parse_toml};
 use crate::names::Named;
 use crate::progress::Progress;
 use anyhow::{anyhow, Result};

@@ -20,7 +20,7 @@ pub use camera::Camera;
 pub use cells::{Cells, Region};
 pub use light::{Emission, Light};
 pub use medium::{Albedo, Indices, Medium, Surface};
-pub use shape::{Face, Sphere};
+pub use shape::{Face, FaceHit, Sphere};
 
 use glam::{DVec2, DVec3};
 
@@ -76,13 +76,6 @@ pub struct World {
     /// surface faster (`cells`); rebuilt from the faces by `add_extruded`
     /// and `build_accel`.
     pub cells: Cells,
-}
-
-/// Nearest face hit by a ray.
-#[derive(Copy, Clone, Debug, PartialEq)]
-pub struct FaceHit {
-    pub t: f64,
-    pub face: usize,
 }
 
 impl World {
