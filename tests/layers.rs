@@ -7,7 +7,7 @@
 use crate::common::repo;
 
 /// From the bottom up, as docs/architecture.md lists them.
-const LAYERS: [&str; 21] = [
+const LAYERS: [&str; 22] = [
     "data",
     "names",
     "progress",
@@ -25,6 +25,7 @@ const LAYERS: [&str; 21] = [
     "spectral",
     "interior",
     "params",
+    "modes",
     "terminal",
     "experiment",
     "bench",

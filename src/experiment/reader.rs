@@ -28,8 +28,8 @@
 //! Parameter names are the mode's flag names with `_` for `-`. Errors name
 //! the key and its line.
 
-use super::params::{self, Mode};
 use super::spec::{fnv1a, Case, Experiment, PlotKind, PlotSpec, MAX_RUNS};
+use crate::modes::Mode;
 use crate::names::Named;
 use anyhow::{anyhow, Result};
 use std::path::Path;
@@ -145,7 +145,7 @@ impl Experiment {
         let grid = super::grid::expand(&e);
         for key in e.param_names() {
             let mut why = None;
-            let used = grid.iter().filter(|r| r.params.iter().any(|(k, _)| *k == key)).any(|r| match params::ignored(r.mode, &r.params, &key) {
+            let used = grid.iter().filter(|r| r.params.iter().any(|(k, _)| *k == key)).any(|r| match r.mode.ignored(&r.params, &key) {
                 Some(w) => {
                     why.get_or_insert(w);
                     false
@@ -164,7 +164,7 @@ impl Experiment {
             }
         }
         if let (Some(over), Some(given)) = (&e.reference, e.reference_params()) {
-            if let Ok(Some((key, why))) = params::first_ignored(e.mode, &given, over.iter().map(|(k, _)| k.as_str())) {
+            if let Ok(Some((key, why))) = e.mode.first_ignored(&given, over.iter().map(|(k, _)| k.as_str())) {
                 return Err(p.err("reference", 0, &key, format!("the reference run would ignore it: {why}")));
             }
         }
@@ -231,7 +231,7 @@ impl<'a> FileParser<'a> {
 
     /// A section's parameters, each checked against the mode's table.
     fn checked(&self, mode: Mode, section: &str) -> Result<Vec<(String, Value)>> {
-        self.merged(section)?.into_iter().map(|(k, v)| params::check(mode, &k, &v).map(|_| (k.clone(), v)).map_err(|m| self.err(section, 0, &k, m))).collect()
+        self.merged(section)?.into_iter().map(|(k, v)| mode.check(&k, &v).map(|_| (k.clone(), v)).map_err(|m| self.err(section, 0, &k, m))).collect()
     }
 
     fn string(&self, key: &str) -> Result<String> {
@@ -281,7 +281,7 @@ impl<'a> FileParser<'a> {
                 _ => return Err(self.err("sweep", 0, &k, "must be a non-empty list or { from, to, step }".into())),
             };
             for x in &values {
-                params::check(mode, &k, x).map_err(|m| self.err("sweep", 0, &k, m))?;
+                mode.check(&k, x).map_err(|m| self.err("sweep", 0, &k, m))?;
             }
             sweep.push((k, values));
         }
@@ -309,7 +309,7 @@ impl<'a> FileParser<'a> {
                     _ => vec![v.clone()],
                 };
                 for x in &values {
-                    params::check(case_mode, k, x).map_err(|m| self.err("case", i, k, m))?;
+                    case_mode.check(k, x).map_err(|m| self.err("case", i, k, m))?;
                 }
                 set.push((k.clone(), v.clone()));
             }

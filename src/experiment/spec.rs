@@ -4,7 +4,7 @@
 //! anything (its parameter columns, its runs.csv columns, its run count).
 //! `grid` expands an experiment into its runs.
 
-use super::params::Mode;
+use crate::modes::Mode;
 use toml::Value;
 
 /// A named case of an experiment (stability conditions, timing groups).
