@@ -1,9 +1,12 @@
 //! The f64 spectral world shared by the light pass and the eye pass:
 //! planar convex faces, each with the medium on either side (so cemented
 //! prisms need no special case), analytic spheres, matte screens, emitters,
-//! mirrors, lights and a pinhole camera. Few surfaces, so a linear scan in
-//! f64: the optics tests need better than f32 precision.
+//! mirrors, lights and a pinhole camera, all in f64: the optics tests need
+//! better than f32 precision. A ray finds its face by walking prism parts
+//! cell by cell (`cells`), through a BVH over the faces in worlds of many
+//! (`bvh`, built by `build_accel`), or else by trying every face.
 //!
+//! `shape` holds the faces and spheres and their intersections;
 //! `interface` is what a ray does at a smooth boundary (Snell, Fresnel,
 //! total internal reflection); `probe` follows one ray per wavelength.
 
