@@ -357,7 +357,8 @@ fn load_frame(path: &Path) -> Option<Frame> {
     let img = image::open(path).ok()?.to_rgb8();
     let (w, h) = img.dimensions();
     let display = img.into_raw();
-    let luminance = display.chunks(3).map(|c| 0.2126 * c[0] as f64 / 255.0 + 0.7152 * c[1] as f64 / 255.0 + 0.0722 * c[2] as f64 / 255.0).collect();
+    let luma = crate::spectrum::cie::SRGB_LUMA;
+    let luminance = display.chunks(3).map(|c| luma.x * c[0] as f64 / 255.0 + luma.y * c[1] as f64 / 255.0 + luma.z * c[2] as f64 / 255.0).collect();
     Some(Frame { width: w as usize, height: h as usize, display, luminance })
 }
 

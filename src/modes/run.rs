@@ -160,7 +160,7 @@ impl Run {
                 width: r.image.width,
                 height: r.image.height,
                 display: r.image.to_rgb8(),
-                luminance: r.image.pixels.iter().map(|p| p.0.dot(glam::Vec3::new(0.2126, 0.7152, 0.0722)) as f64).collect(),
+                luminance: r.image.pixels.iter().map(|p| p.0.dot(crate::spectrum::cie::SRGB_LUMA.as_vec3()) as f64).collect(),
             },
             Report::Prism { report, gamut } => {
                 let image = &report.render.image;
