@@ -1,12 +1,25 @@
 //! `refract`: rendering light through transparent objects.
 //!
-//! Modules follow the physics and the pipeline: `spectrum` (sampled
-//! wavelengths, light spectra, CIE colour, the reports' colour maps),
-//! `optics` (Snell, Fresnel, glasses, IOR models), `geometry` (rays,
-//! triangles, BVH), `mesh` (OFF and OBJ readers), `interior` (report 004's
-//! mode), `photon` (light pass, photon maps, filters), `prism` (report
-//! 000's mode and the scenes of reports 001 and 003), `experiment` (sweeps,
-//! metrics, plots, figures), `image_io` and `timing` for what a run writes.
+//! Modules follow the physics and the pipeline, in layers (each imports
+//! only those listed before it; `docs/architecture.md` has a paragraph on
+//! each, and `tests/layers.rs` checks the order):
+//! - leaves: `data` (embedded reference tables), `names` (user-facing
+//!   names of enums), `progress` (the progress trait), `sampling` (random
+//!   streams, radical inverses), `color`, `timing` (timing rows) and
+//!   `image_io` (images and files a run writes);
+//! - physics: `spectrum` (light spectra, wavelength sampling, CIE colour,
+//!   the reports' colour maps), `optics` (Snell, Fresnel, glasses, IOR
+//!   models), `geometry` (f32 rays, triangles, the mesh BVH), `mesh` (OFF
+//!   and OBJ readers, generated meshes);
+//! - renderers: `world` (the f64 spectral world), `photon` (the light
+//!   pass, photon maps, filters), `scenes` (one builder per report),
+//!   `spectral` (the two-pass photon mapper `refract prism` runs),
+//!   `interior` (report 004's point light inside a mesh);
+//! - running: `params` (one row per run parameter), `modes` (one home per
+//!   mode: its table, checks and configuration -> render -> outputs path,
+//!   and the small tools), `terminal` (progress bars);
+//! - the edge: `experiment` (scene and experiment files, sweeps, metrics,
+//!   plots, figures), `bench` (`refract bench`), `cli` (the command line).
 
 // `!(a <= b)` is written on purpose throughout: unlike `a > b` it is true
 // for NaN, so a NaN fails every range check instead of slipping through.
@@ -21,6 +34,7 @@ pub mod geometry;
 pub mod image_io;
 pub mod interior;
 pub mod mesh;
+pub mod modes;
 pub mod names;
 pub mod optics;
 pub mod params;

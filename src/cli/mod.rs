@@ -4,10 +4,8 @@
 pub mod param_args;
 
 use crate::experiment::plan::Engine;
-use crate::optics::glass;
-use crate::optics::ior::{IorKind, IorModel};
-use crate::spectrum::cie::{cmf, srgb_encode_odd, Xyz};
-use crate::spectrum::Spectrum;
+use crate::modes;
+use crate::modes::glass::IorKind;
 use anyhow::{bail, Context, Result};
 use clap::{Args, Parser, Subcommand};
 use param_args::Given;
@@ -339,7 +337,7 @@ impl InteriorArgs {
     }
 
     /// Flag mode: the report's fields from flags or their defaults.
-    fn flag_config(&self) -> Result<crate::interior::InteriorConfig> {
+    fn flag_config(&self) -> Result<<modes::interior::Interior as modes::ModeKind>::Config> {
         if !self.params.has("off") {
             bail!("--off FILE is required when any of the report's flags (--trace, --opacity, --color, --out, --coff, --scale, --rot, --ior) is given");
         }
@@ -356,7 +354,7 @@ impl InteriorArgs {
 pub fn run(cli: Cli) -> Result<()> {
     match cli.command {
         Command::Interior(args) => run_interior(args),
-        Command::Meshes { dir } => write_meshes(&dir),
+        Command::Meshes { dir } => modes::meshes::write(&dir, &mut |path| eprintln!("wrote {}", path.display())),
         Command::Prism(args) => run_prism(args),
         Command::Figures { quick, only, out, scenes } => {
             let out = out.unwrap_or_else(|| PathBuf::from(if quick { "results/quick" } else { "results" }));
@@ -377,12 +375,7 @@ pub fn run(cli: Cli) -> Result<()> {
                     PathBuf::from("results").join(format!("{}.png", scene.id))
                 }
             };
-            use crate::image_io::ImageFormat;
-            let formats: &[ImageFormat] = match scene.mode {
-                crate::experiment::params::Mode::Prism => &[ImageFormat::Png, ImageFormat::Ppm, ImageFormat::Pfm],
-                crate::experiment::params::Mode::Interior => &[ImageFormat::Png, ImageFormat::Ppm],
-            };
-            crate::image_io::check_output(&out, formats).map_err(|e| anyhow::anyhow!("--out: {e}"))?;
+            crate::image_io::check_output(&out, scene.mode.formats()).map_err(|e| anyhow::anyhow!("--out: {e}"))?;
             crate::image_io::remove_stale_temps(out.parent().unwrap_or(std::path::Path::new("")));
             let secs = scene.render(&out, &crate::terminal::Bars::new())?;
             eprintln!("wrote {} ({secs:.2} s)", out.display());
@@ -405,7 +398,7 @@ fn run_interior(args: InteriorArgs) -> Result<()> {
     args.params.check_used(&args.params.config()).map_err(anyhow::Error::msg)?;
     crate::params::check_threads(args.params.config().threads).map_err(anyhow::Error::msg)?;
     if let Some(path) = &args.timing_csv {
-        crate::timing::check_header::<crate::interior::TimingRow>(path).context("--timing-csv")?;
+        modes::interior::check_timing_csv(path).context("--timing-csv")?;
     }
     let cfg = if args.flag_mode() {
         args.flag_config()?
@@ -417,48 +410,7 @@ fn run_interior(args: InteriorArgs) -> Result<()> {
         let mut out = std::io::stdout();
         crate::params::prompts::ask_all(&mut crate::params::prompts::Prompter::new(&mut input, &mut out, interactive), args.params.config())?
     };
-    crate::image_io::remove_stale_temps(cfg.out.parent().unwrap_or(std::path::Path::new("")));
-    let report = crate::interior::run(&cfg)?;
-    for n in &report.notes {
-        eprintln!("note: {n}");
-    }
-    if let Some(path) = &args.timing_csv {
-        crate::timing::append(path, &crate::interior::TimingRow::new(&cfg, &report))?;
-    }
-    eprintln!(
-        "wrote {} ({}x{}, {} triangles, {:.3} s render, {:.2} M rays/s on {} threads)",
-        cfg.out.display(),
-        cfg.width,
-        cfg.height,
-        report.triangles,
-        report.render_s,
-        report.rays as f64 / report.render_s.max(1e-9) / 1e6,
-        report.threads
-    );
-    Ok(())
-}
-
-fn write_meshes(dir: &std::path::Path) -> Result<()> {
-    crate::image_io::create_folder(dir)?;
-    for (name, what, mesh) in crate::mesh::generate::shipped() {
-        let path = dir.join(name);
-        let text = mesh.to_off(&format!("{what}\nmade by `refract meshes {}`", dir.display()));
-        crate::image_io::write_text(&path, &text)?;
-        eprintln!("wrote {}", path.display());
-    }
-    let path = dir.join("prism60.obj");
-    let text = crate::mesh::generate::prism60_obj();
-    crate::image_io::write_text(&path, &text)?;
-    eprintln!("wrote {}", path.display());
-    Ok(())
-}
-
-/// Appends a line to the output string (formatting into a String cannot fail).
-macro_rules! outln {
-    ($o:expr, $($t:tt)*) => {{
-        use std::fmt::Write as _;
-        let _ = writeln!($o, $($t)*);
-    }};
+    modes::interior::run_to_files(&cfg, args.timing_csv.as_deref(), &mut |line| eprintln!("{line}"))
 }
 
 /// Writes to standard output; a closed pipe (`| head`) is not an error.
@@ -471,153 +423,32 @@ fn write_stdout(text: &str) -> Result<()> {
 }
 
 fn run_spectrum(which: SpectrumCommand) -> Result<()> {
-    let mut o = String::new();
     match which {
-        SpectrumCommand::Locus => {
-            outln!(o, "wavelength_nm,X,Y,Z,r_lin,g_lin,b_lin");
-            for l in (380..=780).step_by(5) {
-                let xyz = Xyz(cmf(l as f64));
-                let rgb = xyz.to_linear_srgb().0;
-                outln!(o, "{l},{:.9},{:.9},{:.9},{:.9},{:.9},{:.9}", xyz.0.x, xyz.0.y, xyz.0.z, rgb.x, rgb.y, rgb.z);
-            }
-        }
-        SpectrumCommand::Illuminant { name } => {
-            let s = Spectrum::light(&name)?;
-            let xyz = s.to_xyz().normalised();
-            let (x, y) = xyz.xy();
-            let rgb = xyz.to_linear_srgb().0;
-            outln!(o, "name,X,Y,Z,x,y,r_lin,g_lin,b_lin,r_srgb,g_srgb,b_srgb");
-            outln!(
-                o,
-                "{name},{:.8},{:.8},{:.8},{x:.8},{y:.8},{:.8},{:.8},{:.8},{:.8},{:.8},{:.8}",
-                xyz.0.x,
-                xyz.0.y,
-                xyz.0.z,
-                rgb.x,
-                rgb.y,
-                rgb.z,
-                srgb_encode_odd(rgb.x),
-                srgb_encode_odd(rgb.y),
-                srgb_encode_odd(rgb.z)
-            );
-        }
-        SpectrumCommand::Accuracy { glass: name, out } => {
-            let g = glass::by_name(&name)?;
-            o = crate::experiment::spectral::write_report(&out, g)?;
-        }
+        SpectrumCommand::Locus => write_stdout(&modes::spectrum::locus()),
+        SpectrumCommand::Illuminant { name } => write_stdout(&modes::spectrum::illuminant(&name)?),
+        SpectrumCommand::Accuracy { glass, out } => write_stdout(&crate::experiment::spectral::write_report(&out, modes::glass::by_name(&glass)?)?),
     }
-    write_stdout(&o)
 }
 
 fn run_glass(args: GlassArgs) -> Result<()> {
-    let mut o = String::new();
     if args.list {
-        outln!(o, "glass,n_d,abbe_nu_d,source");
-        for g in glass::catalogue() {
-            outln!(o, "{},{:.6},{:.3},\"{}\"", g.name, g.sellmeier(glass::lines::LD), g.abbe(), g.source);
-        }
-        return write_stdout(&o);
+        return write_stdout(&modes::glass::list()?);
     }
-    let name = args.name.as_deref().unwrap_or_default();
-    let model = IorModel::for_glass(glass::by_name(name)?, args.model);
-    outln!(o, "wavelength_nm,n");
-    for l in &args.wavelengths {
-        outln!(o, "{l},{:.7}", model.n(*l));
-    }
-    write_stdout(&o)
+    write_stdout(&modes::glass::indices(args.name.as_deref().unwrap_or_default(), args.model, &args.wavelengths)?)
 }
 
 fn run_prism(args: PrismArgs) -> Result<()> {
     if let Some(PrismCommand::Trace { scene, wavelengths }) = args.probe {
         scene.check_used(&scene.config()).map_err(anyhow::Error::msg)?;
-        let built = crate::scenes::build(&scene.config().scene)?;
-        if !built.faces.iter().any(|f| matches!(f.surface, crate::world::Surface::Interface { .. })) {
-            bail!(
-                "prism trace: the {} scene has no prism to trace through (amici-screen, amici-lamp, single-prism, the cornell scenes and dark-side have one)",
-                built.name
-            );
-        }
-        let mut o = String::new();
-        outln!(o, "wavelength_nm,exit_x,exit_y,exit_z,deviation_deg,transmittance");
-        for nm in wavelengths {
-            let p = crate::world::probe::probe(&built, nm);
-            if p.tir {
-                outln!(o, "{nm},,,,,0");
-            } else {
-                outln!(o, "{nm},{:.9},{:.9},{:.9},{:.6},{:.6}", p.exit_dir.x, p.exit_dir.y, p.exit_dir.z, p.deviation_deg, p.transmittance);
-            }
-        }
-        return write_stdout(&o);
+        return write_stdout(&modes::trace::trace(&scene.config(), &wavelengths)?);
     }
     let mut cfg = args.params.config();
     cfg.out = args.out.clone();
     if args.quick {
-        let given = |k: &str| args.params.has(k);
-        if !given("photons") {
-            cfg.photons = (cfg.photons / 10).max(1);
-        }
-        if !given("spp") {
-            cfg.spp = 1;
-        }
-        if !given("size") {
-            cfg.scene.width = (cfg.scene.width / 2).max(1);
-            cfg.scene.height = (cfg.scene.height / 2).max(1);
-        }
+        modes::prism::quick(&mut cfg, |k| args.params.has(k));
     }
     args.params.check_used(&cfg).map_err(anyhow::Error::msg)?;
-    cfg.validate()?;
-    crate::params::check_threads(cfg.threads).map_err(anyhow::Error::msg)?;
-    // The default folder, results/, is made; any other must exist.
-    if let Some(parent) = cfg.out.parent().filter(|p| !p.as_os_str().is_empty() && cfg.out.starts_with("results")) {
-        crate::image_io::create_folder(parent)?;
-    }
-    use crate::image_io::ImageFormat;
-    crate::image_io::check_output(&cfg.out, &[ImageFormat::Png, ImageFormat::Ppm, ImageFormat::Pfm]).map_err(|e| anyhow::anyhow!("--out: {e}"))?;
-    crate::image_io::remove_stale_temps(cfg.out.parent().unwrap_or(std::path::Path::new("")));
-    if let Some(path) = &args.timing_csv {
-        crate::timing::check_header::<crate::spectral::TimingRow>(path).context("--timing-csv")?;
-    }
-    let report = crate::spectral::run(&cfg, &crate::terminal::Bars::new())?;
-    for n in &report.notes {
-        eprintln!("warning: {n}");
-    }
-    if let Some(path) = &args.timing_csv {
-        crate::timing::append(path, &crate::spectral::TimingRow::new(&cfg, &report))?;
-    }
-    let s = &report.render.stats;
-    if cfg.exact {
-        eprintln!(
-            "wrote {} ({}x{}): the exact image, {} wavelengths, {:.2} s, exposure {:.3e}",
-            cfg.out.display(),
-            cfg.scene.width,
-            cfg.scene.height,
-            cfg.exact_wavelengths,
-            report.render.render_s,
-            report.exposure
-        );
-        return Ok(());
-    }
-    eprintln!(
-        "wrote {} ({}x{}): {} photons, {} stored, {:.2} s light pass ({:.2} M photons/s), {:.2} s eye pass, exposure {:.3e}",
-        cfg.out.display(),
-        cfg.scene.width,
-        cfg.scene.height,
-        s.emitted,
-        s.stored,
-        report.render.trace_s,
-        s.emitted as f64 / report.render.trace_s.max(1e-9) / 1e6,
-        report.render.render_s,
-        report.exposure
-    );
-    if let Some(r) = report.render.film_kernel {
-        let how = match (cfg.film_kernel, cfg.passes > 1) {
-            (Some(_), _) => "as asked",
-            (None, true) => "none under --passes",
-            (None, false) => "chosen from the film's two halves",
-        };
-        eprintln!("film kernel: {r} px ({how})");
-    }
-    Ok(())
+    modes::prism::run_to_files(&cfg, args.timing_csv.as_deref(), &crate::terminal::Bars::new(), &mut |line| eprintln!("{line}"))
 }
 
 fn run_sweep(args: SweepArgs) -> Result<()> {

@@ -4,6 +4,7 @@
 //! typed comes back as checked values, applied to the mode's defaults by
 //! the same row that scene files use.
 
+use crate::modes::{self, ModeKind};
 use crate::params::{self, Kind, Param, Value};
 use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
 use clap::parser::ValueSource;
@@ -28,32 +29,32 @@ pub struct PrismScene;
 pub struct Interior;
 
 impl ParamSet for Prism {
-    type Config = crate::spectral::SpectralConfig;
+    type Config = <modes::prism::Prism as ModeKind>::Config;
     fn params() -> Vec<&'static Param<Self::Config>> {
-        params::prism::PARAMS.iter().collect()
+        modes::prism::Prism::params().iter().collect()
     }
     fn defaults() -> Self::Config {
-        params::prism::defaults()
+        modes::prism::Prism::defaults()
     }
 }
 
 impl ParamSet for PrismScene {
-    type Config = crate::spectral::SpectralConfig;
+    type Config = <modes::prism::Prism as ModeKind>::Config;
     fn params() -> Vec<&'static Param<Self::Config>> {
-        params::prism::PARAMS.iter().filter(|p| params::prism::is_scene(p)).collect()
+        modes::prism::Prism::params().iter().filter(|p| params::prism::is_scene(p)).collect()
     }
     fn defaults() -> Self::Config {
-        params::prism::defaults()
+        modes::prism::Prism::defaults()
     }
 }
 
 impl ParamSet for Interior {
-    type Config = crate::interior::InteriorConfig;
+    type Config = <modes::interior::Interior as ModeKind>::Config;
     fn params() -> Vec<&'static Param<Self::Config>> {
-        params::interior::PARAMS.iter().collect()
+        modes::interior::Interior::params().iter().collect()
     }
     fn defaults() -> Self::Config {
-        params::interior::defaults()
+        modes::interior::Interior::defaults()
     }
 }
 

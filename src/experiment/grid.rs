@@ -2,8 +2,8 @@
 //! axes and repeats, each with an id that depends only on the experiment
 //! file (so shards, engines and resumed sweeps agree on it).
 
-use super::params::{known, Mode};
 use super::spec::{Case, Experiment};
+use crate::modes::Mode;
 use toml::Value;
 
 /// One run of the grid.
@@ -39,7 +39,7 @@ pub fn expand(e: &Experiment) -> Vec<RunSpec> {
             }
             // Fixed parameters of the file's mode that a case of the other
             // mode does not have are left out for it.
-            let mut params: Vec<(String, Value)> = e.fixed.iter().filter(|(k, _)| known(*mode, k)).cloned().collect();
+            let mut params: Vec<(String, Value)> = e.fixed.iter().filter(|(k, _)| mode.known(k)).cloned().collect();
             let swept = axes.iter().zip(&at).map(|((k, vals), &i)| (k.clone(), vals[i].clone()));
             for (k, v) in overrides.iter().cloned().chain(swept) {
                 params.retain(|(p, _)| *p != k);

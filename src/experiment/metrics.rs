@@ -1,15 +1,6 @@
 //! Accuracy and stability metrics recorded for every run.
 
-/// What the runner keeps of a rendered image.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Frame {
-    pub width: usize,
-    pub height: usize,
-    /// 8-bit sRGB as written.
-    pub display: Vec<u8>,
-    /// Linear luminance per pixel (non-finite values as they came).
-    pub luminance: Vec<f64>,
-}
+pub use crate::modes::Frame;
 
 /// Pixels whose luminance is NaN or infinite.
 pub fn non_finite(f: &Frame) -> usize {

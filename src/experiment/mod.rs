@@ -9,6 +9,7 @@ pub mod metrics;
 pub mod params;
 pub mod plan;
 pub mod plot;
+pub mod reader;
 pub mod scene_file;
 pub mod spec;
 pub mod spectral;

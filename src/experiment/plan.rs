@@ -11,46 +11,12 @@
 //! engine and any machine agree on it.
 
 use super::grid::{expand, RunSpec};
-use super::params::{interior_config, prism_config, Mode};
 use super::spec::Experiment;
+pub use crate::modes::Cost;
 use anyhow::{bail, Context, Result};
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
-
-/// A run's estimated cost on one core: seconds and bytes of memory.
-/// Rough rates per core measured on a 2-core AVX2 machine (the committed
-/// lab-trace and prism-photons runs: interior about 2.5 M ray segments per
-/// second, 1 to 1.8 segments per pixel whatever the trace count, since most
-/// paths leave the mesh in two steps; prism about 1.7 M photons and 1 M eye
-/// samples per second), enough to balance shards and to ask a scheduler
-/// for time.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct Cost {
-    pub seconds: f64,
-    pub bytes: f64,
-}
-
-pub fn cost(mode: Mode, params: &[(String, toml::Value)]) -> Cost {
-    match mode {
-        Mode::Interior => match interior_config(params) {
-            Ok(c) => {
-                let px = (c.width * c.height) as f64;
-                let segments = px * (1.0 + 0.4 * c.max_trace.min(2) as f64);
-                Cost { seconds: 0.01 + segments / 2.5e6, bytes: px * 40.0 }
-            }
-            Err(_) => Cost { seconds: 0.01, bytes: 0.0 },
-        },
-        Mode::Prism => match prism_config(params) {
-            Ok(c) => {
-                let px = (c.scene.width * c.scene.height) as f64;
-                let photons = c.photons as f64;
-                Cost { seconds: 0.05 + photons / 1.7e6 + px * c.spp as f64 / 1e6, bytes: photons * 4.0 * 40.0 + px * 27.0 }
-            }
-            Err(_) => Cost { seconds: 0.01, bytes: 0.0 },
-        },
-    }
-}
 
 /// What stays fixed along a chain (the runs along the first sweep axis,
 /// which go together: each run's changed_px compares it with the one before).
@@ -74,7 +40,7 @@ pub fn assign(runs: &[RunSpec], n: usize) -> Vec<usize> {
     for r in runs {
         let c = chains.entry(chain_key(r)).or_insert((r.id, Vec::new(), 0.0));
         c.1.push(r.id);
-        c.2 += cost(r.mode, &r.params).seconds;
+        c.2 += r.mode.cost(&r.params).seconds;
     }
     let mut chains: Vec<(usize, Vec<usize>, f64)> = chains.into_values().collect();
     // Most costly first; equal costs in run order.
@@ -143,10 +109,10 @@ pub struct ShardLoad {
 /// The loads of `n` shards of `runs`, the grid of `e`.
 pub fn loads(e: &Experiment, runs: &[RunSpec], n: usize) -> Vec<ShardLoad> {
     let shard = assign(runs, n);
-    let reference = e.reference_params().map(|p| cost(e.mode, &p));
+    let reference = e.reference_params().map(|p| e.mode.cost(&p));
     let mut out = vec![ShardLoad::default(); n];
     for (r, &s) in runs.iter().zip(&shard) {
-        let c = cost(r.mode, &r.params);
+        let c = r.mode.cost(&r.params);
         out[s].runs += 1;
         out[s].seconds += c.seconds;
         out[s].bytes = out[s].bytes.max(c.bytes);
@@ -311,6 +277,7 @@ fn shell_word(s: &str) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::modes::Mode;
 
     fn run(id: usize, at: Vec<usize>, trace: i64, size: i64) -> RunSpec {
         RunSpec {

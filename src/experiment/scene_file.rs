@@ -22,8 +22,8 @@
 //! at = [0.8, 0.2]
 //! ```
 
-use super::params::{interior_config, prism_config, Mode};
-use super::spec::{line_of, parse_toml};
+use super::reader::{line_of, parse_toml};
+use crate::modes::Mode;
 use crate::names::Named;
 use crate::progress::Progress;
 use anyhow::{anyhow, Result};
@@ -78,7 +78,7 @@ impl SceneFile {
                 None => {}
                 Some(Value::Table(t)) => {
                     for (k, v) in t {
-                        super::params::check(mode, k, v).map_err(|m| err(section, k, m))?;
+                        mode.check(k, v).map_err(|m| err(section, k, m))?;
                         params.retain(|(p, _)| p != k);
                         params.push((k.clone(), v.clone()));
                         from.retain(|(p, _)| p != k);
@@ -98,7 +98,7 @@ impl SceneFile {
                 Some(v) => {
                     let inset = super::inset::parse(v).map_err(|m| anyhow!("{file}:{}: `inset`: {m}", line_of(text, "", 0, "inset")))?;
                     for (k, v) in &inset.params {
-                        super::params::check(mode, k, v).map_err(|m| err("inset.params", k, m))?;
+                        mode.check(k, v).map_err(|m| err("inset.params", k, m))?;
                     }
                     Some(inset)
                 }
@@ -119,7 +119,7 @@ impl SceneFile {
     /// A parameter the run would ignore (the scene has no use for it), and
     /// why: a file's key, as a flag, is refused rather than dropped.
     fn ignored(&self) -> Result<Option<(String, String)>> {
-        super::params::first_ignored(self.mode, &self.params, self.params.iter().map(|(k, _)| k.as_str()))
+        self.mode.first_ignored(&self.params, self.params.iter().map(|(k, _)| k.as_str()))
     }
 
     /// Renders to `out`; returns the render time in seconds (light pass,
@@ -168,20 +168,7 @@ impl SceneFile {
     }
 
     fn render_image(&self, out: &Path, progress: &dyn Progress) -> Result<f64> {
-        match self.mode {
-            Mode::Interior => {
-                let mut cfg = interior_config(&self.params)?;
-                cfg.out = out.to_path_buf();
-                let r = crate::interior::run(&cfg)?;
-                Ok(r.build_s + r.render_s)
-            }
-            Mode::Prism => {
-                let mut cfg = prism_config(&self.params)?;
-                cfg.out = out.to_path_buf();
-                let r = crate::spectral::run(&cfg, progress)?;
-                Ok(r.render.trace_s + r.render.build_s + r.render.render_s)
-            }
-        }
+        Ok(self.mode.render_to(&self.params, out, progress)?.record.render_time())
     }
 
     /// Overrides parameters with `KEY=VALUE` texts (as typed on the command
@@ -190,12 +177,11 @@ impl SceneFile {
         for o in overrides {
             let (k, v) = o.split_once('=').ok_or_else(|| anyhow!("--set: `{o}` is not KEY=VALUE"))?;
             let k = k.trim().replace('-', "_");
-            let value = match self.mode {
-                Mode::Interior => crate::params::find(crate::params::interior::PARAMS, &k).map(|p| p.kind.parse_text(v)),
-                Mode::Prism => crate::params::find(crate::params::prism::PARAMS, &k).map(|p| p.kind.parse_text(v)),
-            }
-            .ok_or_else(|| anyhow!("--set: `{k}` is not a {} parameter", self.mode.name()))?
-            .map_err(|e| anyhow!("--set {k}: {e}"))?;
+            let value = self
+                .mode
+                .parse_text(&k, v)
+                .ok_or_else(|| anyhow!("--set: `{k}` is not a {} parameter", self.mode.name()))?
+                .map_err(|e| anyhow!("--set {k}: {e}"))?;
             self.params.retain(|(p, _)| *p != k);
             self.params.push((k, value.to_toml()));
         }

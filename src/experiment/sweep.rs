@@ -6,18 +6,16 @@
 
 pub use super::grid::{expand, RunSpec};
 use super::metrics::{self, Frame};
-use super::params::{cell, interior_config, prism_config, Mode};
+use super::params::{cell, Mode};
 use super::spec::Experiment;
 use super::spec::METRICS;
 use crate::image_io::{atomic_write, write_rgb8};
-use crate::mesh::source::MeshSource;
-use crate::mesh::Mesh;
+use crate::modes::MeshCache;
 use anyhow::{bail, Context, Result};
 use std::collections::{HashMap, HashSet};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
-use std::time::Instant;
 use toml::Value;
 
 #[derive(Clone, Debug, Default)]
@@ -39,78 +37,9 @@ struct Outcome {
     cells: Measured,
 }
 
-/// Meshes loaded once per sweep, with their load time.
-#[derive(Default)]
-struct MeshCache(Mutex<HashMap<MeshSource, (Mesh, f64)>>);
-
-impl MeshCache {
-    fn get(&self, source: &MeshSource) -> Result<(Mesh, f64)> {
-        if let Some(m) = self.0.lock().unwrap().get(source) {
-            return Ok(m.clone());
-        }
-        let t = Instant::now();
-        let mesh = source.load()?;
-        let entry = (mesh, t.elapsed().as_secs_f64());
-        self.0.lock().unwrap().insert(source.clone(), entry.clone());
-        Ok(entry)
-    }
-}
-
-fn run_interior(params: &[(String, Value)], meshes: &MeshCache) -> Result<Outcome> {
-    let cfg = interior_config(params)?;
-    let (mesh, load_s) = meshes.get(&cfg.off)?;
-    let r = crate::interior::render_mesh(mesh, &cfg)?;
-    let luminance = r.image.pixels.iter().map(|p| p.0.dot(glam::Vec3::new(0.2126, 0.7152, 0.0722)) as f64).collect();
-    let frame = Frame { width: r.image.width, height: r.image.height, display: r.image.to_rgb8(), luminance };
-    let c = crate::timing::cell;
-    let cells = vec![
-        ("triangles", r.triangles.to_string()),
-        ("width", cfg.width.to_string()),
-        ("height", cfg.height.to_string()),
-        ("load_s", c(load_s)),
-        ("build_s", c(r.build_s)),
-        ("render_s", c(r.render_s)),
-        ("total_s", c(load_s + r.build_s + r.render_s)),
-        ("rays", r.rays.to_string()),
-        ("rays_per_s", c(r.rays as f64 / r.render_s.max(1e-12))),
-        ("tir_fraction", c(r.tir as f64 / r.rays.max(1) as f64)),
-    ];
-    Ok(Outcome { frame: Some(frame), cells })
-}
-
-fn run_prism(params: &[(String, Value)]) -> Result<Outcome> {
-    let cfg = prism_config(params)?;
-    let report = crate::spectral::render_config(&cfg, &crate::progress::Silent)?;
-    let r = &report.render;
-    let frame = Frame {
-        width: r.image.width,
-        height: r.image.height,
-        display: r.image.to_srgb8(report.exposure, cfg.gamut),
-        luminance: r.image.xyz.iter().map(|v| v.y).collect(),
-    };
-    let c = crate::timing::cell;
-    let s = &r.stats;
-    let cells = vec![
-        ("width", r.image.width.to_string()),
-        ("height", r.image.height.to_string()),
-        ("build_s", c(r.build_s)),
-        ("trace_s", c(r.trace_s)),
-        ("render_s", c(r.render_s)),
-        ("total_s", c(r.trace_s + r.build_s + r.render_s)),
-        ("rays", r.eye_rays.to_string()),
-        ("rays_per_s", c(r.eye_rays as f64 / r.render_s.max(1e-12))),
-        ("photons", s.emitted.to_string()),
-        ("stored", s.stored.to_string()),
-        ("photons_per_s", c(s.emitted as f64 / r.trace_s.max(1e-12))),
-        ("tir_fraction", c(s.tir as f64 / s.emitted.max(1) as f64)),
-    ];
-    Ok(Outcome { frame: Some(frame), cells })
-}
-
 fn run_one(mode: Mode, params: &[(String, Value)], meshes: &MeshCache) -> Outcome {
-    let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| match mode {
-        Mode::Interior => run_interior(params, meshes),
-        Mode::Prism => run_prism(params),
+    let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        mode.render(params, &crate::progress::Silent, meshes).map(|run| Outcome { frame: Some(run.frame()), cells: run.record.cells() })
     }));
     match result {
         Ok(Ok(o)) => o,
@@ -428,7 +357,8 @@ fn load_frame(path: &Path) -> Option<Frame> {
     let img = image::open(path).ok()?.to_rgb8();
     let (w, h) = img.dimensions();
     let display = img.into_raw();
-    let luminance = display.chunks(3).map(|c| 0.2126 * c[0] as f64 / 255.0 + 0.7152 * c[1] as f64 / 255.0 + 0.0722 * c[2] as f64 / 255.0).collect();
+    let luma = crate::spectrum::cie::SRGB_LUMA;
+    let luminance = display.chunks(3).map(|c| luma.x * c[0] as f64 / 255.0 + luma.y * c[1] as f64 / 255.0 + luma.z * c[2] as f64 / 255.0).collect();
     Some(Frame { width: w as usize, height: h as usize, display, luminance })
 }
 

@@ -1,10 +1,9 @@
 //! A bounding-volume hierarchy built with the surface-area heuristic over
 //! binned centroids, then collapsed into an 8-wide tree, each subtree
 //! shared out over its node's eight slots as the SAH finds cheapest
-//! (Ylitie et al. 2017, `Spread`; the largest-area-first opening it
-//! replaced left most nodes near the leaves with two or three children,
-//! and was 4-7 % slower on incoherent rays through 1280 and 81920
-//! triangles, `results/bench/README.md`). Each node holds
+//! (Ylitie et al. 2017, `Spread`: a greedy opening, largest area first,
+//! leaves most nodes near the leaves with two or three children). Each
+//! node holds
 //! its eight children's boxes side by side (one array per axis and bound),
 //! so one ray meets all eight boxes in a few vector instructions (one AVX2
 //! register a bound where the processor has it, two SSE halves where it
@@ -14,9 +13,9 @@
 //! eight per coordinate, and a ray meets all eight in one pass of AVX2
 //! registers (as Embree's Triangle4 leaves meet four; Wald et al. 2014),
 //! or in two halves of four in SSE: the lanes a leaf does not use hold a
-//! triangle of zero size, so the test takes no branch on the leaf's size
-//! (1.5-5 % more incoherent rays a second through 1280 triangles,
-//! `results/bench/README.md`).
+//! triangle of zero size, so the test takes no branch on the leaf's size.
+//! How these choices were measured against the alternatives is in
+//! `results/bench/HISTORY.md`.
 
 use super::aabb::GAMMA3;
 use super::{Aabb, Hit, Ray, Triangle};
@@ -521,8 +520,8 @@ impl Bvh {
         let mut t_max = ray.t_max;
         // Children still to visit, with the distance where the ray enters
         // their box: at most WIDTH - 1 pushed per level. Left
-        // uninitialised (zeroing it cost 4 % of the time): only entries
-        // below `sp`, each written before, are read.
+        // uninitialised (zeroing it is a measurable share of a walk): only
+        // entries below `sp`, each written before, are read.
         let mut stack = [const { MaybeUninit::<Slot>::uninit() }; (WIDTH - 1) * DEEPEST + WIDTH];
         let mut sp = 0usize;
         let slack = 1.0 + 2.0 * GAMMA3;
@@ -607,7 +606,7 @@ impl Bvh {
 /// ray's origin) or below (a ray with a negative `t_min`) sorts as the
 /// farthest: that changes the order of the visits, never a hit (the walk
 /// takes the nearest hit whatever the order). Turning -0 into +0 first
-/// put an addition on the way to the next node's address and cost 5 %.
+/// would put an addition on the way to the next node's address.
 #[derive(Copy, Clone)]
 struct Slot(u64);
 
@@ -632,9 +631,7 @@ impl Slot {
 /// node on incoherent rays), by a sorting network of compare-exchanges
 /// made with conditional moves, not branches: which child is nearer is a
 /// coin toss on incoherent rays, and a mispredicted branch costs more than
-/// the network (10-14 % more incoherent rays a second than the
-/// insertion sort, `results/bench/README.md`, session 24). Five to eight,
-/// which are rare, by insertion.
+/// the network. Five to eight, which are rare, by insertion.
 #[inline(always)]
 fn sort_far_to_near(s: &mut [Slot]) {
     #[inline(always)]

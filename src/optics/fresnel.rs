@@ -1,6 +1,27 @@
 //! Fresnel equations for a dielectric interface, unpolarised light, s and
 //! p kept apart for paths through several faces (docs/physics.md §2).
 
+/// Polarisation a path keeps from light to screen: through a prism train
+/// (faces sharing one plane of incidence) s and p stay separate, and the
+/// average of the two gives the unpolarised answer (docs/physics.md §2).
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub enum Polarisation {
+    S,
+    P,
+}
+
+impl Polarisation {
+    /// The shares of s and p in light of polarisation `p` (`None`:
+    /// natural light, half of each).
+    pub fn shares(p: Option<Polarisation>) -> (f64, f64) {
+        match p {
+            None => (0.5, 0.5),
+            Some(Polarisation::S) => (1.0, 0.0),
+            Some(Polarisation::P) => (0.0, 1.0),
+        }
+    }
+}
+
 /// Reflectances of the two polarisations at one interface.
 #[derive(Copy, Clone, Debug, PartialEq)]
 pub struct Fresnel {

@@ -12,7 +12,7 @@
 //! computed the same way to the bit (`World::intersect_in`; a test checks
 //! it on random rays).
 
-use super::{Face, FaceHit, Sphere};
+use super::shape::{Face, FaceHit, Sphere};
 use glam::DVec3;
 
 /// Where a ray is, as far as the tracer knows. It only makes the search

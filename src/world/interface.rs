@@ -7,26 +7,8 @@ use super::{Surface, World};
 use crate::optics::{snell::reflect_f64, snell::refract_cos_f64, Fresnel};
 use glam::DVec3;
 
-/// Polarisation a path keeps from light to screen: through a prism train
-/// (faces sharing one plane of incidence) s and p stay separate, and the
-/// average of the two gives the unpolarised answer (docs/physics.md §2).
-#[derive(Copy, Clone, Debug, PartialEq, Eq)]
-pub enum Polarisation {
-    S,
-    P,
-}
-
-impl Polarisation {
-    /// The shares of s and p in light of polarisation `p` (`None`:
-    /// natural light, half of each).
-    pub fn shares(p: Option<Polarisation>) -> (f64, f64) {
-        match p {
-            None => (0.5, 0.5),
-            Some(Polarisation::S) => (1.0, 0.0),
-            Some(Polarisation::P) => (0.0, 1.0),
-        }
-    }
-}
+/// Re-exported where the light pass, the eye pass and the scenes name it.
+pub use crate::optics::fresnel::Polarisation;
 
 /// The outcome at an interface, for one wavelength.
 #[derive(Copy, Clone, Debug)]

@@ -1,7 +1,7 @@
 //! Lights: how each emits (a collimated beam or laser, a point, a
 //! Lambertian face or sphere), its spectrum and its power.
 
-use super::interface::Polarisation;
+use crate::optics::fresnel::Polarisation;
 use crate::spectrum::Spectrum;
 use glam::{DVec2, DVec3};
 

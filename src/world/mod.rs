@@ -1,9 +1,12 @@
 //! The f64 spectral world shared by the light pass and the eye pass:
 //! planar convex faces, each with the medium on either side (so cemented
 //! prisms need no special case), analytic spheres, matte screens, emitters,
-//! mirrors, lights and a pinhole camera. Few surfaces, so a linear scan in
-//! f64: the optics tests need better than f32 precision.
+//! mirrors, lights and a pinhole camera, all in f64: the optics tests need
+//! better than f32 precision. A ray finds its face by walking prism parts
+//! cell by cell (`cells`), through a BVH over the faces in worlds of many
+//! (`bvh`, built by `build_accel`), or else by trying every face.
 //!
+//! `shape` holds the faces and spheres and their intersections;
 //! `interface` is what a ray does at a smooth boundary (Snell, Fresnel,
 //! total internal reflection); `probe` follows one ray per wavelength.
 
@@ -20,7 +23,7 @@ pub use camera::Camera;
 pub use cells::{Cells, Region};
 pub use light::{Emission, Light};
 pub use medium::{Albedo, Indices, Medium, Surface};
-pub use shape::{Face, Sphere};
+pub use shape::{Face, FaceHit, Sphere};
 
 use glam::{DVec2, DVec3};
 
@@ -79,13 +82,6 @@ pub struct World {
     /// surface faster (`cells`); rebuilt from the faces by `add_extruded`
     /// and `build_accel`.
     pub cells: Cells,
-}
-
-/// Nearest face hit by a ray.
-#[derive(Copy, Clone, Debug, PartialEq)]
-pub struct FaceHit {
-    pub t: f64,
-    pub face: usize,
 }
 
 impl World {

@@ -5,6 +5,13 @@
 use super::medium::Surface;
 use glam::{DVec2, DVec3};
 
+/// Nearest face hit by a ray.
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub struct FaceHit {
+    pub t: f64,
+    pub face: usize,
+}
+
 /// A planar convex polygon.
 #[derive(Clone, Debug)]
 pub struct Face {

@@ -1,0 +1,388 @@
+//! Reading experiment files (TOML), one per figure family in `experiments/`,
+//! into an [`Experiment`]:
+//!
+//! ```toml
+//! name = "lab-ior"                 # results go to results/<name>/
+//! mode = "interior"                # interior | prism
+//! figures = ["lab-ior1.4"]         # figure ids the experiment backs (optional)
+//! repeats = 1
+//! [fixed]                          # parameters every run shares
+//! off = "off/cube.off"
+//! size = [201, 201]
+//! [sweep]                          # axes, the first outermost; a list or a range
+//! ior = { from = 1.1, to = 3.0, step = 0.1 }
+//! trace = [0, 5, 10]
+//! [[case]]                         # optional named cases (stability), times the sweep
+//! name = "low ior"
+//! ior = 0.5
+//! [reference]                      # overrides for the reference image (RMSE, PSNR)
+//! photons = 20000000
+//! [quick]                          # replaces fixed/sweep/repeats keys under --quick
+//! fixed = { size = [64, 64] }
+//! [outputs]
+//! images = true
+//! [[outputs.plot]]
+//! x = "param_trace"; y = "render_s"; series = ["param_specular_opacity"]; log_x = false; fit = false
+//! ```
+//!
+//! Parameter names are the mode's flag names with `_` for `-`. Errors name
+//! the key and its line.
+
+use super::spec::{fnv1a, Case, Experiment, PlotKind, PlotSpec, MAX_RUNS};
+use crate::modes::Mode;
+use crate::names::Named;
+use anyhow::{anyhow, Result};
+use std::path::Path;
+use toml::{Table, Value};
+
+/// The line of `key` inside `[section]` (the `nth` such section for arrays
+/// of tables); 1 when it cannot be found.
+pub fn line_of(text: &str, section: &str, nth: usize, key: &str) -> usize {
+    let mut current = String::new();
+    let mut seen = 0usize;
+    for (i, raw) in text.lines().enumerate() {
+        let l = raw.trim();
+        if l.starts_with('[') {
+            current = l.trim_matches(|c| c == '[' || c == ']').trim().to_string();
+            if current == section {
+                seen += 1;
+            }
+            continue;
+        }
+        let in_section = current == section && (seen == nth + 1 || section.is_empty());
+        if in_section || (section.is_empty() && current.is_empty()) {
+            if let Some((k, _)) = l.split_once('=') {
+                if k.trim().trim_matches('"') == key {
+                    return i + 1;
+                }
+            }
+        }
+    }
+    // An inline table (`fixed = { ... }`) or a dotted key: search anywhere.
+    text.lines().position(|l| l.contains(key)).map_or(1, |i| i + 1)
+}
+
+/// Parses TOML text; a syntax error names `file` and its line.
+pub fn parse_toml(text: &str, file: &str) -> Result<Table> {
+    text.parse::<Table>().map_err(|e| {
+        let line = e.span().map_or(1, |s| text[..s.start.min(text.len())].lines().count().max(1));
+        anyhow!("{file}:{line}: {}", e.message())
+    })
+}
+
+impl Experiment {
+    pub fn load(path: &Path, quick: bool) -> Result<Experiment> {
+        let text = crate::data::read_input_text(path).map_err(|e| anyhow!("{}: cannot read: {e}", path.display()))?;
+        Experiment::parse(&text, &path.display().to_string(), quick)
+    }
+
+    pub fn parse(text: &str, file: &str, quick: bool) -> Result<Experiment> {
+        let p = FileParser::new(text, file, quick)?;
+        let (name, mode) = p.name_and_mode()?;
+        let sweep = p.sweep(mode)?;
+        let mut cases = p.cases(mode, &sweep)?;
+        // Under --quick, a case's own list for an axis [quick] shortens is
+        // cut to its first values, as many as the quick list has.
+        if let Some(Value::Table(q)) = p.quick.get("sweep") {
+            for case in &mut cases {
+                for (k, v) in &mut case.params {
+                    if let (Some(Value::Array(short)), Value::Array(own)) = (q.get(k.as_str()), v) {
+                        own.truncate(short.len().max(1));
+                    }
+                }
+            }
+        }
+        let outputs = p.table("outputs")?;
+        let images = match outputs.get("images") {
+            None => false,
+            Some(Value::Boolean(b)) => *b,
+            Some(_) => return Err(p.err("outputs", 0, "images", "must be true or false".into())),
+        };
+        let fingerprint = format!("{name}@{:016x}{}", fnv1a(text.as_bytes()), if quick { "-quick" } else { "" });
+        let e = Experiment {
+            name,
+            mode,
+            description: p.root.get("description").and_then(Value::as_str).unwrap_or_default().to_string(),
+            figures: p.figures()?,
+            repeats: p.repeats()?,
+            fixed: p.checked(mode, "fixed")?,
+            sweep,
+            cases,
+            reference: match p.root.get("reference") {
+                None => None,
+                Some(Value::Table(_)) => Some(p.checked(mode, "reference")?),
+                Some(_) => return Err(p.err("", 0, "reference", "must be a table".into())),
+            },
+            images,
+            plots: p.plots(&outputs)?,
+            quick,
+            fingerprint,
+        };
+        // A plot's columns are known before any run: a misspelt one is
+        // refused now, not after the sweep.
+        let columns = e.columns();
+        for (i, plot) in e.plots.iter().enumerate() {
+            let named = [("x", &plot.x), ("y", &plot.y)].into_iter().filter(|(_, c)| !c.is_empty()).chain(plot.series.iter().map(|c| ("series", c)));
+            for (key, c) in named {
+                if !columns.contains(c) {
+                    return Err(p.err("outputs.plot", i, key, format!("`{c}` is not a column of runs.csv; columns: {}", columns.join(", "))));
+                }
+            }
+        }
+        let runs = e.run_count();
+        if runs > MAX_RUNS as u128 {
+            return Err(p.err(
+                "",
+                0,
+                "sweep",
+                format!("the experiment has {runs} runs (cases x sweep values x repeats); at most {MAX_RUNS}: split it into several files or narrow an axis"),
+            ));
+        }
+        // A key no run would use varies nothing the sweep measures: refused
+        // now, on its line. A key only some runs use is fine, since grids
+        // cross keys that apply to some of their cases only (`split` under
+        // the hero wavelength in eye-split.toml).
+        let grid = super::grid::expand(&e);
+        for key in e.param_names() {
+            let mut why = None;
+            let used = grid.iter().filter(|r| r.params.iter().any(|(k, _)| *k == key)).any(|r| match r.mode.ignored(&r.params, &key) {
+                Some(w) => {
+                    why.get_or_insert(w);
+                    false
+                }
+                None => true,
+            });
+            if let (false, Some(why)) = (used, why) {
+                let (section, nth) = if e.fixed.iter().any(|(k, _)| *k == key) {
+                    ("fixed", 0)
+                } else if e.sweep.iter().any(|(k, _)| *k == key) {
+                    ("sweep", 0)
+                } else {
+                    ("case", e.cases.iter().position(|c| c.params.iter().any(|(k, _)| *k == key)).unwrap_or(0))
+                };
+                return Err(p.err(section, nth, &key, format!("no run of the experiment uses it: {why}")));
+            }
+        }
+        if let (Some(over), Some(given)) = (&e.reference, e.reference_params()) {
+            if let Ok(Some((key, why))) = e.mode.first_ignored(&given, over.iter().map(|(k, _)| k.as_str())) {
+                return Err(p.err("reference", 0, &key, format!("the reference run would ignore it: {why}")));
+            }
+        }
+        Ok(e)
+    }
+}
+
+const TOP_KEYS: [&str; 11] = ["name", "mode", "description", "figures", "repeats", "fixed", "sweep", "case", "reference", "quick", "outputs"];
+const PLOT_KEYS: [&str; 9] = ["x", "y", "series", "log_x", "log_y", "fit", "title", "file", "kind"];
+
+/// An experiment file being read: its text (for line numbers), its table,
+/// and the [quick] overrides in force.
+struct FileParser<'a> {
+    text: &'a str,
+    file: &'a str,
+    root: Table,
+    quick: Table,
+}
+
+impl<'a> FileParser<'a> {
+    fn new(text: &'a str, file: &'a str, quick: bool) -> Result<FileParser<'a>> {
+        let root = parse_toml(text, file)?;
+        let mut p = FileParser { text, file, root, quick: Table::new() };
+        for k in p.root.keys() {
+            if !TOP_KEYS.contains(&k.as_str()) {
+                return Err(p.err("", 0, k, format!("unknown key; expected {}", TOP_KEYS.join(", "))));
+            }
+        }
+        // [quick] is checked whether or not --quick is given.
+        let quick_all = p.table("quick")?;
+        for k in quick_all.keys() {
+            if !["fixed", "sweep", "repeats", "reference"].contains(&k.as_str()) {
+                return Err(p.err("quick", 0, k, "unknown key in [quick]; expected fixed, sweep, repeats or reference".into()));
+            }
+        }
+        if quick {
+            p.quick = quick_all;
+        }
+        Ok(p)
+    }
+
+    /// An error at `key` of the `nth` `[section]`, with its line.
+    fn err(&self, section: &str, nth: usize, key: &str, msg: String) -> anyhow::Error {
+        anyhow!("{}:{}: `{key}`: {msg}", self.file, line_of(self.text, section, nth, key))
+    }
+
+    fn table(&self, key: &str) -> Result<Table> {
+        match self.root.get(key) {
+            None => Ok(Table::new()),
+            Some(Value::Table(t)) => Ok(t.clone()),
+            Some(_) => Err(self.err("", 0, key, "must be a table".into())),
+        }
+    }
+
+    /// A section with its [quick] overrides applied.
+    fn merged(&self, key: &str) -> Result<Table> {
+        let mut t = self.table(key)?;
+        if let Some(q) = self.quick.get(key) {
+            let Value::Table(q) = q else { return Err(self.err("quick", 0, key, "must be a table".into())) };
+            t.extend(q.iter().map(|(k, v)| (k.clone(), v.clone())));
+        }
+        Ok(t)
+    }
+
+    /// A section's parameters, each checked against the mode's table.
+    fn checked(&self, mode: Mode, section: &str) -> Result<Vec<(String, Value)>> {
+        self.merged(section)?.into_iter().map(|(k, v)| mode.check(&k, &v).map(|_| (k.clone(), v)).map_err(|m| self.err(section, 0, &k, m))).collect()
+    }
+
+    fn string(&self, key: &str) -> Result<String> {
+        match self.root.get(key) {
+            Some(Value::String(s)) => Ok(s.clone()),
+            Some(_) => Err(self.err("", 0, key, "must be a string".into())),
+            None => Err(anyhow!("{}: missing `{key}`", self.file)),
+        }
+    }
+
+    fn name_and_mode(&self) -> Result<(String, Mode)> {
+        let name = self.string("name")?;
+        if name.is_empty() || !name.chars().all(|c| c.is_ascii_alphanumeric() || c == '-' || c == '_') {
+            return Err(self.err("", 0, "name", "use letters, digits, - and _ only (it names a folder)".into()));
+        }
+        let m = self.string("mode")?;
+        let mode = Mode::from_name(&m).ok_or_else(|| self.err("", 0, "mode", format!("`{m}` is not interior or prism")))?;
+        Ok((name, mode))
+    }
+
+    fn figures(&self) -> Result<Vec<String>> {
+        let bad = || self.err("", 0, "figures", "must be a list of strings".into());
+        match self.root.get("figures") {
+            None => Ok(Vec::new()),
+            Some(Value::Array(a)) => a.iter().map(|v| v.as_str().map(str::to_string).ok_or_else(bad)).collect(),
+            Some(_) => Err(bad()),
+        }
+    }
+
+    fn repeats(&self) -> Result<u32> {
+        match self.quick.get("repeats").or(self.root.get("repeats")) {
+            None => Ok(1),
+            Some(Value::Integer(n)) if (1..=1000).contains(n) => Ok(*n as u32),
+            Some(_) => Err(self.err("", 0, "repeats", "must be a whole number from 1 to 1000".into())),
+        }
+    }
+
+    /// The sweep axes, in the file's order (toml::Table sorts by key).
+    fn sweep(&self, mode: Mode) -> Result<Vec<(String, Vec<Value>)>> {
+        let mut axes: Vec<(String, Value)> = self.merged("sweep")?.into_iter().collect();
+        axes.sort_by_key(|(k, _)| self.text.find(&format!("\n{k}")).or_else(|| self.text.find(k.as_str())).unwrap_or(usize::MAX));
+        let mut sweep = Vec::new();
+        for (k, v) in axes {
+            let values = match &v {
+                Value::Array(a) if !a.is_empty() => a.clone(),
+                Value::Table(t) => range(t).map_err(|m| self.err("sweep", 0, &k, m))?,
+                _ => return Err(self.err("sweep", 0, &k, "must be a non-empty list or { from, to, step }".into())),
+            };
+            for x in &values {
+                mode.check(&k, x).map_err(|m| self.err("sweep", 0, &k, m))?;
+            }
+            sweep.push((k, values));
+        }
+        Ok(sweep)
+    }
+
+    /// The [[case]] tables: each a name, a mode and its overrides (a list
+    /// under a sweep axis's name narrows that axis).
+    fn cases(&self, mode: Mode, sweep: &[(String, Vec<Value>)]) -> Result<Vec<Case>> {
+        let Some(c) = self.root.get("case") else { return Ok(Vec::new()) };
+        let bad = || self.err("", 0, "case", "write cases as [[case]] tables".into());
+        let Value::Array(list) = c else { return Err(bad()) };
+        let mut cases = Vec::new();
+        for (i, item) in list.iter().enumerate() {
+            let Value::Table(t) = item else { return Err(bad()) };
+            let name = t.get("name").and_then(Value::as_str).ok_or_else(|| self.err("case", i, "name", format!("case {} needs a name", i + 1)))?.to_string();
+            let case_mode = match t.get("mode") {
+                None => mode,
+                Some(m) => m.as_str().and_then(Mode::from_name).ok_or_else(|| self.err("case", i, "mode", "must be interior or prism".into()))?,
+            };
+            let mut set = Vec::new();
+            for (k, v) in t.iter().filter(|(k, _)| k.as_str() != "name" && k.as_str() != "mode") {
+                let values = match v {
+                    Value::Array(list) if sweep.iter().any(|(a, _)| a == k) => list.clone(),
+                    _ => vec![v.clone()],
+                };
+                for x in &values {
+                    case_mode.check(k, x).map_err(|m| self.err("case", i, k, m))?;
+                }
+                set.push((k.clone(), v.clone()));
+            }
+            cases.push(Case { name, mode: case_mode, params: set });
+        }
+        Ok(cases)
+    }
+
+    fn plots(&self, outputs: &Table) -> Result<Vec<PlotSpec>> {
+        let Some(p) = outputs.get("plot") else { return Ok(Vec::new()) };
+        let bad = || self.err("outputs", 0, "plot", "write plots as [[outputs.plot]] tables".into());
+        let Value::Array(list) = p else { return Err(bad()) };
+        list.iter().enumerate().map(|(i, item)| if let Value::Table(t) = item { self.plot(i, t) } else { Err(bad()) }).collect()
+    }
+
+    fn plot(&self, i: usize, t: &Table) -> Result<PlotSpec> {
+        let perr = |key: &str, m: &str| self.err("outputs.plot", i, key, m.to_string());
+        for k in t.keys() {
+            if !PLOT_KEYS.contains(&k.as_str()) {
+                return Err(perr(k, &format!("unknown plot key; expected {}", PLOT_KEYS.join(", "))));
+            }
+        }
+        let s = |key: &str| t.get(key).and_then(Value::as_str).map(str::to_string);
+        let b = |key: &str| t.get(key).and_then(Value::as_bool).unwrap_or(false);
+        let kind = match s("kind") {
+            None => PlotKind::Line,
+            Some(k) => PlotKind::from_name(&k).ok_or_else(|| perr("kind", "must be line or table"))?,
+        };
+        let series = match t.get("series") {
+            None => Vec::new(),
+            Some(Value::String(x)) => vec![x.clone()],
+            Some(Value::Array(a)) => a.iter().filter_map(Value::as_str).map(str::to_string).collect(),
+            Some(_) => return Err(perr("series", "must be a column name or a list of them")),
+        };
+        let file = s("file").ok_or_else(|| perr("file", "each plot needs a file name"))?;
+        if !file.chars().all(|c| c.is_ascii_alphanumeric() || c == '-' || c == '_') {
+            return Err(perr("file", "use letters, digits, - and _ only"));
+        }
+        let (x, y) = match kind {
+            PlotKind::Table => (s("x").unwrap_or_default(), s("y").unwrap_or_default()),
+            PlotKind::Line => (s("x").ok_or_else(|| perr("x", "a line plot needs x"))?, s("y").ok_or_else(|| perr("y", "a line plot needs y"))?),
+        };
+        Ok(PlotSpec { x, y, series, log_x: b("log_x"), log_y: b("log_y"), fit: b("fit"), title: s("title").unwrap_or_else(|| file.clone()), file, kind })
+    }
+}
+
+/// `{ from, to, step }` as the list of values, inclusive of `to` within
+/// rounding; integers stay integers.
+fn range(t: &Table) -> Result<Vec<Value>, String> {
+    for k in t.keys() {
+        if !["from", "to", "step"].contains(&k.as_str()) {
+            return Err(format!("unknown range key `{k}`; expected from, to, step"));
+        }
+    }
+    let num = |k: &str| t.get(k).and_then(|v| v.as_float().or(v.as_integer().map(|i| i as f64))).ok_or(format!("a range needs a number `{k}`"));
+    let (from, to, step) = (num("from")?, num("to")?, num("step")?);
+    if !(step > 0.0) || !(to >= from) || !from.is_finite() || !to.is_finite() {
+        return Err(format!("range from {from} to {to} step {step}: need from <= to and step > 0"));
+    }
+    let n = ((to - from) / step + 1e-9).floor() as usize + 1;
+    if n > 100_000 {
+        return Err(format!("range gives {n} values; at most 100000"));
+    }
+    let ints = t.values().all(|v| v.is_integer());
+    Ok((0..n)
+        .map(|i| {
+            let v = from + i as f64 * step;
+            if ints {
+                Value::Integer(v.round() as i64)
+            } else {
+                // Round away binary noise: 1.1 + 2 * 0.1 is written 1.3.
+                Value::Float((v * 1e9).round() / 1e9)
+            }
+        })
+        .collect())
+}

@@ -1,0 +1,128 @@
+//! One home per mode for running a configuration. Each mode (`interior`,
+//! `prism`) owns its parameter table, its defaults, its validation and its
+//! configuration -> render -> outputs path; the command line, scene files,
+//! sweeps and the sweep planner all reach it through one [`Mode`] value
+//! (`with_mode!` is the only place that picks a mode's table). The small
+//! tools beside them (`spectrum`, `glass`, `meshes`, `trace`) each own
+//! their output.
+//!
+//! May import everything below it (the renderers, `params`, the physics);
+//! `experiment`, `bench` and `cli` import it.
+
+pub mod glass;
+pub mod interior;
+pub mod meshes;
+pub mod prism;
+pub mod run;
+pub mod spectrum;
+pub mod trace;
+
+use crate::image_io::ImageFormat;
+use crate::params;
+use crate::progress::Progress;
+use anyhow::{anyhow, Result};
+pub use run::{Cost, Frame, MeshCache, ModeKind, Record, Report, Run};
+use std::path::Path;
+use toml::Value;
+
+crate::named_enum! {
+    /// Which renderer a run uses.
+    pub enum Mode {
+        /// Report 004: a point light inside a mesh (`refract interior`).
+        Interior = "interior",
+        /// The spectral photon mapper of reports 000, 001, 003 (`refract prism`).
+        Prism = "prism",
+    }
+}
+
+/// Evaluates `$body` with `$M` naming the mode's [`ModeKind`].
+macro_rules! with_mode {
+    ($mode:expr, $M:ident => $body:expr) => {
+        match $mode {
+            Mode::Interior => {
+                type $M = $crate::modes::interior::Interior;
+                $body
+            }
+            Mode::Prism => {
+                type $M = $crate::modes::prism::Prism;
+                $body
+            }
+        }
+    };
+}
+
+/// The configuration `given` describes, from the mode's defaults, checked.
+pub fn config<M: ModeKind>(given: &[(String, Value)]) -> Result<M::Config> {
+    let mut cfg = M::defaults();
+    for (k, v) in given {
+        params::apply_toml(M::params(), &mut cfg, k, v).map_err(|m| anyhow!("{k}: {m}"))?;
+    }
+    M::validate(&cfg)?;
+    Ok(cfg)
+}
+
+impl Mode {
+    /// Whether `key` is a parameter of the mode.
+    pub fn known(self, key: &str) -> bool {
+        with_mode!(self, M => params::find(M::params(), key).is_some())
+    }
+
+    /// Checks one parameter (on the mode's defaults); a mesh file it names
+    /// must exist.
+    pub fn check(self, key: &str, v: &Value) -> Result<(), String> {
+        with_mode!(self, M => {
+            let Some(_) = params::find(M::params(), key) else {
+                let keys: Vec<&str> = M::params().iter().map(|p| p.key).collect();
+                return Err(format!("unknown {} parameter; expected one of {}", self.name(), keys.join(", ")));
+            };
+            let mut cfg = M::defaults();
+            params::apply_toml(M::params(), &mut cfg, key, v)?;
+            match M::mesh_file(&cfg, key) {
+                Some(p) if !p.is_file() => Err(format!("{}: no such file (paths are from the folder refract runs in)", p.display())),
+                _ => Ok(()),
+            }
+        })
+    }
+
+    /// A value typed as text (`--set KEY=VALUE`), read by the key's row;
+    /// `None` when the mode has no such key.
+    pub fn parse_text(self, key: &str, text: &str) -> Option<Result<params::Value, String>> {
+        with_mode!(self, M => params::find(M::params(), key).map(|p| p.kind.parse_text(text)))
+    }
+
+    /// The first of `keys` that the run `given` describes would ignore, and
+    /// why; an error if the configuration itself is refused.
+    pub fn first_ignored<'k>(self, given: &[(String, Value)], keys: impl IntoIterator<Item = &'k str>) -> Result<Option<(String, String)>> {
+        with_mode!(self, M => {
+            let cfg = config::<M>(given)?;
+            Ok(params::first_ignored(keys.into_iter().filter_map(|k| params::find(M::params(), k)), &cfg).map(|(p, why)| (p.key.to_string(), why)))
+        })
+    }
+
+    /// Why a run with these parameters would ignore `key` (`None`: it uses
+    /// it, or its configuration is refused anyway, which the run reports).
+    pub fn ignored(self, given: &[(String, Value)], key: &str) -> Option<String> {
+        self.first_ignored(given, [key]).ok().flatten().map(|(_, why)| why)
+    }
+
+    /// The image formats the mode writes.
+    pub fn formats(self) -> &'static [ImageFormat] {
+        with_mode!(self, M => M::FORMATS)
+    }
+
+    /// The estimated cost of a run (a refused configuration costs little:
+    /// it fails at once).
+    pub fn cost(self, given: &[(String, Value)]) -> Cost {
+        with_mode!(self, M => config::<M>(given).map_or(Cost { seconds: 0.01, bytes: 0.0 }, |c| M::cost(&c)))
+    }
+
+    /// Renders the run `given` describes and writes its image to `out`.
+    pub fn render_to(self, given: &[(String, Value)], out: &Path, progress: &dyn Progress) -> Result<Run> {
+        with_mode!(self, M => M::render_to(config::<M>(given)?, out, progress))
+    }
+
+    /// Renders the run `given` describes, writing nothing.
+    pub fn render(self, given: &[(String, Value)], progress: &dyn Progress, meshes: &MeshCache) -> Result<Run> {
+        with_mode!(self, M => M::render(&config::<M>(given)?, progress, meshes))
+    }
+}

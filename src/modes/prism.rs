@@ -1,0 +1,145 @@
+//! The prism mode (the spectral photon mapper of reports 000, 001 and 003,
+//! `refract prism`): its parameter table (`crate::params::prism`),
+//! defaults and checks, and its run: the scene built, rendered, recorded.
+
+use super::run::{Cost, MeshCache, ModeKind, Record, Report, Run};
+use crate::image_io::ImageFormat;
+use crate::params::{self, Param};
+use crate::progress::Progress;
+use crate::spectral::{SpectralConfig, SpectralReport, TimingRow};
+use anyhow::{Context, Result};
+use std::path::{Path, PathBuf};
+
+/// The prism mode.
+pub struct Prism;
+
+impl ModeKind for Prism {
+    type Config = SpectralConfig;
+    const FORMATS: &'static [ImageFormat] = &[ImageFormat::Png, ImageFormat::Ppm, ImageFormat::Pfm];
+
+    fn params() -> &'static [Param<SpectralConfig>] {
+        params::prism::PARAMS
+    }
+
+    fn defaults() -> SpectralConfig {
+        params::prism::defaults()
+    }
+
+    fn validate(cfg: &SpectralConfig) -> Result<()> {
+        params::check_threads(cfg.threads).map_err(anyhow::Error::msg)?;
+        cfg.validate()
+    }
+
+    fn mesh_file(cfg: &SpectralConfig, key: &str) -> Option<PathBuf> {
+        cfg.scene.obj.clone().filter(|_| key == "obj")
+    }
+
+    fn cost(c: &SpectralConfig) -> Cost {
+        let px = (c.scene.width * c.scene.height) as f64;
+        let photons = c.photons as f64;
+        Cost { seconds: 0.05 + photons / 1.7e6 + px * c.spp as f64 / 1e6, bytes: photons * 4.0 * 40.0 + px * 27.0 }
+    }
+
+    fn render(cfg: &SpectralConfig, progress: &dyn Progress, _: &MeshCache) -> Result<Run> {
+        Ok(run_of(cfg, crate::spectral::render_config(cfg, progress)?))
+    }
+
+    fn render_to(mut cfg: SpectralConfig, out: &Path, progress: &dyn Progress) -> Result<Run> {
+        cfg.out = out.to_path_buf();
+        Ok(run_of(&cfg, crate::spectral::run(&cfg, progress)?))
+    }
+}
+
+/// The run's record beside its report.
+fn run_of(cfg: &SpectralConfig, mut report: SpectralReport) -> Run {
+    let r = &report.render;
+    let s = &r.stats;
+    let record = Record {
+        triangles: None,
+        width: r.image.width,
+        height: r.image.height,
+        load_s: None,
+        build_s: r.build_s,
+        trace_s: Some(r.trace_s),
+        render_s: r.render_s,
+        rays: r.eye_rays,
+        photons: Some(s.emitted),
+        stored: Some(s.stored),
+        tir_fraction: s.tir as f64 / s.emitted.max(1) as f64,
+    };
+    Run { record, notes: std::mem::take(&mut report.notes), report: Report::Prism { report, gamut: cfg.gamut } }
+}
+
+/// `--quick` on the command line: unless given, a tenth of the photons, 1
+/// sample per pixel and half the size (a quick look, not a measurement).
+pub fn quick(cfg: &mut SpectralConfig, given: impl Fn(&str) -> bool) {
+    if !given("photons") {
+        cfg.photons = (cfg.photons / 10).max(1);
+    }
+    if !given("spp") {
+        cfg.spp = 1;
+    }
+    if !given("size") {
+        cfg.scene.width = (cfg.scene.width / 2).max(1);
+        cfg.scene.height = (cfg.scene.height / 2).max(1);
+    }
+}
+
+/// A run of the command line: checks `cfg` and its outputs before any
+/// work, renders, writes the image to `cfg.out` and a row to `timing_csv`;
+/// tells the user (`say`) of its warnings and of
+/// what it wrote.
+pub fn run_to_files(cfg: &SpectralConfig, timing_csv: Option<&Path>, progress: &dyn Progress, say: &mut dyn FnMut(String)) -> Result<()> {
+    cfg.validate()?;
+    params::check_threads(cfg.threads).map_err(anyhow::Error::msg)?;
+    // The default folder, results/, is made; any other must exist.
+    if let Some(parent) = cfg.out.parent().filter(|p| !p.as_os_str().is_empty() && cfg.out.starts_with("results")) {
+        crate::image_io::create_folder(parent)?;
+    }
+    crate::image_io::check_output(&cfg.out, Prism::FORMATS).map_err(|e| anyhow::anyhow!("--out: {e}"))?;
+    crate::image_io::remove_stale_temps(cfg.out.parent().unwrap_or(Path::new("")));
+    if let Some(path) = timing_csv {
+        crate::timing::check_header::<TimingRow>(path).context("--timing-csv")?;
+    }
+    let report = crate::spectral::run(cfg, progress)?;
+    for n in &report.notes {
+        say(format!("warning: {n}"));
+    }
+    if let Some(path) = timing_csv {
+        crate::timing::append(path, &TimingRow::new(cfg, &report))?;
+    }
+    let s = &report.render.stats;
+    if cfg.exact {
+        say(format!(
+            "wrote {} ({}x{}): the exact image, {} wavelengths, {:.2} s, exposure {:.3e}",
+            cfg.out.display(),
+            cfg.scene.width,
+            cfg.scene.height,
+            cfg.exact_wavelengths,
+            report.render.render_s,
+            report.exposure
+        ));
+        return Ok(());
+    }
+    say(format!(
+        "wrote {} ({}x{}): {} photons, {} stored, {:.2} s light pass ({:.2} M photons/s), {:.2} s eye pass, exposure {:.3e}",
+        cfg.out.display(),
+        cfg.scene.width,
+        cfg.scene.height,
+        s.emitted,
+        s.stored,
+        report.render.trace_s,
+        s.emitted as f64 / report.render.trace_s.max(1e-9) / 1e6,
+        report.render.render_s,
+        report.exposure
+    ));
+    if let Some(r) = report.render.film_kernel {
+        let how = match (cfg.film_kernel, cfg.passes > 1) {
+            (Some(_), _) => "as asked",
+            (None, true) => "none under --passes",
+            (None, false) => "chosen from the film's two halves",
+        };
+        say(format!("film kernel: {r} px ({how})"));
+    }
+    Ok(())
+}
