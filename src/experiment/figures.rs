@@ -176,7 +176,7 @@ pub fn run(o: &FigureOptions) -> Result<Outcome> {
         bar.set_message(id.clone());
         let png = dir.join(format!("{id}.png"));
         let result: Result<Record> = match DRAWN.iter().find(|d| d.0 == id) {
-            Some(&(_, report, caption)) => draw(id, &png, o.quick).map(|params| Record {
+            Some(&(_, report, caption)) => draw(id, &png, o.quick, &o.scenes).map(|params| Record {
                 report: report.into(),
                 caption: caption.into(),
                 params,
@@ -239,11 +239,17 @@ const GROUPS: [(&str, &[&str], &str); 8] = [
     ("003", &["pm-pointlight-faint", "pm-mirror-tube"], "A bare point light gives a faint rainbow; the mirror tube concentrates it."),
 ];
 
-fn figure_html(h: &mut String, out: &Path, id: &str, r: &Record) -> Result<()> {
+/// Figures whose effect is small or faint by design (report 003's first,
+/// faint rainbow; report 001's few-pixel fringes): the quick gallery shows
+/// them at twice their size, so they can be found there too.
+pub const TWICE_IN_QUICK: [&str; 2] = ["pm-pointlight-faint", "cs348b-sphere-arealight"];
+
+fn figure_html(h: &mut String, out: &Path, id: &str, r: &Record, quick: bool) -> Result<()> {
     let png = out.join("figures").join(format!("{id}.png"));
     writeln!(h, "<figure id=\"{id}\">")?;
     if png.exists() {
-        writeln!(h, "<a href=\"figures/{id}.png\"><img src=\"figures/{id}.png\" alt=\"{id}\"></a>")?;
+        let twice = if quick && TWICE_IN_QUICK.contains(&id) { " class=\"twice\"" } else { "" };
+        writeln!(h, "<a href=\"figures/{id}.png\"><img src=\"figures/{id}.png\" alt=\"{id}\"{twice}></a>")?;
     } else {
         writeln!(h, "<p class=\"missing\">not rendered yet: <code>refract figures --only {id}</code></p>")?;
     }
@@ -254,7 +260,7 @@ fn figure_html(h: &mut String, out: &Path, id: &str, r: &Record) -> Result<()> {
 }
 
 fn write_index(out: &Path, ids: &[String], records: &BTreeMap<String, Record>, quick: bool) -> Result<()> {
-    let mut h = String::from("<!doctype html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>refract: the reports' figures</title>\n<style>body{font-family:sans-serif;margin:2em;background:#fafafa;max-width:1400px}figure{display:inline-block;vertical-align:top;margin:0 1.5em 2em 0;max-width:660px}img{max-width:640px;border:1px solid #ccc;background:#000}.group{border-left:4px solid #58a;padding-left:1em;margin-bottom:1.5em}.group figure{max-width:430px}.group img{max-width:420px}.look{font-weight:bold;color:#245}figcaption{font-size:90%}code{font-size:85%;color:#555}.missing{color:#a00}.banner{background:#fe9;padding:.6em 1em;border:1px solid #cb6}nav li{margin:.2em 0}</style></head><body>\n<h1>refract: every figure of the four reports</h1>\n");
+    let mut h = String::from("<!doctype html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>refract: the reports' figures</title>\n<style>body{font-family:sans-serif;margin:2em;background:#fafafa;max-width:1400px}figure{display:inline-block;vertical-align:top;margin:0 1.5em 2em 0;max-width:660px}img{max-width:640px;border:1px solid #ccc;background:#000}img.twice{width:480px;image-rendering:auto}.group{border-left:4px solid #58a;padding-left:1em;margin-bottom:1.5em}.group figure{max-width:430px}.group img{max-width:420px}.look{font-weight:bold;color:#245}figcaption{font-size:90%}code{font-size:85%;color:#555}.missing{color:#a00}.banner{background:#fe9;padding:.6em 1em;border:1px solid #cb6}nav li{margin:.2em 0}</style></head><body>\n<h1>refract: every figure of the four reports</h1>\n");
     if quick {
         h.push_str("<p class=\"banner\"><b>Quick set</b> (<code>figures --quick</code>): smaller images and fewer samples, for a fast look. The full-quality set is <code>results/index.html</code>.</p>\n");
     } else {
@@ -300,13 +306,13 @@ fn write_index(out: &Path, ids: &[String], records: &BTreeMap<String, Record>, q
                 Some((_, members, look)) => {
                     writeln!(h, "<div class=\"group\"><p class=\"look\">Compare: {}</p>", esc(look))?;
                     for m in members.iter().filter(|m| ids.iter().any(|i| i == *m)) {
-                        figure_html(&mut h, out, m, records.get(*m).unwrap_or(&none))?;
+                        figure_html(&mut h, out, m, records.get(*m).unwrap_or(&none), quick)?;
                         shown.push(m);
                     }
                     h.push_str("</div>\n");
                 }
                 None => {
-                    figure_html(&mut h, out, id, records.get(id).unwrap_or(&none))?;
+                    figure_html(&mut h, out, id, records.get(id).unwrap_or(&none), quick)?;
                     shown.push(id);
                 }
             }
@@ -342,11 +348,11 @@ fn write_index(out: &Path, ids: &[String], records: &BTreeMap<String, Record>, q
 }
 
 /// Draws one of the figures made in code; returns its parameter text.
-fn draw(id: &str, png: &Path, quick: bool) -> Result<String> {
+fn draw(id: &str, png: &Path, quick: bool, scenes: &Path) -> Result<String> {
     match id {
         "css552-p2" => ray_diagram(png),
         "css552-p3" => overview(png),
-        _ => colour_compare(png, quick),
+        _ => colour_compare(png, quick, scenes),
     }
 }
 
@@ -477,40 +483,36 @@ fn overview(png: &Path) -> Result<String> {
     Ok("amici-screen geometry (metres), probe rays at 450, 587.6 and 650 nm".into())
 }
 
-fn colour_compare(png: &Path, quick: bool) -> Result<String> {
+/// The colour-map comparison (report 003): pm-dark-side's own scene file
+/// (its glass, Musgrave's index model, its beam) rendered once per map,
+/// each tile cropped to the prism and its fan (a camera nearer the cover),
+/// under a readable label.
+fn colour_compare(png: &Path, quick: bool, scenes: &Path) -> Result<String> {
     use crate::spectrum::colormap::ColorMap;
     super::plot::register();
-    let (tw, th) = if quick { (240usize, 180usize) } else { (480, 360) };
-    let photons = if quick { 600_000 } else { 4_000_000 };
+    let file = SceneFile::load(&scenes.join("pm-dark-side.toml"), quick)?;
+    let mut cfg = super::params::prism_config(&file.params)?;
+    let (tw, th) = if quick { (240usize, 150usize) } else { (480, 300) };
+    let (label_h, font) = if quick { (22usize, 15) } else { (36, 24) };
+    let indent = if quick { 10 } else { 14 };
+    (cfg.scene.width, cfg.scene.height) = (tw, th);
+    cfg.spp = cfg.spp.min(if quick { 2 } else { 8 });
     let maps = ColorMap::ALL;
     let cols = 3;
     let rows = maps.len().div_ceil(cols);
-    let (w, h) = (tw * cols, (th + 28) * rows);
+    let (w, h) = (tw * cols, (th + label_h) * rows);
     let mut buf = vec![0u8; w * h * 3];
     for (k, map) in maps.iter().enumerate() {
-        let mut so = SceneOptions::new(SceneKind::DarkSide);
-        so.crown = crate::optics::glass::by_name("N-SF11")?;
-        (so.width, so.height) = (tw, th);
-        let mut cfg = crate::spectral::SpectralConfig::new(so, PathBuf::new());
-        cfg.photons = photons;
         cfg.colours = *map;
-        let scene = build(&cfg.scene)?;
-        let r = crate::spectral::default_radius(&scene);
-        let opts = crate::spectral::options::RenderOptions {
-            photons,
-            map: crate::photon::map::MapKind::Kdtree,
-            filter: cfg.filter,
-            lookup: crate::photon::gather::Lookup::Radius(r),
-            spp: 2,
-            seed: 0,
-            eye: cfg.eye,
-            split: 8,
-            colours: *map,
-            film_kernel: cfg.film_kernel,
-        };
-        let img = crate::spectral::render::render(&scene, &opts, &crate::progress::Silent).image;
-        let tile = img.to_srgb8(img.auto_exposure(), crate::spectrum::cie::GamutMap::Desaturate);
-        let (x0, y0) = ((k % cols) * tw, (k / cols) * (th + 28) + 28);
+        let mut scene = build(&cfg.scene)?;
+        // The crop: the prism and the whole fan, the incoming beam's last
+        // part (the figure's own camera, 21 degrees instead of 24 and
+        // centred 7 cm lower, on a wider tile).
+        let centre = glam::DVec3::new(0.28, -0.22, 0.0);
+        scene.camera = crate::world::Camera::look_at(centre + glam::DVec3::Z * 2.8, centre, glam::DVec3::Y, 21.0, tw, th);
+        let r = crate::spectral::render_world(&cfg, &scene, &crate::progress::Silent)?;
+        let tile = r.render.image.to_srgb8(r.exposure, cfg.gamut);
+        let (x0, y0) = ((k % cols) * tw, (k / cols) * (th + label_h) + label_h);
         for y in 0..th {
             let dst = ((y0 + y) * w + x0) * 3;
             buf[dst..dst + tw * 3].copy_from_slice(&tile[y * tw * 3..(y + 1) * tw * 3]);
@@ -519,13 +521,28 @@ fn colour_compare(png: &Path, quick: bool) -> Result<String> {
     {
         let root = BitMapBackend::with_buffer(&mut buf, (w as u32, h as u32)).into_drawing_area();
         for (k, map) in maps.iter().enumerate() {
-            let (x0, y0) = ((k % cols) * tw, (k / cols) * (th + 28));
-            root.draw(&Text::new(map.name().to_string(), (x0 as i32 + 8, y0 as i32 + 6), ("sans-serif", 16).into_font().color(&WHITE))).map_err(plot_err)?;
+            let (x0, y0) = ((k % cols) * tw, (k / cols) * (th + label_h));
+            let label = match map {
+                ColorMap::Cie => "CIE 1931 (physical)",
+                ColorMap::Buckets81 => "81 buckets of 5 nm",
+                ColorMap::IfBuckets => "if-buckets (6 bands)",
+                ColorMap::Gradient => "interpolated gradient",
+                ColorMap::Hsl => "HSL hue",
+                ColorMap::RedWhiteBlue => "red-white-blue",
+            };
+            root.draw(&Text::new(label.to_string(), (x0 as i32 + indent, y0 as i32 + label_h as i32 / 6), ("sans-serif", font).into_font().color(&WHITE)))
+                .map_err(plot_err)?;
         }
         root.present().map_err(plot_err)?;
     }
     write_rgb8(png, w, h, &buf)?;
-    Ok(format!("dark-side scene, N-SF11, {photons} photons per tile, colour maps: {}", maps.iter().map(|m| m.name()).collect::<Vec<_>>().join(", ")))
+    Ok(format!(
+        "pm-dark-side's scene file ({}, {} photons, {} samples a pixel per tile), each tile cropped to the prism and fan; colour maps: {}",
+        cfg.scene.crown.name,
+        cfg.photons,
+        cfg.spp,
+        maps.iter().map(|m| m.name()).collect::<Vec<_>>().join(", ")
+    ))
 }
 
 #[cfg(test)]
