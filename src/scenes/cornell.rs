@@ -64,7 +64,7 @@ pub fn build(o: &SceneOptions) -> Result<World> {
     // The spectrum fans toward the back wall, a little to the right. The
     // laser's prism stands at the front left, wholly in view, so the fan
     // crosses the box and meets the back wall obliquely (its spectrum there
-    // about 65 px long at 480x360). The laser is polarised in the plane of
+    // over 80 px long at 480x360). The laser is polarised in the plane of
     // incidence and meets the prism 2 degrees short of minimum deviation,
     // at Brewster's angle (atan n = 61 degrees for N-SF11): its entry and
     // exit reflect almost nothing, so no stray laser spots dot the walls
@@ -72,7 +72,7 @@ pub fn build(o: &SceneOptions) -> Result<World> {
     // deviation (§11: 9.3 instead of 8.6 degrees over 400-700 nm).
     let laser = o.kind == SceneKind::CornellLaser;
     let (centre, exit, default_incidence) = if laser {
-        (DVec2::new(-0.6, -0.45), 52f64.to_radians(), min_deviation - 2f64.to_radians())
+        (DVec2::new(-0.7, -0.45), 48f64.to_radians(), min_deviation - 2f64.to_radians())
     } else {
         (DVec2::new(-0.1, -0.3), 70f64.to_radians(), min_deviation)
     };
@@ -153,8 +153,9 @@ pub fn build(o: &SceneOptions) -> Result<World> {
     s.probe = (aim - dir * 0.5, dir);
     s.camera = if laser {
         // Framed on the prism, the fan and its spectrum on the back wall:
-        // the whole prism in view, the box's far corners round them.
-        Camera::look_at(DVec3::new(0.0, -3.3, 1.1), DVec3::new(-0.1, 0.0, 0.6), DVec3::Z, 34.0, o.width, o.height)
+        // the whole prism in view at the left, the red and green walls on
+        // either side, the spectrum near the back wall's right corner.
+        Camera::look_at(DVec3::new(0.0, -3.0, 1.1), DVec3::new(-0.15, 0.0, 0.5), DVec3::Z, 29.0, o.width, o.height)
     } else {
         Camera::look_at(DVec3::new(0.0, -3.3, 1.0), DVec3::new(0.0, 0.0, 0.9), DVec3::Z, 38.0, o.width, o.height)
     };
