@@ -66,16 +66,16 @@ pub fn build(o: &SceneOptions) -> Result<World> {
             sphere_light(&mut s, o, DVec3::new(3.0, 0.0, 0.0) + distance * dir, radius, "blackbody:6500")?;
             // So that the glass itself is seen (a clear sphere before black
             // shows only what it refracts): a light box 1.6 m behind the
-            // sphere, a checkerboard of 30 cm squares glowing at 2 % of the
+            // sphere, a checkerboard of 30 cm squares glowing at 10 % of the
             // lamp's radiance (a dimmer plane behind them, at 15 % of that,
             // makes the dark squares), offset half a square from the axis.
             // The sphere shows it inverted and minified, every edge of it
             // fringed like the lamp's; a photographer's backlit pattern.
             // Emitters only (no matte surface, no photons): no sampling
             // noise outside the glass. Where rays bent near the rim miss the
-            // box (3 m square), the ball shows a dark ring as real ones do.
-            let (wall, tile, n) = (4.6, 0.3, 5i32);
-            let bright = 0.02 * tile * tile / (4.0 * std::f64::consts::PI * radius * radius);
+            // box (3.6 m square), the ball shows a dark ring as real ones do.
+            let (wall, tile, n) = (4.6, 0.3, 6i32);
+            let bright = 0.1 * tile * tile / (4.0 * std::f64::consts::PI * radius * radius);
             let half = n as f64 * tile;
             let light = s.lights.len();
             s.faces.push(Face::rect(
