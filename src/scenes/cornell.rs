@@ -211,10 +211,14 @@ pub fn dark_side(o: &SceneOptions) -> Result<World> {
     }
     let incidence = o.incidence_deg.map_or((n_d * 0.5f64).asin(), f64::to_radians);
     let (aim, dir) = into_left_face(cross, incidence);
-    // The beam descends 3 degrees toward the backdrop, its rays starting
+    // The beam descends 2.2 degrees toward the backdrop, its rays starting
     // between 0 and 8 cm high 1 m before the prism: each ray paints the
     // backdrop where it lands, so the lower ones draw the incoming beam and
-    // the higher ones enter the prism and draw the fan beyond it.
+    // the higher ones enter the prism and draw the fan beyond it, over
+    // about 70 cm (the whole fan in the frame). The beam is 4 mm wide, so
+    // the fan opens from nearly a point as on the cover; the scene file
+    // meets the prism a few degrees short of minimum deviation, where the
+    // fan spreads wider (docs/physics.md §11).
     let tilt = 2.2f64.to_radians();
     let dir3 = (dir * tilt.cos() - DVec3::Z * tilt.sin()).normalize();
     let start = aim + DVec3::Z * 0.04 - dir * 1.0;
@@ -223,10 +227,10 @@ pub fn dark_side(o: &SceneOptions) -> Result<World> {
     let beam = s.lights.len();
     s.lights.push(Light {
         name: "white beam".into(),
-        // Polarised in the plane of incidence: at minimum deviation a dense
-        // flint's faces meet the beam near Brewster's angle (63 degrees
-        // against atan(n) = 61 for N-SF11), so p light enters and leaves
-        // with under 0.2 % reflected and no stray beams cross the cover;
+        // Polarised in the plane of incidence: near minimum deviation a
+        // dense flint's faces meet the beam near Brewster's angle (63
+        // degrees against atan(n) = 61 for N-SF11), so p light enters and
+        // leaves with little reflected and no stray beams cross the cover;
         // natural light would send 14 % up off the entry face
         // (docs/physics.md §2).
         emission: Emission::Beam { centre: start, dir: dir3, u, v, half: DVec2::new(0.002, 0.04), disc: false, polarisation: Some(Polarisation::P) },
