@@ -189,7 +189,7 @@ pub fn run(o: &FigureOptions) -> Result<Outcome> {
         bar.set_message(id.clone());
         let png = dir.join(format!("{id}.png"));
         let result: Result<Record> = match DRAWN.iter().find(|d| d.0 == id) {
-            Some(&(_, report, caption)) => draw(id, &png, o.quick).map(|params| Record {
+            Some(&(_, report, caption)) => draw(id, &png, o.quick, &o.scenes).map(|params| Record {
                 report: report.into(),
                 caption: caption.into(),
                 params,
@@ -383,10 +383,10 @@ fn write_index(out: &Path, ids: &[String], records: &BTreeMap<String, Record>, q
 }
 
 /// Draws one of the figures made in code; returns its parameter text.
-fn draw(id: &str, png: &Path, quick: bool) -> Result<String> {
+fn draw(id: &str, png: &Path, quick: bool, scenes: &Path) -> Result<String> {
     match id {
         "css552-p2" => ray_diagram(png),
-        _ => colour_compare(png, quick),
+        _ => colour_compare(png, quick, scenes),
     }
 }
 
@@ -460,40 +460,32 @@ fn ray_diagram(png: &Path) -> Result<String> {
     Ok("N-BK7 | N-SF11 | N-BK7, flint apex 90 deg, Sellmeier; deviation past the prism drawn 5x".into())
 }
 
-fn colour_compare(png: &Path, quick: bool) -> Result<String> {
+fn colour_compare(png: &Path, quick: bool, scenes: &Path) -> Result<String> {
     use crate::spectrum::colormap::ColorMap;
     super::plot::register();
-    let (tw, th) = if quick { (240usize, 180usize) } else { (480, 360) };
-    let photons = if quick { 600_000 } else { 4_000_000 };
+    let file = SceneFile::load(&scenes.join("pm-dark-side.toml"), quick)?;
+    let mut cfg = super::params::prism_config(&file.params)?;
+    let (tw, th) = if quick { (240usize, 150usize) } else { (480, 300) };
+    let (label_h, font) = if quick { (22usize, 15) } else { (36, 24) };
+    let indent = if quick { 10 } else { 14 };
+    (cfg.scene.width, cfg.scene.height) = (tw, th);
+    cfg.spp = cfg.spp.min(if quick { 2 } else { 8 });
     let maps = ColorMap::ALL;
     let cols = 3;
     let rows = maps.len().div_ceil(cols);
-    let (w, h) = (tw * cols, (th + 28) * rows);
+    let (w, h) = (tw * cols, (th + label_h) * rows);
     let mut buf = vec![0u8; w * h * 3];
     for (k, map) in maps.iter().enumerate() {
-        let mut so = SceneOptions::new(SceneKind::DarkSide);
-        so.crown = crate::optics::glass::by_name("N-SF11")?;
-        (so.width, so.height) = (tw, th);
-        let mut cfg = crate::spectral::SpectralConfig::new(so, PathBuf::new());
-        cfg.photons = photons;
         cfg.colours = *map;
-        let scene = build(&cfg.scene)?;
-        let r = crate::spectral::default_radius(&scene);
-        let opts = crate::spectral::options::RenderOptions {
-            photons,
-            map: crate::photon::map::MapKind::Kdtree,
-            filter: cfg.filter,
-            lookup: crate::photon::gather::Lookup::Radius(r),
-            spp: 2,
-            seed: 0,
-            eye: cfg.eye,
-            split: 8,
-            colours: *map,
-            film_kernel: cfg.film_kernel,
-        };
-        let img = crate::spectral::render::render(&scene, &opts, &crate::progress::Silent).image;
-        let tile = img.to_srgb8(img.auto_exposure(), crate::spectrum::cie::GamutMap::Desaturate);
-        let (x0, y0) = ((k % cols) * tw, (k / cols) * (th + 28) + 28);
+        let mut scene = build(&cfg.scene)?;
+        // The crop: the prism and the whole fan, the incoming beam's last
+        // part (the figure's own camera, 21 degrees instead of 24 and
+        // centred 7 cm lower, on a wider tile).
+        let centre = glam::DVec3::new(0.28, -0.22, 0.0);
+        scene.camera = crate::world::Camera::look_at(centre + glam::DVec3::Z * 2.8, centre, glam::DVec3::Y, 21.0, tw, th);
+        let r = crate::spectral::render_world(&cfg, &scene, &crate::progress::Silent)?;
+        let tile = r.render.image.to_srgb8(r.exposure, cfg.gamut);
+        let (x0, y0) = ((k % cols) * tw, (k / cols) * (th + label_h) + label_h);
         for y in 0..th {
             let dst = ((y0 + y) * w + x0) * 3;
             buf[dst..dst + tw * 3].copy_from_slice(&tile[y * tw * 3..(y + 1) * tw * 3]);
@@ -502,13 +494,28 @@ fn colour_compare(png: &Path, quick: bool) -> Result<String> {
     {
         let root = BitMapBackend::with_buffer(&mut buf, (w as u32, h as u32)).into_drawing_area();
         for (k, map) in maps.iter().enumerate() {
-            let (x0, y0) = ((k % cols) * tw, (k / cols) * (th + 28));
-            root.draw(&Text::new(map.name().to_string(), (x0 as i32 + 8, y0 as i32 + 6), ("sans-serif", 16).into_font().color(&WHITE))).map_err(plot_err)?;
+            let (x0, y0) = ((k % cols) * tw, (k / cols) * (th + label_h));
+            let label = match map {
+                ColorMap::Cie => "CIE 1931 (physical)",
+                ColorMap::Buckets81 => "81 buckets of 5 nm",
+                ColorMap::IfBuckets => "if-buckets (6 bands)",
+                ColorMap::Gradient => "interpolated gradient",
+                ColorMap::Hsl => "HSL hue",
+                ColorMap::RedWhiteBlue => "red-white-blue",
+            };
+            root.draw(&Text::new(label.to_string(), (x0 as i32 + indent, y0 as i32 + label_h as i32 / 6), ("sans-serif", font).into_font().color(&WHITE)))
+                .map_err(plot_err)?;
         }
         root.present().map_err(plot_err)?;
     }
     write_rgb8(png, w, h, &buf)?;
-    Ok(format!("dark-side scene, N-SF11, {photons} photons per tile, colour maps: {}", maps.iter().map(|m| m.name()).collect::<Vec<_>>().join(", ")))
+    Ok(format!(
+        "pm-dark-side's scene file ({}, {} photons, {} samples a pixel per tile), each tile cropped to the prism and fan; colour maps: {}",
+        cfg.scene.crown.name,
+        cfg.photons,
+        cfg.spp,
+        maps.iter().map(|m| m.name()).collect::<Vec<_>>().join(", ")
+    ))
 }
 
 #[cfg(test)]

@@ -29,6 +29,10 @@ fn glass_of(v: &Value) -> &'static glass::Glass {
     }
 }
 
+fn inset_text(s: &str) -> Result<(), String> {
+    crate::spectral::inset::Inset::parse(s).map(|_| ())
+}
+
 fn light_name(s: &str) -> Result<(), String> {
     NamedSpectrum::parse(s).map(|_| ()).map_err(|e| e.to_string())
 }
@@ -465,6 +469,18 @@ pub static PARAMS: &[Param<SpectralConfig>] = &[
         auto: "",
         get: |c| Some(pick(c.gamut)),
         set: |c, v| c.gamut = v.choice(),
+        ignored: never,
+    },
+    Param {
+        key: "inset",
+        aliases: &[],
+        section: DISPLAY,
+        help: "A magnified detail drawn into the PNG: x,y,w,h (the region, fractions of the frame), zoom, corner (tl, tr, bl, br)",
+        unit: "",
+        kind: Kind::Text(inset_text),
+        auto: "none",
+        get: |c| c.inset.map(|i| Value::Text(format!("{},{},{},{},{},{}", i.x, i.y, i.w, i.h, i.zoom, ["tl", "tr", "bl", "br"][i.corner as usize]))),
+        set: |c, v| c.inset = crate::spectral::inset::Inset::parse(v.text()).ok(),
         ignored: never,
     },
     Param {

@@ -62,14 +62,17 @@ pub fn build(o: &SceneOptions) -> Result<World> {
     let n_d = o.crown.sellmeier(crate::optics::glass::lines::LD);
     let min_deviation = (n_d * 0.5f64).asin();
     // The spectrum fans toward the back wall, a little to the right. The
-    // laser's prism stands at the front left, so the fan crosses the box
-    // and meets the back wall obliquely, and the laser meets it 7 degrees
-    // short of minimum deviation: the light leaves nearer grazing, where
-    // the fan spreads nearly twice as wide (docs/physics.md §11). Its
-    // spectrum on the back wall is 92 px long at 480x360.
+    // laser's prism stands at the front left, wholly in view, so the fan
+    // crosses the box and meets the back wall obliquely (its spectrum there
+    // over 80 px long at 480x360). The laser is polarised in the plane of
+    // incidence and meets the prism 2 degrees short of minimum deviation,
+    // at Brewster's angle (atan n = 61 degrees for N-SF11): its entry and
+    // exit reflect almost nothing, so no stray laser spots dot the walls
+    // (docs/physics.md §2); the fan spreads a little wider than at minimum
+    // deviation (§11: 9.3 instead of 8.6 degrees over 400-700 nm).
     let laser = o.kind == SceneKind::CornellLaser;
     let (centre, exit, default_incidence) = if laser {
-        (DVec2::new(-0.75, -0.7), 66f64.to_radians(), min_deviation - 7f64.to_radians())
+        (DVec2::new(-0.7, -0.45), 48f64.to_radians(), min_deviation - 2f64.to_radians())
     } else {
         (DVec2::new(-0.1, -0.3), 70f64.to_radians(), min_deviation)
     };
@@ -111,11 +114,19 @@ pub fn build(o: &SceneOptions) -> Result<World> {
             });
         }
         _ => {
-            let start = aim - dir * 0.8;
+            let start = aim - dir * 2.5;
             let u = DVec3::Z.cross(dir).normalize();
             s.lights.push(Light {
                 name: "laser".into(),
-                emission: Emission::Beam { centre: start, dir, u, v: DVec3::Z, half: DVec2::new(0.004, 0.004), disc: true, polarisation: None },
+                emission: Emission::Beam {
+                    centre: start,
+                    dir,
+                    u,
+                    v: DVec3::Z,
+                    half: DVec2::new(0.004, 0.004),
+                    disc: true,
+                    polarisation: Some(Polarisation::P),
+                },
                 spectrum: light_spectrum(o, "d65")?,
                 power: 1.0,
             });
@@ -135,12 +146,19 @@ pub fn build(o: &SceneOptions) -> Result<World> {
                 name: "ceiling lamp".into(),
                 emission: Emission::Area { face: s.faces.len() - 1 },
                 spectrum: Spectrum::light("d65")?,
-                power: 0.5,
+                power: 1.2,
             });
         }
     }
     s.probe = (aim - dir * 0.5, dir);
-    s.camera = Camera::look_at(DVec3::new(0.0, -3.3, 1.0), DVec3::new(0.0, 0.0, 0.9), DVec3::Z, 38.0, o.width, o.height);
+    s.camera = if laser {
+        // Framed on the prism, the fan and its spectrum on the back wall:
+        // the whole prism in view at the left, the red and green walls on
+        // either side, the spectrum near the back wall's right corner.
+        Camera::look_at(DVec3::new(0.0, -3.0, 1.1), DVec3::new(-0.15, 0.0, 0.5), DVec3::Z, 29.0, o.width, o.height)
+    } else {
+        Camera::look_at(DVec3::new(0.0, -3.3, 1.0), DVec3::new(0.0, 0.0, 0.9), DVec3::Z, 38.0, o.width, o.height)
+    };
     Ok(s)
 }
 
@@ -181,13 +199,27 @@ pub fn dark_side(o: &SceneOptions) -> Result<World> {
             });
         }
     }
+    if !o.no_prism {
+        // The prism's base blackened, as an optical prism's unused face
+        // often is (a black card 2 mm from it): the little light the exit
+        // face reflects back inside leaves through the base, and would
+        // otherwise draw a dim blue ghost beam down across the cover.
+        let (a, b) = (cross[0], cross[1]);
+        let out = DVec2::new(b.y - a.y, a.x - b.x).normalize() * 0.002;
+        let (a3, b3) = ((a + out).extend(0.0), (b + out).extend(0.0));
+        matte(&mut s, "black card", a3, DVec3::Z * tall, b3 - a3, [0.0; 3]);
+    }
     let incidence = o.incidence_deg.map_or((n_d * 0.5f64).asin(), f64::to_radians);
     let (aim, dir) = into_left_face(cross, incidence);
-    // The beam descends 3 degrees toward the backdrop, its rays starting
+    // The beam descends 2.2 degrees toward the backdrop, its rays starting
     // between 0 and 8 cm high 1 m before the prism: each ray paints the
     // backdrop where it lands, so the lower ones draw the incoming beam and
-    // the higher ones enter the prism and draw the fan beyond it.
-    let tilt = 3f64.to_radians();
+    // the higher ones enter the prism and draw the fan beyond it, over
+    // about 70 cm (the whole fan in the frame). The beam is 4 mm wide, so
+    // the fan opens from nearly a point as on the cover; the scene file
+    // meets the prism a few degrees short of minimum deviation, where the
+    // fan spreads wider (docs/physics.md §11).
+    let tilt = 2.2f64.to_radians();
     let dir3 = (dir * tilt.cos() - DVec3::Z * tilt.sin()).normalize();
     let start = aim + DVec3::Z * 0.04 - dir * 1.0;
     let u = DVec3::Z.cross(dir).normalize();
@@ -195,13 +227,13 @@ pub fn dark_side(o: &SceneOptions) -> Result<World> {
     let beam = s.lights.len();
     s.lights.push(Light {
         name: "white beam".into(),
-        // Polarised in the plane of incidence: at minimum deviation a dense
-        // flint's faces meet the beam near Brewster's angle (63 degrees
-        // against atan(n) = 61 for N-SF11), so p light enters and leaves
-        // with under 0.2 % reflected and no stray beams cross the cover;
+        // Polarised in the plane of incidence: near minimum deviation a
+        // dense flint's faces meet the beam near Brewster's angle (63
+        // degrees against atan(n) = 61 for N-SF11), so p light enters and
+        // leaves with little reflected and no stray beams cross the cover;
         // natural light would send 14 % up off the entry face
         // (docs/physics.md §2).
-        emission: Emission::Beam { centre: start, dir: dir3, u, v, half: DVec2::new(0.006, 0.04), disc: false, polarisation: Some(Polarisation::P) },
+        emission: Emission::Beam { centre: start, dir: dir3, u, v, half: DVec2::new(0.002, 0.04), disc: false, polarisation: Some(Polarisation::P) },
         // D65: white on an sRGB display.
         spectrum: light_spectrum(o, "d65")?,
         power: 1.0,
@@ -212,6 +244,9 @@ pub fn dark_side(o: &SceneOptions) -> Result<World> {
     shares[beam] = 1.0;
     s.photon_shares = Some(shares);
     s.probe = (aim - dir * 0.5, dir);
-    s.camera = Camera::look_at(DVec3::new(0.05, 0.02, 2.6), DVec3::new(0.05, 0.02, 0.0), DVec3::Y, 24.0, o.width, o.height);
+    // Framed as the cover: the prism up and left of centre, the beam in
+    // from the left edge, the whole fan down to the right until its light
+    // has come down onto the backdrop.
+    s.camera = Camera::look_at(DVec3::new(0.3, -0.12, 2.8), DVec3::new(0.3, -0.12, 0.0), DVec3::Y, 24.0, o.width, o.height);
     Ok(s)
 }

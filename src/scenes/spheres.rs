@@ -3,12 +3,12 @@
 //! +x; z is up.
 //!
 //! - `sphere-arealight`: a glass sphere hanging before a spherical
-//!   black-body light off centre: the sphere shows the light as an
-//!   off-centre patch, blue-fringed on the edge toward the sphere's centre
-//!   and orange-red on the outer one (blue bends more, so its image of the
-//!   light lies nearer the centre; the fringes are the spread of a ball's
-//!   deviation over the visible, at most about 2 % of its radius for N-SF11,
-//!   so the sphere is seen large: it fills the frame's height).
+//!   black-body light, slightly off centre and hidden behind it: the
+//!   sphere shows the light as an off-centre patch, violet-blue-fringed on
+//!   the edge toward the sphere's centre and orange-red on the outer one
+//!   (blue bends more, so its image of the light lies nearer the centre;
+//!   docs/physics.md §22), against a glowing checkerboard that shows the
+//!   glass itself, inverted in it with every edge fringed the same way.
 //! - `sphere-metal`: the sphere before a brass plate grazed from the right
 //!   by a warm (2000 K) black-body light out of view: the plate's glow falls
 //!   off from right to left, the sphere shows it inverted, and where the
@@ -52,19 +52,65 @@ pub fn build(o: &SceneOptions) -> Result<World> {
             if !o.no_prism {
                 glass_sphere(&mut s, "glass sphere", DVec3::new(3.0, 0.0, 0.0), 0.5);
             }
-            // A light 1.5 m behind the sphere, 25 degrees up and to the
-            // left of the axis as seen from the sphere, 10 degrees in
-            // radius: through the sphere it shows as a patch down and to
-            // the right, whose edges (about 15 and 35 degrees off the axis,
-            // where a ball's colour fringes are near their widest,
-            // docs/physics.md §22) are fringed blue inside and orange-red
-            // outside. The camera's 15 degree field makes the sphere's
-            // image 231 px in radius, filling the frame's height, so the
-            // fringes are 3-5 px wide; the light itself shows in the
-            // corner beside the sphere, which stands dark against it.
-            let dir = DVec3::new(25f64.to_radians().cos(), 25f64.to_radians().sin() * 0.8, 25f64.to_radians().sin() * 0.6);
-            sphere_light(&mut s, o, DVec3::new(3.0, 0.0, 0.0) + 1.5 * dir, 1.5 * 10f64.to_radians().sin(), "blackbody:6500")?;
-            s.camera = Camera::look_at(DVec3::ZERO, DVec3::new(3.0, 0.0, 0.0), DVec3::Z, 15.0, o.width, o.height);
+            // The sphere "hanging in front of a spherical area light source,
+            // which is slightly off center" (report 001): a 6500 K black
+            // body of 12 cm radius, 1.2 m behind the sphere and 12 degrees
+            // up and to the left of its axis, so that from the camera it is
+            // hidden behind the sphere (1.7-5.1 degrees off the camera's
+            // axis; the sphere covers 9.6) and shows only through it, as an
+            // off-centre patch down and to the right, fringed violet-blue
+            // on the edge toward the sphere's centre and orange-red on the
+            // outer one (docs/physics.md §22).
+            let (angle, distance, radius) = (12f64.to_radians(), 1.2, 0.12);
+            let dir = DVec3::new(angle.cos(), angle.sin() * 0.8, angle.sin() * 0.6);
+            sphere_light(&mut s, o, DVec3::new(3.0, 0.0, 0.0) + distance * dir, radius, "blackbody:6500")?;
+            // So that the glass itself is seen (a clear sphere before black
+            // shows only what it refracts): a light box 1.6 m behind the
+            // sphere, a checkerboard of 30 cm squares glowing at 10 % of the
+            // lamp's radiance (a dimmer plane behind them, at 15 % of that,
+            // makes the dark squares), offset half a square from the axis.
+            // The sphere shows it inverted and minified, every edge of it
+            // fringed like the lamp's; a photographer's backlit pattern.
+            // Emitters only (no matte surface, no photons): no sampling
+            // noise outside the glass. Where rays bent near the rim miss the
+            // box (3.6 m square), the ball shows a dark ring as real ones do.
+            let (wall, tile, n) = (4.6, 0.3, 6i32);
+            let bright = 0.1 * tile * tile / (4.0 * std::f64::consts::PI * radius * radius);
+            let half = n as f64 * tile;
+            let light = s.lights.len();
+            s.faces.push(Face::rect(
+                "light box",
+                DVec3::new(wall + 0.001, half, -half),
+                DVec3::new(0.0, -2.0 * half, 0.0),
+                DVec3::new(0.0, 0.0, 2.0 * half),
+                Surface::Emitter { light },
+            ));
+            s.lights.push(Light {
+                name: "light box".into(),
+                emission: Emission::Area { face: s.faces.len() - 1 },
+                spectrum: light_spectrum(o, "blackbody:6500")?,
+                power: 0.15 * bright * (2 * n * 2 * n) as f64,
+            });
+            for i in -n..n {
+                for j in -n..n {
+                    if (i + j).rem_euclid(2) == 0 {
+                        continue;
+                    }
+                    let light = s.lights.len();
+                    let corner = DVec3::new(wall, (i as f64 + 1.5) * tile, (j as f64 + 0.5) * tile);
+                    s.faces.push(Face::rect("light box square", corner, DVec3::new(0.0, -tile, 0.0), DVec3::new(0.0, 0.0, tile), Surface::Emitter { light }));
+                    s.lights.push(Light {
+                        name: "light box square".into(),
+                        emission: Emission::Area { face: s.faces.len() - 1 },
+                        spectrum: light_spectrum(o, "blackbody:6500")?,
+                        power: bright,
+                    });
+                }
+            }
+            // A 21.7 degree field: the whole sphere in the frame's height
+            // (its image 158 px in radius at 640x360), room beside it for
+            // the inset that magnifies a fringe (`inset` in the scene file).
+            s.camera = Camera::look_at(DVec3::ZERO, DVec3::new(3.0, 0.0, 0.0), DVec3::Z, 21.7, o.width, o.height);
         }
         SceneKind::SphereMetal => {
             if !o.no_prism {

@@ -11,6 +11,7 @@ pub mod exact;
 pub mod eye;
 pub mod film;
 pub mod haze;
+pub mod inset;
 pub mod options;
 pub mod progressive;
 pub mod render;
@@ -63,6 +64,8 @@ pub struct SpectralConfig {
     pub gamut: GamutMap,
     /// Wavelength to colour: CIE (default) or a report's map.
     pub colours: crate::spectrum::colormap::ColorMap,
+    /// A magnified detail drawn into the written PNG (display only).
+    pub inset: Option<inset::Inset>,
     pub out: PathBuf,
 }
 
@@ -89,6 +92,7 @@ impl SpectralConfig {
             exposure_gain: 1.0,
             gamut: GamutMap::Desaturate,
             colours: crate::spectrum::colormap::ColorMap::Cie,
+            inset: None,
             out,
         }
     }
@@ -122,6 +126,13 @@ pub struct SpectralReport {
 pub fn run(cfg: &SpectralConfig, progress: &dyn Progress) -> Result<SpectralReport> {
     let report = render_config(cfg, progress)?;
     report.render.image.write(&cfg.out, report.exposure, cfg.gamut)?;
+    let png = cfg.out.extension().is_some_and(|e| e.eq_ignore_ascii_case("png"));
+    if let (Some(inset), true) = (cfg.inset, png) {
+        let img = &report.render.image;
+        let mut px = img.to_srgb8(report.exposure, cfg.gamut);
+        inset.apply(&mut px, img.width, img.height);
+        crate::image_io::write_rgb8(&cfg.out, img.width, img.height, &px)?;
+    }
     Ok(report)
 }
 
