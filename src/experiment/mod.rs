@@ -1,9 +1,9 @@
 //! The harness: accuracy reports, plots and (later) sweeps.
 
 pub mod charts;
+pub mod close_up;
 pub mod figures;
 pub mod grid;
-pub mod inset;
 pub mod labels;
 pub mod metrics;
 pub mod params;

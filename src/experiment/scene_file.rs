@@ -12,10 +12,10 @@
 //! obj = "off/prism60.obj"          # meshes are referenced by path
 //! [quick]                          # overrides for --quick
 //! photons = 400000
-//! [inset]                          # a close view pasted on the image (`inset`)
+//! [close_up]                       # another view pasted on the image (`close_up`)
 //! at = [0.02, 0.03]
 //! width = 0.45
-//! [inset.params]
+//! [close_up.params]
 //! view = "screen"
 //! [[label]]                        # texts drawn on the image (`labels`)
 //! text = "screen"
@@ -38,7 +38,7 @@ pub struct SceneFile {
     pub mode: Mode,
     pub params: Vec<(String, Value)>,
     /// Pasted on, then drawn on, a PNG output after the render.
-    pub inset: Option<super::inset::Inset>,
+    pub close_up: Option<super::close_up::CloseUp>,
     pub labels: Vec<super::labels::Label>,
 }
 
@@ -52,8 +52,8 @@ impl SceneFile {
         let root = parse_toml(text, file)?;
         let err = |section: &str, key: &str, msg: String| anyhow!("{file}:{}: `{key}`: {msg}", line_of(text, section, 0, key));
         for k in root.keys() {
-            if !["id", "report", "caption", "mode", "params", "quick", "inset", "label"].contains(&k.as_str()) {
-                return Err(err("", k, "unknown key; expected id, report, caption, mode, params, quick, inset or label".into()));
+            if !["id", "report", "caption", "mode", "params", "quick", "close_up", "label"].contains(&k.as_str()) {
+                return Err(err("", k, "unknown key; expected id, report, caption, mode, params, quick, close_up or label".into()));
             }
         }
         let s = |key: &str| -> Result<String> {
@@ -94,13 +94,13 @@ impl SceneFile {
             caption: root.get("caption").and_then(Value::as_str).unwrap_or_default().into(),
             mode,
             params,
-            inset: match root.get("inset") {
+            close_up: match root.get("close_up") {
                 Some(v) => {
-                    let inset = super::inset::parse(v).map_err(|m| anyhow!("{file}:{}: `inset`: {m}", line_of(text, "", 0, "inset")))?;
-                    for (k, v) in &inset.params {
-                        mode.check(k, v).map_err(|m| err("inset.params", k, m))?;
+                    let close = super::close_up::parse(v).map_err(|m| anyhow!("{file}:{}: `close_up`: {m}", line_of(text, "", 0, "close_up")))?;
+                    for (k, v) in &close.params {
+                        mode.check(k, v).map_err(|m| err("close_up.params", k, m))?;
                     }
-                    Some(inset)
+                    Some(close)
                 }
                 None => None,
             },
@@ -126,40 +126,39 @@ impl SceneFile {
     /// map build and eye pass; for the interior mode, build and render).
     pub fn render(&self, out: &Path, progress: &dyn Progress) -> Result<f64> {
         let mut secs = self.render_image(out, progress)?;
-        if self.inset.is_none() && self.labels.is_empty() {
+        if self.close_up.is_none() && self.labels.is_empty() {
             return Ok(secs);
         }
         if !out.extension().is_some_and(|e| e.eq_ignore_ascii_case("png")) {
-            eprintln!("note: the scene file's inset and labels are drawn on PNG images only; {} has none", out.display());
+            eprintln!("note: the scene file's close-up and labels are drawn on PNG images only; {} has none", out.display());
             return Ok(secs);
         }
         let img = image::open(out).map_err(|e| anyhow!("{}: cannot read back to annotate: {e}", out.display()))?.to_rgb8();
         let (w, h) = (img.width() as usize, img.height() as usize);
         let mut buf = img.into_raw();
-        if let Some(inset) = &self.inset {
-            let (size, at) = inset.place(w, h).ok_or_else(|| anyhow!("{}: the inset does not fit in a {w}x{h} image", self.id))?;
-            let mut close = self.clone();
-            close.inset = None;
-            close.labels.clear();
-            for (k, v) in
-                inset.params.iter().cloned().chain([("size".to_string(), Value::Array(vec![Value::Integer(size[0] as i64), Value::Integer(size[1] as i64)]))])
-            {
-                close.params.retain(|(p, _)| *p != k);
-                close.params.push((k, v));
+        if let Some(view) = &self.close_up {
+            let (size, at) = view.place(w, h).ok_or_else(|| anyhow!("{}: the close-up does not fit in a {w}x{h} image", self.id))?;
+            let mut other = self.clone();
+            other.close_up = None;
+            other.labels.clear();
+            let size_value = Value::Array(vec![Value::Integer(size[0] as i64), Value::Integer(size[1] as i64)]);
+            for (k, v) in view.params.iter().cloned().chain([("size".to_string(), size_value)]) {
+                other.params.retain(|(p, _)| *p != k);
+                other.params.push((k, v));
             }
             let stem = out.file_stem().map_or_else(|| "figure".into(), |s| s.to_string_lossy().into_owned());
-            let tmp = out.with_file_name(format!(".{stem}.inset.{}.png", std::process::id()));
-            let rendered = close.render_image(&tmp, progress);
+            let tmp = out.with_file_name(format!(".{stem}.close-up.{}.png", std::process::id()));
+            let rendered = other.render_image(&tmp, progress);
             let pixels = rendered.as_ref().ok().map(|_| image::open(&tmp).map(|i| i.to_rgb8().into_raw()));
             let _ = std::fs::remove_file(&tmp);
             secs += rendered?;
-            let pixels = pixels.expect("rendered").map_err(|e| anyhow!("{}: cannot read the inset back: {e}", tmp.display()))?;
-            super::inset::paste(&mut buf, w, &pixels, size, at);
-            if let Some(text) = &inset.label {
-                // Under the inset's top edge, centred.
+            let pixels = pixels.expect("rendered").map_err(|e| anyhow!("{}: cannot read the close-up back: {e}", tmp.display()))?;
+            super::close_up::paste(&mut buf, w, &pixels, size, at);
+            if let Some(text) = &view.label {
+                // Under the close-up's top edge, centred.
                 let label =
                     super::labels::Label { text: text.clone(), at: [(at[0] as f64 + size[0] as f64 / 2.0) / w as f64, (at[1] as f64 + 12.0) / h as f64] };
-                super::labels::draw(&mut buf, w, h, &[label]).map_err(|e| anyhow!("{}: inset label: {e}", self.id))?;
+                super::labels::draw(&mut buf, w, h, &[label]).map_err(|e| anyhow!("{}: close-up label: {e}", self.id))?;
             }
         }
         super::labels::draw(&mut buf, w, h, &self.labels).map_err(|e| anyhow!("{}: labels: {e}", self.id))?;

@@ -1,23 +1,24 @@
-//! An inset on a figure: a second render of the same scene file with a few
-//! parameters changed (a close view of what the figure is about, e.g. the
-//! screen's strip), pasted into a corner with a thin frame, as a paper's
-//! figure enlarges a detail. Placed by fractions of the figure's size, so
+//! A close-up on a figure: a second render of the same scene file with a
+//! few parameters changed (another camera on what the figure is about,
+//! e.g. the screen's strip seen square on), pasted into a corner with a
+//! thin frame, as a paper's figure enlarges a detail. (The `inset`
+//! parameter, by contrast, magnifies a region of the same render.) Placed by fractions of the figure's size, so
 //! one table serves the full and the quick size.
 //!
 //! ```toml
-//! [inset]
+//! [close_up]
 //! at = [0.02, 0.03]    # top-left corner: x from the left, y from the top
 //! width = 0.45         # fraction of the figure's width
 //! aspect = 2.5         # the inset's width over its height
 //! label = "the screen, enlarged"
-//! [inset.params]       # what differs from the figure's parameters
+//! [close_up.params]       # what differs from the figure's parameters
 //! view = "screen"
 //! ```
 
 use toml::Value;
 
 #[derive(Clone, Debug, PartialEq)]
-pub struct Inset {
+pub struct CloseUp {
     /// Parameters that differ from the figure's.
     pub params: Vec<(String, Value)>,
     /// Top-left corner, fractions of the figure's width and height.
@@ -33,9 +34,9 @@ fn fraction(v: Option<&Value>) -> Option<f64> {
     v.and_then(|v| v.as_float().or_else(|| v.as_integer().map(|i| i as f64)))
 }
 
-/// Reads a scene file's `[inset]` table; the error names the key.
-pub fn parse(v: &Value) -> Result<Inset, String> {
-    let Value::Table(t) = v else { return Err("must be a table ([inset])".into()) };
+/// Reads a scene file's `[close_up]` table; the error names the key.
+pub fn parse(v: &Value) -> Result<CloseUp, String> {
+    let Value::Table(t) = v else { return Err("must be a table ([close_up])".into()) };
     if let Some(k) = t.keys().find(|k| !["at", "width", "aspect", "label", "params"].contains(&k.as_str())) {
         return Err(format!("unknown key `{k}`; expected at, width, aspect, label and params"));
     }
@@ -62,13 +63,13 @@ pub fn parse(v: &Value) -> Result<Inset, String> {
     };
     let params = match t.get("params") {
         Some(Value::Table(p)) if !p.is_empty() => p.iter().map(|(k, v)| (k.clone(), v.clone())).collect(),
-        _ => return Err("`params` must be a table of what differs from the figure ([inset.params]), not empty".into()),
+        _ => return Err("`params` must be a table of what differs from the figure ([close_up.params]), not empty".into()),
     };
-    Ok(Inset { params, at, width, aspect, label })
+    Ok(CloseUp { params, at, width, aspect, label })
 }
 
-impl Inset {
-    /// The inset's size in pixels on a `w` x `h` figure, and its top-left
+impl CloseUp {
+    /// The close-up's size in pixels on a `w` x `h` figure, and its top-left
     /// corner; `None` if it would not fit below the corner.
     pub fn place(&self, w: usize, h: usize) -> Option<([usize; 2], [usize; 2])> {
         let iw = (self.width * w as f64).round().max(8.0) as usize;
@@ -110,19 +111,19 @@ mod tests {
     use super::*;
 
     #[test]
-    fn parses_an_inset_and_names_the_bad_key() {
-        let v: Value = toml::from_str("[inset]\nat = [0.1, 0.2]\nwidth = 0.4\naspect = 2\n[inset.params]\nview = \"screen\"").unwrap();
-        let i = parse(&v["inset"]).unwrap();
+    fn parses_a_close_up_and_names_the_bad_key() {
+        let v: Value = toml::from_str("[close_up]\nat = [0.1, 0.2]\nwidth = 0.4\naspect = 2\n[close_up.params]\nview = \"screen\"").unwrap();
+        let i = parse(&v["close_up"]).unwrap();
         assert_eq!((i.at, i.width, i.aspect, i.params.len()), ([0.1, 0.2], 0.4, 2.0, 1));
         assert_eq!(i.place(1000, 500), Some(([400, 200], [100, 100])));
-        assert_eq!(Inset { at: [0.1, 0.8], ..i }.place(1000, 500), None, "runs off the bottom");
+        assert_eq!(CloseUp { at: [0.1, 0.8], ..i }.place(1000, 500), None, "runs off the bottom");
         for (bad, says) in [
-            ("[inset]\nat = [0.7, 0]\nwidth = 0.4\n[inset.params]\nview = \"screen\"", "`width`"),
-            ("[inset]\nat = [0, 0]\nwidth = 0.4", "`params`"),
-            ("[inset]\nat = [0, 0]\nwidth = 0.4\nzoom = 2\n[inset.params]\nview = \"screen\"", "unknown key `zoom`"),
+            ("[close_up]\nat = [0.7, 0]\nwidth = 0.4\n[close_up.params]\nview = \"screen\"", "`width`"),
+            ("[close_up]\nat = [0, 0]\nwidth = 0.4", "`params`"),
+            ("[close_up]\nat = [0, 0]\nwidth = 0.4\nzoom = 2\n[close_up.params]\nview = \"screen\"", "unknown key `zoom`"),
         ] {
             let v: Value = toml::from_str(bad).unwrap();
-            let e = parse(&v["inset"]).unwrap_err();
+            let e = parse(&v["close_up"]).unwrap_err();
             assert!(e.contains(says), "{bad}: {e}");
         }
     }
