@@ -109,17 +109,9 @@ impl MapKind {}
 pub enum SurfaceMap {
     /// `lit`: whether any texel holds flux (a map with none reads zero
     /// everywhere, with no texels to visit).
-    Buffer {
-        size: DVec2,
-        nu: usize,
-        nv: usize,
-        flux: Vec<[f32; 3]>,
-        lit: bool,
-    },
-    Kd {
-        size: DVec2,
-        photons: Vec<Photon>,
-    },
+    Buffer { size: DVec2, nu: usize, nv: usize, flux: Vec<[f32; 3]>, lit: bool },
+    /// `bounds`: the box all photons lie in (lo u, lo v, hi u, hi v).
+    Kd { size: DVec2, photons: Vec<Photon>, bounds: [f64; 4] },
 }
 
 impl SurfaceMap {
@@ -150,7 +142,8 @@ impl SurfaceMap {
             MapKind::Kdtree => {
                 let mut photons = photons;
                 balance(&mut photons, 0);
-                SurfaceMap::Kd { size, photons }
+                let bounds = bounds(&photons);
+                SurfaceMap::Kd { size, photons, bounds }
             }
         }
     }
@@ -204,7 +197,7 @@ impl SurfaceMap {
                     DVec3::new(f[0] as f64, f[1] as f64, f[2] as f64) / (tu * tv)
                 }
             }
-            SurfaceMap::Kd { size, photons } => {
+            SurfaceMap::Kd { size, photons, bounds } => {
                 let (found, r) = match lookup {
                     Lookup::Radius(r) => {
                         let mut found = Vec::new();
@@ -215,14 +208,20 @@ impl SurfaceMap {
                         // The k-th photon only fixes the radius: counting it
                         // too would put k photons in an area that holds
                         // k - 1 on average, reading high (by k / (k - 1)).
-                        let (mut found, r) = knn_query(photons, x, k);
-                        if let Some(far) = found.iter().enumerate().max_by(|a, b| a.1 .1.total_cmp(&b.1 .1)).map(|(i, _)| i) {
+                        // Where fewer than k lie within the cap the estimate
+                        // is a fixed radius's, all of them counted.
+                        let cap = nearest_cap(k, photons.len(), *size);
+                        let (mut found, r) = knn_query(photons, *bounds, x, k, cap * cap);
+                        let far = found.iter().enumerate().max_by(|a, b| a.1 .1.total_cmp(&b.1 .1)).map(|(i, _)| i);
+                        if let (Some(far), true) = (far, found.len() == k) {
                             found.swap_remove(far);
                         }
                         (found, r)
                     }
                 };
-                if r <= 0.0 {
+                // No photon: nothing to weigh (nor the kernel's share on
+                // the surface to find, a 32 x 32 sum at its edges).
+                if r <= 0.0 || found.is_empty() {
                     return DVec3::ZERO;
                 }
                 let mut sum = DVec3::ZERO;
@@ -266,6 +265,23 @@ fn kernel_inside(filter: Filter, x: DVec2, r: f64, size: DVec2) -> f64 {
     }
 }
 
+/// How far a k-nearest search reaches on a surface of `size` holding `n`
+/// photons: `NEAREST_CAP` times the radius the k nearest would have if the
+/// photons were spread evenly over it (docs/physics.md §9). Without a cap,
+/// a query far from a compact cluster (a beam's spot) finds its k nearest
+/// only by visiting most of the cluster.
+fn nearest_cap(k: usize, n: usize, size: DVec2) -> f64 {
+    if n == 0 {
+        return 0.0;
+    }
+    NEAREST_CAP * (k as f64 * size.x * size.y / (std::f64::consts::PI * n as f64)).sqrt()
+}
+
+/// The cap on a k-nearest radius, in units of the even spread's radius:
+/// where fewer than k photons lie within it the density is under
+/// 1 / NEAREST_CAP^2 of the surface's mean.
+pub const NEAREST_CAP: f64 = 4.0;
+
 /// Orders `p` as an implicit kd-tree: the median of each range on the
 /// axis of its depth (u, v, u, ...) sits at the range's middle.
 fn balance(p: &mut [Photon], depth: usize) {
@@ -303,8 +319,34 @@ fn radius_query(p: &[Photon], lo: usize, hi: usize, depth: usize, x: DVec2, r2: 
     }
 }
 
-/// The k nearest photons and the distance to the farthest of them.
-fn knn_query(p: &[Photon], x: DVec2, k: usize) -> (Vec<(usize, f64)>, f64) {
+/// The box `[lo, hi]` every photon of `p` lies in (empty: a point at 0).
+fn bounds(p: &[Photon]) -> [f64; 4] {
+    if p.is_empty() {
+        return [0.0; 4];
+    }
+    p.iter().fold([f64::INFINITY, f64::INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY], |b, q| {
+        let (u, v) = (q.pos[0] as f64, q.pos[1] as f64);
+        [b[0].min(u), b[1].min(v), b[2].max(u), b[3].max(v)]
+    })
+}
+
+/// Squared distance from `x` to the box `[b0, b1] x [b2, b3]` (`cell`:
+/// lo u, lo v, hi u, hi v); 0 inside.
+#[inline]
+fn box_dist2(cell: &[f64; 4], x: DVec2) -> f64 {
+    let du = (cell[0] - x.x).max(x.x - cell[2]).max(0.0);
+    let dv = (cell[1] - x.y).max(x.y - cell[3]).max(0.0);
+    du * du + dv * dv
+}
+
+/// The k nearest photons closer than `max_r2.sqrt()`, and the distance to
+/// the farthest of them (the cap if fewer than k lie within it; `root`:
+/// the box all photons lie in, `bounds`). A subtree is skipped when its cell (the photons' bounding box cut by
+/// the split planes above it) lies farther than the k-th nearest found so
+/// far, not just its split plane (Arya and Mount's incremental distance):
+/// far from a compact cluster of photons, the plane test alone left every
+/// subtree in reach and searched them all.
+fn knn_query(p: &[Photon], root: [f64; 4], x: DVec2, k: usize, max_r2: f64) -> (Vec<(usize, f64)>, f64) {
     #[derive(PartialEq)]
     struct Item(f64, usize);
     impl Eq for Item {}
@@ -318,32 +360,45 @@ fn knn_query(p: &[Photon], x: DVec2, k: usize) -> (Vec<(usize, f64)>, f64) {
             self.0.total_cmp(&o.0).then(self.1.cmp(&o.1))
         }
     }
-    fn rec(p: &[Photon], lo: usize, hi: usize, depth: usize, x: DVec2, k: usize, heap: &mut BinaryHeap<Item>) {
-        if lo >= hi {
+    // Photons at max_r2 or beyond are never taken.
+    fn worst(heap: &BinaryHeap<Item>, k: usize, max_r2: f64) -> f64 {
+        if heap.len() < k {
+            max_r2
+        } else {
+            heap.peek().map_or(max_r2, |t| t.0)
+        }
+    }
+    #[allow(clippy::too_many_arguments)]
+    fn rec(p: &[Photon], lo: usize, hi: usize, depth: usize, cell: [f64; 4], x: DVec2, k: usize, max_r2: f64, heap: &mut BinaryHeap<Item>) {
+        if lo >= hi || box_dist2(&cell, x) >= worst(heap, k, max_r2) {
             return;
         }
         let mid = lo + (hi - lo) / 2;
         let d2 = dist2(&p[mid], x);
         if heap.len() < k {
-            heap.push(Item(d2, mid));
+            if d2 < max_r2 {
+                heap.push(Item(d2, mid));
+            }
         } else if d2 < heap.peek().map_or(f64::INFINITY, |t| t.0) {
             heap.pop();
             heap.push(Item(d2, mid));
         }
         let axis = depth % 2;
-        let delta = x[axis] - p[mid].pos[axis] as f64;
-        let (near, far) = if delta < 0.0 { ((lo, mid), (mid + 1, hi)) } else { ((mid + 1, hi), (lo, mid)) };
-        rec(p, near.0, near.1, depth + 1, x, k, heap);
-        let worst = if heap.len() < k { f64::INFINITY } else { heap.peek().map_or(f64::INFINITY, |t| t.0) };
-        if delta * delta < worst {
-            rec(p, far.0, far.1, depth + 1, x, k, heap);
-        }
+        let split = p[mid].pos[axis] as f64;
+        // Left of the median: at most `split` on this axis; right: at least.
+        let (mut left, mut right) = (cell, cell);
+        left[axis + 2] = split;
+        right[axis] = split;
+        let (near, far) = if x[axis] - split < 0.0 { (((lo, mid), left), ((mid + 1, hi), right)) } else { (((mid + 1, hi), right), ((lo, mid), left)) };
+        rec(p, near.0 .0, near.0 .1, depth + 1, near.1, x, k, max_r2, heap);
+        rec(p, far.0 .0, far.0 .1, depth + 1, far.1, x, k, max_r2, heap);
     }
     let mut heap = BinaryHeap::with_capacity(k + 1);
     if k > 0 {
-        rec(p, 0, p.len(), 0, x, k, &mut heap);
+        rec(p, 0, p.len(), 0, root, x, k, max_r2, &mut heap);
     }
-    let r = heap.peek().map_or(0.0, |t| t.0.sqrt());
+    // Fewer than k within the cap: the cap is the radius.
+    let r = if heap.len() < k { max_r2.sqrt() } else { heap.peek().map_or(0.0, |t| t.0.sqrt()) };
     (heap.into_iter().map(|Item(d2, i)| (i, d2)).collect(), r)
 }
 
@@ -361,7 +416,7 @@ mod tests {
     fn kdtree_queries_equal_brute_force() {
         let photons = cloud(5000);
         let map = SurfaceMap::build(MapKind::Kdtree, DVec2::new(1.0, 0.5), photons.clone(), 0.01);
-        let SurfaceMap::Kd { photons: tree, .. } = &map else { unreachable!() };
+        let SurfaceMap::Kd { photons: tree, bounds, .. } = &map else { unreachable!() };
         let mut r = Rng::new(9, 0, 0);
         for _ in 0..200 {
             let x = DVec2::new(r.f64(), r.f64() * 0.5);
@@ -369,12 +424,54 @@ mod tests {
             radius_query(tree, 0, tree.len(), 0, x, 0.03 * 0.03, &mut got);
             let want = photons.iter().filter(|p| dist2(p, x) <= 0.03 * 0.03).count();
             assert_eq!(got.len(), want);
-            let (nn, rk) = knn_query(tree, x, 20);
+            let (nn, rk) = knn_query(tree, *bounds, x, 20, f64::INFINITY);
             let mut d: Vec<f64> = photons.iter().map(|p| dist2(p, x)).collect();
             d.sort_by(f64::total_cmp);
             assert_eq!(nn.len(), 20);
             assert!((rk - d[19].sqrt()).abs() < 1e-12);
         }
+    }
+
+    /// All photons in one small disc (a beam's spot, as under
+    /// --no-dispersion): k-nearest queries near it and far from it find
+    /// exactly the photons a brute-force search finds within the cap, and
+    /// a query whose k-th nearest lies beyond the cap reads the photons
+    /// within the cap over its disc.
+    #[test]
+    fn capped_k_nearest_equals_brute_force_about_a_compact_cluster() {
+        let mut r = Rng::new(6, 0, 0);
+        let n = 20_000;
+        let photons: Vec<Photon> = (0..n)
+            .map(|_| {
+                let (a, b) = (r.f64() * std::f64::consts::TAU, r.f64().sqrt() * 0.01);
+                Photon::new([(0.5 + b * a.cos()) as f32, (0.25 + b * a.sin()) as f32], [1.0 / n as f32; 3])
+            })
+            .collect();
+        let size = DVec2::new(1.0, 0.5);
+        let map = SurfaceMap::build(MapKind::Kdtree, size, photons.clone(), 0.01);
+        let SurfaceMap::Kd { photons: tree, bounds, .. } = &map else { unreachable!() };
+        let k = 50;
+        let cap = nearest_cap(k, n, size);
+        let (mut near, mut capped) = (0, 0);
+        for i in 0..400 {
+            let x = DVec2::new(0.45 + 0.1 * (i % 20) as f64 / 19.0, 0.2 + 0.1 * (i / 20) as f64 / 19.0) + DVec2::new(0.3, 0.2) * (i % 3) as f64;
+            let mut d: Vec<f64> = photons.iter().map(|p| dist2(p, x)).filter(|&d2| d2 < cap * cap).collect();
+            d.sort_by(f64::total_cmp);
+            let (found, rk) = knn_query(tree, *bounds, x, k, cap * cap);
+            if d.len() >= k {
+                near += 1;
+                assert_eq!(found.len(), k);
+                assert!((rk - d[k - 1].sqrt()).abs() < 1e-12, "{x}: {rk} against {}", d[k - 1].sqrt());
+            } else {
+                capped += 1;
+                assert_eq!(found.len(), d.len(), "{x}");
+                assert_eq!(rk, cap);
+                let e = map.irradiance(x, Filter::Box, Lookup::Nearest(k)).x;
+                let want = d.len() as f64 / n as f64 / (std::f64::consts::PI * cap * cap) / kernel_inside(Filter::Box, x, cap, size);
+                assert!((e - want).abs() <= 1e-6 * want.max(1e-9), "{x}: {e} against {want}");
+            }
+        }
+        assert!(near > 50 && capped > 100, "{near} near, {capped} capped");
     }
 
     /// The rounding without the library call gives what `round() as i64`
