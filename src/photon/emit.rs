@@ -148,13 +148,13 @@ impl Grids {
                 (size, nu, nv)
             })
             .collect();
-        // A texel's class sums take as much room as this many XYZ sums.
-        let per_texel = if spectral { 1 + CLASSES.div_ceil(3) } else { 1 };
-        let copies = sum_copies(sizes.iter().map(|&(_, nu, nv)| (nu * nv * per_texel) as u64).sum(), rayon::current_num_threads());
+        let copies = sum_copies(sizes.iter().map(|&(_, nu, nv)| (nu * nv) as u64).sum(), rayon::current_num_threads());
         let grids = sizes
             .into_iter()
             .map(|(size, nu, nv)| {
-                let classes = if spectral { (0..copies * nu * nv * CLASSES).into_par_iter().map(|_| Default::default()).collect() } else { Vec::new() };
+                // One copy of the class sums (they are 13 times the XYZ
+                // sums' size): threads share their cache lines.
+                let classes = if spectral { (0..nu * nv * CLASSES).into_par_iter().map(|_| Default::default()).collect() } else { Vec::new() };
                 Grid { size, nu, nv, cells: zeroed_sums(copies * nu * nv), classes }
             })
             .collect();
@@ -177,7 +177,7 @@ impl Grids {
         if g.classes.is_empty() {
             return Vec::new();
         }
-        (0..n).into_par_iter().map(|i| ((0..self.copies).map(|c| g.classes[c * n + i].load(Relaxed)).sum::<i64>() as f64 / self.class_scale) as f32).collect()
+        (0..n).into_par_iter().map(|i| (g.classes[i].load(Relaxed) as f64 / self.class_scale) as f32).collect()
     }
 
     /// The XYZ flux of each texel of surface `map`, row by row (its
@@ -207,7 +207,7 @@ impl Deposit for &Grids {
             cell.fetch_add(super::map::round_to_i64(x as f64 * self.scale), Relaxed);
         }
         if !g.classes.is_empty() {
-            let i = (copy + iv * g.nu + iu) * CLASSES + class as usize;
+            let i = (iv * g.nu + iu) * CLASSES + class as usize;
             g.classes[i].fetch_add(super::map::round_to_i64(sigma as f64 * self.class_scale), Relaxed);
         }
     }
