@@ -335,6 +335,37 @@ pub fn prism(quick: bool, out_dir: &std::path::Path) -> Result<String> {
     Ok(out)
 }
 
+/// The k-nearest gather where most queries lie far from every photon:
+/// single-prism with `--no-dispersion` puts all photons in the beam's
+/// spot on the screen, and each dark pixel asks for its 50 nearest
+/// (`refract prism --scene single-prism --no-dispersion --map kdtree --k
+/// 50 --threads 1`, 640x240, 4 samples a pixel). The eye pass's seconds
+/// on 1 thread, median of 3 (1 run under --quick), and the share of the
+/// pixels that see any light.
+pub fn knn(quick: bool) -> Result<String> {
+    let mut so = SceneOptions::new(SceneKind::SinglePrism);
+    so.no_dispersion = true;
+    let scene = build(&so)?;
+    let mut out = String::new();
+    writeln!(out, "k-nearest bench: single-prism --no-dispersion, {}x{}, --map kdtree --k 50, 4 spp, 1 thread", scene.camera.width, scene.camera.height)?;
+    writeln!(out, "{:>9} {:>8} {:>10} {:>10} {:>8}", "photons", "stored", "light_s", "eye_s", "lit_px")?;
+    let one = rayon::ThreadPoolBuilder::new().num_threads(1).build()?;
+    let (counts, repeats): (&[u64], usize) = if quick { (&[20_000, 100_000], 1) } else { (&[100_000, 2_000_000], 3) };
+    for &n in counts {
+        let opts = RenderOptions { photons: n, lookup: Lookup::Nearest(50), spp: 4, seed: 1, ..prism_opts(n, MapKind::Kdtree, Filter::Box, 0.0) };
+        let runs: Vec<_> = (0..repeats).map(|_| one.install(|| render(&scene, &opts, &crate::progress::Silent))).collect();
+        let mut eye: Vec<f64> = runs.iter().map(|r| r.render_s).collect();
+        let mut light: Vec<f64> = runs.iter().map(|r| r.trace_s).collect();
+        eye.sort_by(f64::total_cmp);
+        light.sort_by(f64::total_cmp);
+        let r = &runs[0];
+        let lit = r.image.xyz.iter().filter(|c| c.y > 0.0).count() as f64 / r.image.xyz.len() as f64;
+        let median = crate::experiment::charts::median;
+        writeln!(out, "{:>9} {:>8} {:>10.3} {:>10.3} {:>7.1}%", n, r.stats.stored, median(&light), median(&eye), 100.0 * lit)?;
+    }
+    Ok(out)
+}
+
 /// The bench's render settings: one eye sample, a fixed seed.
 fn prism_opts(photons: u64, map: MapKind, filter: Filter, r: f64) -> RenderOptions {
     RenderOptions { photons, map, filter, lookup: Lookup::Radius(r), spp: 1, seed: 1, eye: EyeMode::Hero, split: 8, colours: ColorMap::Cie, film_kernel: None }

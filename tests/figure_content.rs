@@ -593,7 +593,10 @@ fn the_sphere_before_the_metal_plate_runs_from_yellow_on_its_left_to_red_on_its_
         }
         (g / r, r / 5.0)
     };
-    let (left, left_r) = green_over_red(0.5 - 0.2);
+    // Two pixels in from the dark ring at the sphere's left edge (0.3 of
+    // the width): its first pixel inside shows the red fringe the glass's
+    // dispersion puts on the plate's image there (docs/physics.md §12).
+    let (left, left_r) = green_over_red(0.5 - 0.18);
     let (right, right_r) = green_over_red(0.5 + 0.15);
     assert!(left > 0.85 && left_r > 240.0, "yellow on the sphere's left: G/R {left:.2}, R {left_r:.0}");
     assert!(right < 0.6 && right_r > 150.0, "red-orange on its right: G/R {right:.2}, R {right_r:.0}");

@@ -313,6 +313,8 @@ mod cli {
             (vec!["--flint-apex", "170"], "--flint-apex"),
             (vec!["--photons", "0"], "for '--photons <N>': 0 is not between 1 and 2000000000"),
             (vec!["--map", "buffer", "--k", "10"], "--k needs --map kdtree"),
+            (vec!["--map", "kdtree", "--k", "2"], "--k 2: below 4 the k-nearest estimate"),
+            (vec!["--map", "kdtree", "--k", "3"], "--k 3: below 4"),
             (vec!["--light", "sunshine"], "unknown light spectrum `sunshine`"),
             (vec!["--radius", "-1"], "--radius"),
             (vec!["--out", "nowhere/x.png"], "--out: folder nowhere does not exist"),

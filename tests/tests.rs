@@ -40,3 +40,6 @@ mod figures;
 mod layers;
 // Citations of docs/physics.md point at sections that exist.
 mod docs;
+// A matte scene through a dispersive wedge against the sum of its
+// monochromatic renders.
+mod wedge;

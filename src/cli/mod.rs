@@ -114,6 +114,15 @@ pub enum BenchCommand {
         #[arg(long)]
         out: Option<PathBuf>,
     },
+    /// The k-nearest gather far from a compact cluster of photons:
+    /// single-prism with --no-dispersion (every photon in the beam's
+    /// spot), --map kdtree --k 50, the eye pass on 1 thread at 100k and
+    /// 2 M photons (medians of 3).
+    Knn {
+        /// 20k and 100k photons, one run each (a smoke run).
+        #[arg(long)]
+        quick: bool,
+    },
     /// Whether the photograph-like figures have converged: each rendered
     /// at two seeds, the relative RMSE of luminance between them (target
     /// under 2 %) and the render time.
@@ -389,6 +398,7 @@ pub fn run(cli: Cli) -> Result<()> {
             let out = out.unwrap_or_else(|| PathBuf::from(if quick { "results/quick/bench" } else { "results/bench" }));
             write_stdout(&crate::bench::prism(quick, &out)?)
         }
+        Command::Bench { which: BenchCommand::Knn { quick } } => write_stdout(&crate::bench::knn(quick)?),
         Command::Bench { which: BenchCommand::Figures { quick, only, scenes } } => write_stdout(&crate::bench::figures(quick, &scenes, &only)?),
     }
 }

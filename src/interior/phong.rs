@@ -8,6 +8,9 @@
 //!            the light and the viewer are on opposite sides (none under
 //!            total internal reflection), from the mirrored ray otherwise.
 //!
+//! The ambient term is Ka * Ambient * ObjectColor, Phong's usual one, where
+//! the report writes Ka * Ambient_Color alone (docs/physics.md §10 says why).
+//!
 //! Opaque surfaces (the Cornell box) use plain Phong: no light from behind.
 //! There is no shadow test, as in the report.
 

@@ -7,7 +7,9 @@
 //! - report 001's model, linear in wavelength between Fraunhofer lines:
 //!   n = n_D + (n_B - n_G) (l - l_D) / (l_B - l_G). The report prints the
 //!   first sign as minus, which would make red bend more than blue; we use
-//!   the sign that passes through n_B and n_G;
+//!   the other: the line through n_D with the slope of the chord from n_B
+//!   to n_G (docs/physics.md §7; it misses n_B and n_G themselves, by up to
+//!   0.002 for N-BK7 and 0.009 for N-SF11);
 //! - report 003's Musgrave model ("Prisms and Rainbows", 1989): n linear in
 //!   normalised frequency nu in [0, 1] (700 nm -> 0, 380 nm -> 1, report 003's
 //!   sampling range), n = n_d + K (nu - nu_d), with K calibrated so the model

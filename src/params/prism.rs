@@ -381,7 +381,7 @@ pub static PARAMS: &[Param<SpectralConfig>] = &[
         section: LIGHT,
         help: "Gather the k nearest photons instead of a fixed radius (kd-tree only; the k-th sets the radius, the k - 1 inside it are counted)",
         unit: "photons",
-        kind: Kind::Count { min: 2, max: 1_000_000 },
+        kind: Kind::Count { min: 1, max: 1_000_000 },
         auto: "none: all photons within --radius",
         get: |c| c.k.map(|k| Value::Count(k as u64)),
         set: |c, v| c.k = Some(v.count() as usize),

@@ -15,6 +15,7 @@
 //! spectrum times the photon's wavelength, or times the light's whole
 //! spectrum for a white photon.
 
+use super::bands::CLASSES;
 use super::beam::LANES;
 use super::map::Photon;
 use super::train::Start;
@@ -57,15 +58,18 @@ impl LightStats {
 /// kd-tree), or added straight into the buffer map's texels (`Grids`), so
 /// memory does not grow with the photon count.
 pub trait Deposit {
-    /// A photon lands at `pos` on map `map` carrying XYZ flux `xyz`.
-    fn deposit(&mut self, map: usize, pos: [f32; 2], xyz: [f32; 3]);
+    /// A photon lands at `pos` on map `map` carrying XYZ flux `xyz`, of
+    /// spectral class `class` (`bands::class`) and flux `sigma` (W for a
+    /// white photon; for one of wavelength l, `xyz` over the colour
+    /// weights at l).
+    fn deposit(&mut self, map: usize, pos: [f32; 2], xyz: [f32; 3], class: u8, sigma: f32);
     /// Photon `index` of its light's sequence starts (before its deposits).
     fn photon(&mut self, _index: u64) {}
 }
 
 impl Deposit for Vec<Vec<Photon>> {
-    fn deposit(&mut self, map: usize, pos: [f32; 2], xyz: [f32; 3]) {
-        self[map].push(Photon::new(pos, xyz));
+    fn deposit(&mut self, map: usize, pos: [f32; 2], xyz: [f32; 3], class: u8, _sigma: f32) {
+        self[map].push(Photon::with_class(pos, xyz, class));
     }
 }
 
@@ -76,6 +80,8 @@ impl Deposit for Vec<Vec<Photon>> {
 pub struct Grids {
     pub grids: Vec<Grid>,
     scale: f64,
+    /// The same for the sums by spectral class.
+    class_scale: f64,
     /// Copies of every texel's sum (`sum_copies`).
     copies: usize,
 }
@@ -114,6 +120,9 @@ pub struct Grid {
     pub nu: usize,
     pub nv: usize,
     cells: Vec<[std::sync::atomic::AtomicI64; 3]>,
+    /// Per texel, `bands::CLASSES` sums of flux by spectral class (empty
+    /// where no eye path of one wavelength reads the map).
+    classes: Vec<std::sync::atomic::AtomicI64>,
 }
 
 impl Grids {
@@ -121,8 +130,10 @@ impl Grids {
     /// surface of the scene (times `slot_scale` for the second set of split
     /// maps), for at most `max_flux` of XYZ flux in all; none for the
     /// slots `unused` names (photons landing there are not kept, and their
-    /// maps read zero).
-    pub fn new(scene: &World, texel: f64, max_flux: f64, unused: impl Fn(usize) -> bool) -> Grids {
+    /// maps read zero). With `spectral`, each texel also sums its flux by
+    /// spectral class (`bands`), for eye paths that see the surface at one
+    /// wavelength through dispersive glass.
+    pub fn new(scene: &World, texel: f64, max_flux: f64, spectral: bool, unused: impl Fn(usize) -> bool) -> Grids {
         let sizes: Vec<(DVec2, usize, usize)> = (0..scene.map_slots())
             .map(|slot| {
                 let f = scene.slot_face(slot);
@@ -138,11 +149,35 @@ impl Grids {
             })
             .collect();
         let copies = sum_copies(sizes.iter().map(|&(_, nu, nv)| (nu * nv) as u64).sum(), rayon::current_num_threads());
-        let grids = sizes.into_iter().map(|(size, nu, nv)| Grid { size, nu, nv, cells: zeroed_sums(copies * nu * nv) }).collect();
+        let grids = sizes
+            .into_iter()
+            .map(|(size, nu, nv)| {
+                // One copy of the class sums (they are 13 times the XYZ
+                // sums' size): threads share their cache lines.
+                let classes = if spectral { (0..nu * nv * CLASSES).into_par_iter().map(|_| Default::default()).collect() } else { Vec::new() };
+                Grid { size, nu, nv, cells: zeroed_sums(copies * nu * nv), classes }
+            })
+            .collect();
         // 2^61 units for the most flux there can be: no sum overflows, and
         // a photon of 1e-10 of it still has about 2e8 units.
         let scale = if max_flux > 0.0 && max_flux.is_finite() { (1u64 << 61) as f64 / max_flux } else { 1.0 };
-        Grids { grids, scale, copies }
+        // Class sums in watts: 2^55 units for the lights' power, room for
+        // 64 times it (bounces store a photon again).
+        let power: f64 = scene.lights.iter().map(|l| l.power.abs()).sum();
+        let class_scale = if power > 0.0 && power.is_finite() { (1u64 << 55) as f64 / power } else { 1.0 };
+        Grids { grids, scale, class_scale, copies }
+    }
+
+    /// The flux of each texel of surface `map` by spectral class, row by
+    /// row (`bands::CLASSES` a texel), or empty.
+    pub fn classes(&self, map: usize) -> Vec<f32> {
+        use std::sync::atomic::Ordering::Relaxed;
+        let g = &self.grids[map];
+        let n = g.nu * g.nv * CLASSES;
+        if g.classes.is_empty() {
+            return Vec::new();
+        }
+        (0..n).into_par_iter().map(|i| (g.classes[i].load(Relaxed) as f64 / self.class_scale) as f32).collect()
     }
 
     /// The XYZ flux of each texel of surface `map`, row by row (its
@@ -159,7 +194,7 @@ impl Grids {
 }
 
 impl Deposit for &Grids {
-    fn deposit(&mut self, map: usize, pos: [f32; 2], xyz: [f32; 3]) {
+    fn deposit(&mut self, map: usize, pos: [f32; 2], xyz: [f32; 3], class: u8, sigma: f32) {
         use std::sync::atomic::Ordering::Relaxed;
         let g = &self.grids[map];
         if g.cells.is_empty() {
@@ -170,6 +205,10 @@ impl Deposit for &Grids {
         let copy = copy_index(self.copies) * g.nu * g.nv;
         for (cell, x) in g.cells[copy + iv * g.nu + iu].iter().zip(xyz) {
             cell.fetch_add(super::map::round_to_i64(x as f64 * self.scale), Relaxed);
+        }
+        if !g.classes.is_empty() {
+            let i = (iv * g.nu + iu) * CLASSES + class as usize;
+            g.classes[i].fetch_add(super::map::round_to_i64(sigma as f64 * self.class_scale), Relaxed);
         }
     }
 }
@@ -276,7 +315,7 @@ fn trace_lights<D: Deposit + Send>(
             Emission::Beam { polarisation, .. } => polarisation,
             _ => None,
         };
-        let source = Emitted { power: 0.0, white, reflected: &reflected, sampler: &sampler, importance: &importance, polarisation };
+        let source = Emitted { power: 0.0, light: li, colours, white, reflected: &reflected, sampler: &sampler, importance: &importance, polarisation };
         let per_photon = light.power / n as f64;
         let mut key = Rng::new(seed, li as u64, 0xfeed);
         let offsets = [key.f64(), key.f64(), key.f64()];
@@ -425,6 +464,10 @@ pub fn concentric_disc(a: f64, b: f64) -> DVec2 {
 #[derive(Clone, Copy)]
 pub(super) struct Emitted<'a> {
     pub(super) power: f64,
+    /// The light's index in the scene (its white photons' class).
+    pub(super) light: usize,
+    /// The colour weights photons carry (`sigma` of a stored photon).
+    pub(super) colours: ColorMap,
     pub(super) white: DVec3,
     pub(super) reflected: &'a [DVec3],
     sampler: &'a WavelengthSampler,
@@ -472,12 +515,17 @@ pub(super) fn store(
     let Surface::Diffuse { map, albedo } = face.surface else { return };
     if let (Some(pos), false) = (face.chart_pos(p), direct) {
         let pos = [pos.x as f32, pos.y as f32];
-        let out = match nm {
-            Some(l) => xyz * albedo.at(l),
-            None => light.reflected[map] * light.power,
+        let (out, sigma) = match nm {
+            Some(l) => {
+                let out = xyz * albedo.at(l);
+                // Its XYZ is its flux times the colour weights at l.
+                let c = light.colours.xyz_weight(l);
+                (out, if c.length_squared() > 0.0 { out.dot(c) / c.length_squared() } else { 0.0 })
+            }
+            None => (light.reflected[map] * light.power, light.power),
         };
         let slot = if scene.split_maps() && !caustic { map + scene.maps.len() } else { map };
-        maps.deposit(slot, pos, [out.x as f32, out.y as f32, out.z as f32]);
+        maps.deposit(slot, pos, [out.x as f32, out.y as f32, out.z as f32], super::bands::class(nm, light.light), sigma as f32);
         stats.stored += 1;
     }
 }
@@ -611,7 +659,16 @@ mod tests {
             for colours in [ColorMap::Cie, ColorMap::Gradient] {
                 let sampler = WavelengthSampler::new(&s);
                 let importance = WavelengthSampler::weighted(&s, |nm| colours.xyz_weight(nm).abs().element_sum());
-                let e = Emitted { power: 1.0, white: DVec3::ZERO, reflected: &[], sampler: &sampler, importance: &importance, polarisation: None };
+                let e = Emitted {
+                    power: 1.0,
+                    light: 0,
+                    colours,
+                    white: DVec3::ZERO,
+                    reflected: &[],
+                    sampler: &sampler,
+                    importance: &importance,
+                    polarisation: None,
+                };
                 let n = 200_000;
                 let mean = (0..n).map(|i| e.pick((i as f64 + 0.5) / n as f64, colours).1).sum::<DVec3>() / n as f64;
                 let want = sampler.mean_weight(colours);

@@ -73,7 +73,17 @@ pub fn build(o: &SceneOptions) -> Result<World> {
     design.media = vec![Medium::Air, glass_medium(o.crown, IorKind::Sellmeier, false), glass_medium(o.flint, IorKind::Sellmeier, false)];
     let d_line = probe(&design, DESIGN_NM);
     if d_line.tir {
-        bail!("--incidence: at {:.3} degrees the d line is totally reflected inside the prism", prism.incidence.to_degrees());
+        match o.incidence_deg {
+            Some(_) => bail!("--incidence: at {:.3} degrees the d line is totally reflected inside the prism", prism.incidence.to_degrees()),
+            None => bail!(
+                "--glass {} / --flint {} / --flint-apex {}: the d line, entering along the design's axis ({:.3} degrees), is totally reflected inside the prism after {} faces (it meets a face beyond the critical angle)",
+                o.crown.name,
+                o.flint.name,
+                o.flint_apex_deg,
+                prism.incidence.to_degrees(),
+                d_line.faces
+            ),
+        }
     }
     match o.kind {
         SceneKind::AmiciScreen => add_screen(&mut scene, o, &prism, &design, &d_line, 2.0)?,
@@ -287,7 +297,15 @@ fn add_lamp(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism, design: &Wo
     let cam = DVec3::new(prism.parts[0][1].x - 0.03, 0.0, 0.0);
     let blue = lamp_image_angle(design, cam, x, 435.834);
     let (Some(blue), Some(red)) = (blue, lamp_image_angle(design, cam, x, 711.0)) else {
-        bail!("--incidence: the lamp cannot be seen through the prism at 405-711 nm");
+        match o.incidence_deg {
+            Some(_) => bail!("--incidence: the lamp cannot be seen through the prism at 436-711 nm"),
+            None => bail!(
+                "--glass {} / --flint {} / --flint-apex {}: the lamp cannot be seen through this prism at 436-711 nm",
+                o.crown.name,
+                o.flint.name,
+                o.flint_apex_deg
+            ),
+        }
     };
     let look = rotate_z(DVec3::X, (blue + red) / 2.0);
     let hfov = (blue - red).abs() * 1.1 + 2.0 * LAMP_WIDTH / LAMP_DISTANCE;

@@ -10,6 +10,7 @@
 //! (report 001's method).
 
 use super::options::{EyeMode, RenderOptions};
+use crate::photon::bands::{band, band_range, BANDS, WHITE};
 use crate::photon::gather::Lookup;
 use crate::photon::map::SurfaceMap;
 use crate::sampling::Rng;
@@ -29,7 +30,9 @@ pub(super) struct Eye<'a> {
     pub scene: &'a World,
     pub maps: Vec<SurfaceMap>,
     pub opts: &'a RenderOptions,
-    /// Wavelengths for white paths at a dispersive face (all lights' spectra).
+    /// Wavelengths for white paths at a dispersive face: all lights'
+    /// spectra times the colour weights (under `--eye lines`, the spectra
+    /// alone: its components' weights divide by this pdf).
     pub sampler: WavelengthSampler,
     /// The same spectrum as a mixture for `--eye lines`: each emission line,
     /// then the rest, with its share of the power.
@@ -44,6 +47,24 @@ pub(super) struct Eye<'a> {
     /// (`--map film`): a camera ray's first matte hit then reads only the
     /// second map and direct light.
     pub film: bool,
+    /// Per photon map (face order, `World::maps`), per white class: what
+    /// one watt of that class's light leaves the surface with (`direct`
+    /// by class, for `SurfaceMap::spectral`).
+    pub white_reflected: Vec<[DVec3; WHITE]>,
+    /// The eye's probability of each band (`bands`) of wavelengths.
+    pub band_mass: [f64; BANDS],
+}
+
+impl Eye<'_> {
+    /// `white_reflected` and `band_mass` for the other fields.
+    pub fn spectral_tables(direct: &[Vec<DVec3>], maps: usize, sampler: &WavelengthSampler) -> (Vec<[DVec3; WHITE]>, [f64; BANDS]) {
+        let white = (0..maps).map(|m| std::array::from_fn(|c| direct.get(c).map_or(DVec3::ZERO, |d| d[m]))).collect();
+        let mass = std::array::from_fn(|b| {
+            let (lo, hi) = band_range(b);
+            sampler.cdf_at(hi) - sampler.cdf_at(lo)
+        });
+        (white, mass)
+    }
 }
 
 /// One eye path: where it is, where it goes, its wavelength once it has
@@ -157,7 +178,7 @@ impl Eye<'_> {
                 p.d = crate::optics::snell::reflect_f64(p.d, normal);
                 Step::Continue
             }
-            Surface::Diffuse { map, .. } => Step::End(if p.d.dot(normal) < 0.0 { self.matte(p, id, x, map, rng) } else { DVec3::ZERO }),
+            Surface::Diffuse { map, albedo } => Step::End(if p.d.dot(normal) < 0.0 { self.matte(p, id, x, map, albedo, rng) } else { DVec3::ZERO }),
             Surface::Emitter { light } => Step::End(if p.d.dot(normal) < 0.0 { self.emitted(p, light) } else { DVec3::ZERO }),
         }
     }
@@ -241,47 +262,104 @@ impl Eye<'_> {
 
     /// Radiance leaving a matte surface toward the path: the photon map's
     /// reflected flux density over pi (the map stores what the surface
-    /// reflects, spectrally for light of one wavelength).
-    fn matte(&self, p: &Path, id: usize, x: DVec3, map: usize, rng: &mut Rng) -> DVec3 {
+    /// reflects, spectrally for light of one wavelength); for a path that
+    /// has taken a wavelength, what the surface reflects at it (`seen_at`).
+    fn matte(&self, p: &Path, id: usize, x: DVec3, map: usize, albedo: crate::world::Albedo, rng: &mut Rng) -> DVec3 {
         let face = &self.scene.faces[id];
         let Some(pos) = face.chart_pos(x) else { return DVec3::ZERO };
         // Under --map film the caustics the camera sees directly are on
         // the film already.
         let on_film = self.film && p.depth == 0;
+        let smooth = self.maps.get(map + self.scene.maps.len());
+        // Bounced and mirrored light, gathered wider (docs/physics.md §18).
+        let wide = match self.opts.lookup {
+            Lookup::Radius(r) => Lookup::Radius(r * self.scene.indirect_gather),
+            k => k,
+        };
+        if let Some(nm) = p.nm {
+            return self.seen_at(p, nm, id, x, pos, map, albedo, on_film, smooth, wide, rng);
+        }
         let mut e = if on_film { DVec3::ZERO } else { self.maps[map].irradiance(pos, self.opts.filter, self.opts.lookup) };
-        if let Some(smooth) = self.maps.get(map + self.scene.maps.len()) {
-            // Bounced and mirrored light, gathered wider (docs/physics.md §18).
-            let lookup = match self.opts.lookup {
-                Lookup::Radius(r) => Lookup::Radius(r * self.scene.indirect_gather),
-                k => k,
-            };
-            e += smooth.irradiance(pos, self.opts.filter, lookup);
+        if let Some(smooth) = smooth {
+            e += smooth.irradiance(pos, self.opts.filter, wide);
         }
         if self.scene.direct_lighting {
-            e += self.direct_light(id, x, map, p.light_u, rng);
+            let mut sum = DVec3::ZERO;
+            self.direct_light(id, x, p.light_u, rng, |k, e| sum += self.direct[k][map] * e);
+            e += sum;
         }
         let l = e / std::f64::consts::PI;
-        match p.nm {
-            None => l * p.weight,
-            // Seen through a dispersive face at wavelength nm, drawn with
-            // pdf q(nm) and weighted 1 / q(nm): the map's colour comes back
-            // times q(nm), so over the wavelengths the path could take it
-            // averages to that colour times the path's transmittance. A
-            // wall seen through a glass plate keeps its colour, and under
-            // a laser its brightness; a matte edge seen through a prism
-            // shows no colour fringe of its own (the map holds XYZ, not
-            // spectra), though the lights' edges do.
-            Some(nm) => l * (p.weight * self.sampler.pdf(nm)),
-        }
+        l * p.weight
     }
 
-    /// Reflected flux density (XYZ per m^2) at `x` on matte face `id` from
-    /// light that comes straight from each light through air: shadow rays
+    /// Radiance at wavelength `nm` leaving a matte surface toward a path
+    /// that took `nm` with pdf q(nm) and weight 1/q(nm) (docs/physics.md
+    /// §12), in XYZ: the surface's reflectance at nm times, for each
+    /// light's white photons and direct light, its irradiance times its
+    /// spectrum's pdf at nm, times the colour weights at nm; plus the
+    /// photons of one wavelength in nm's band, times q(nm) over the band's
+    /// probability. Averaged over nm this is the map's colour (a glass
+    /// plate changes none), but each wavelength of what the surface
+    /// reflects is seen where it lands: a matte edge seen through a prism
+    /// keeps its colour fringe.
+    #[allow(clippy::too_many_arguments)]
+    fn seen_at(
+        &self,
+        p: &Path,
+        nm: f64,
+        id: usize,
+        x: DVec3,
+        pos: glam::DVec2,
+        map: usize,
+        albedo: crate::world::Albedo,
+        on_film: bool,
+        smooth: Option<&SurfaceMap>,
+        wide: Lookup,
+        rng: &mut Rng,
+    ) -> DVec3 {
+        let cmf = self.opts.colours.xyz_weight(nm);
+        let b = band(nm);
+        let reflected = &self.white_reflected[map];
+        let mut white = [0.0; WHITE];
+        let mut mono = DVec3::ZERO;
+        let mut add = |s: crate::photon::map::Spectral| {
+            white.iter_mut().zip(s.white).for_each(|(w, v)| *w += v);
+            mono += s.band;
+        };
+        if !on_film {
+            add(self.maps[map].spectral(pos, self.opts.filter, self.opts.lookup, b, cmf, reflected));
+        }
+        if let Some(smooth) = smooth {
+            add(smooth.spectral(pos, self.opts.filter, wide, b, cmf, reflected));
+        }
+        // Each light's spectrum's pdf at nm (the last white class shares
+        // the eighth light's).
+        let pdf = |k: usize| self.lights.get(k).map_or(0.0, |l| l.1.pdf(nm));
+        let mut spectral = 0.0;
+        if self.scene.direct_lighting {
+            self.direct_light(id, x, p.light_u, rng, |k, e| spectral += e * pdf(k));
+        }
+        for (c, w) in white.iter().enumerate() {
+            if *w != 0.0 {
+                spectral += w * pdf(c);
+            }
+        }
+        let mut e = cmf * (spectral * albedo.at(nm));
+        let q_band = self.band_mass[b];
+        if q_band > 0.0 {
+            e += mono * (self.sampler.pdf(nm) / q_band);
+        }
+        e / std::f64::consts::PI * p.weight
+    }
+
+    /// Irradiance (W per m^2) at `x` on matte face `id` from each light k
+    /// whose light comes straight through air, given to `add(k, E)`
+    /// (`direct[k][map]` times E is what the surface reflects): shadow rays
     /// to a point light, stratified samples of an area or spherical light
     /// (four per eye sample at up to 4 samples a pixel, fewer above, so a
     /// pixel takes about 16 in all), and for a beam whether `x` lies in it,
     /// unshadowed (docs/physics.md §13).
-    fn direct_light(&self, id: usize, x: DVec3, map: usize, light_u: [f64; 2], rng: &mut Rng) -> DVec3 {
+    fn direct_light(&self, id: usize, x: DVec3, light_u: [f64; 2], rng: &mut Rng, mut add: impl FnMut(usize, f64)) {
         use std::f64::consts::PI;
         let n = self.scene.faces[id].normal;
         // Whether the segment from x along unit w reaches distance `dist`
@@ -291,7 +369,6 @@ impl Eye<'_> {
             None => true,
             Some(h) => h.t >= dist * (1.0 - 1e-9) || Some(h.face) == target,
         };
-        let mut sum = DVec3::ZERO;
         let per_side: usize = match self.opts.spp {
             0..=4 => 2,
             _ => 1,
@@ -367,9 +444,8 @@ impl Eye<'_> {
                     }
                 }
             };
-            sum += self.direct[k][map] * e;
+            add(k, e);
         }
-        sum
     }
 
     /// Radiance of an emitter seen directly.

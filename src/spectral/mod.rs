@@ -104,6 +104,9 @@ impl SpectralConfig {
             bail!("--passes needs a gather radius: progressive photon mapping shrinks it, and --k has none");
         }
         match self.k {
+            Some(k) if k < 4 => bail!(
+                "--k {k}: below 4 the k-nearest estimate (k - 1) / (pi r^2) counts too few photons (at --k 2 one, with infinite variance: it reads about 3 % low); use --k 4 or more"
+            ),
             Some(_) if self.map != MapKind::Kdtree => bail!("--k needs --map kdtree: the buffer and the film hold texels and pixels, not photons"),
             Some(_) if self.radius.is_some() => bail!("--k and --radius exclude each other"),
             _ => Ok(()),

@@ -81,6 +81,9 @@ fn render_with(scene: &World, opts: &RenderOptions, place: Option<PassPlace>, pr
     let mut film: Option<Vec<DVec3>> = None;
     let mut film_kernel = None;
     let mut halves = None;
+    // Whether an eye path may take a wavelength and then meet a matte
+    // surface: only then does the buffer keep its flux by spectral class.
+    let spectral = scene.media.iter().any(|m| m.is_dispersive()) && scene.camera_may_see_specular();
     let (stats, maps, trace_s, build_s): (LightStats, Vec<SurfaceMap>, f64, f64) = if scene.maps.is_empty() {
         (LightStats::default(), Vec::new(), 0.0, 0.0)
     } else if opts.map != MapKind::Kdtree {
@@ -89,7 +92,7 @@ fn render_with(scene: &World, opts: &RenderOptions, place: Option<PassPlace>, pr
         // are read only by eye paths through glass or off a mirror: with
         // none in view they are not kept.
         let unused_first = opts.map == MapKind::Film && !scene.camera_may_see_specular();
-        let grids = Grids::new(scene, texel, most, |slot| unused_first && slot < scene.maps.len());
+        let grids = Grids::new(scene, texel, most, spectral, |slot| unused_first && slot < scene.maps.len());
         let stats = if opts.map == MapKind::Film {
             let splat = Splat::new(scene, most, opts.photons);
             let stats =
@@ -106,7 +109,7 @@ fn render_with(scene: &World, opts: &RenderOptions, place: Option<PassPlace>, pr
             let (img, r) = super::bandwidth::film_image(&halves, g, opts.film_kernel);
             (film, film_kernel) = (Some(img), Some(r));
         }
-        let maps = grids.grids.iter().enumerate().map(|(m, g)| SurfaceMap::buffer(g.size, g.nu, g.nv, grids.flux(m))).collect();
+        let maps = grids.grids.iter().enumerate().map(|(m, g)| SurfaceMap::buffer(g.size, g.nu, g.nv, grids.flux(m), grids.classes(m))).collect();
         (stats, maps, trace_s, t.elapsed().as_secs_f64())
     } else {
         let pass = light_pass_from(scene, opts.photons, opts.seed, index, opts.colours, progress);
@@ -139,11 +142,19 @@ fn render_with(scene: &World, opts: &RenderOptions, place: Option<PassPlace>, pr
             (l.power / (std::f64::consts::PI * area), sampler, white)
         })
         .collect();
-    let sampler = WavelengthSampler::new(&eye_spectrum);
-    let components = if opts.eye == EyeMode::Lines { mixture(&eye_spectrum, sampler.integral(), opts.colours) } else { Vec::new() };
+    let plain = WavelengthSampler::new(&eye_spectrum);
+    let components = if opts.eye == EyeMode::Lines { mixture(&eye_spectrum, plain.integral(), opts.colours) } else { Vec::new() };
+    // One wavelength or a split's: drawn by the spectrum times how much
+    // each shows (the colour map's weights), as the photons' are
+    // (docs/physics.md §16): a warm lamp's light seen through glass spends
+    // no samples beyond 780 nm, where they show nothing. `--eye lines`
+    // weighs its components by the spectrum's own pdf.
+    let sampler =
+        if opts.eye == EyeMode::Lines { plain } else { WavelengthSampler::weighted(&eye_spectrum, |nm| opts.colours.xyz_weight(nm).abs().element_sum()) };
     // What one watt of each light leaves each matte surface with.
-    let direct = lights.iter().map(|(_, sampler, _)| scene.reflected_per_map(sampler, opts.colours)).collect();
-    let eye = Eye { scene, maps, opts, sampler, components, lights, direct, film: film.is_some() };
+    let direct: Vec<Vec<DVec3>> = lights.iter().map(|(_, sampler, _)| scene.reflected_per_map(sampler, opts.colours)).collect();
+    let (white_reflected, band_mass) = Eye::spectral_tables(&direct, scene.maps.len(), &sampler);
+    let eye = Eye { scene, maps, opts, sampler, components, lights, direct, film: film.is_some(), white_reflected, band_mass };
     let haze = Haze::new(scene, opts.colours);
 
     let cam = &scene.camera;

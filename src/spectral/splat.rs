@@ -195,9 +195,9 @@ pub struct FilmAndBuffer<'a, 'b> {
 }
 
 impl Deposit for FilmAndBuffer<'_, '_> {
-    fn deposit(&mut self, slot: usize, pos: [f32; 2], xyz: [f32; 3]) {
+    fn deposit(&mut self, slot: usize, pos: [f32; 2], xyz: [f32; 3], class: u8, sigma: f32) {
         let mut grids = self.grids;
-        grids.deposit(slot, pos, xyz);
+        grids.deposit(slot, pos, xyz, class, sigma);
         // The first map of each surface holds the caustics
         // (`World::caustics_apart`); the rest is gathered as usual.
         if slot < self.splat.scene.maps.len() {

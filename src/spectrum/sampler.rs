@@ -91,6 +91,14 @@ impl WavelengthSampler {
         (self.cdf[i + 1] - self.cdf[i]) / BIN_NM
     }
 
+    /// The probability of a wavelength below `nm` (the cdf, linear
+    /// within each 0.1 nm bin as `sample` draws).
+    pub fn cdf_at(&self, nm: f64) -> f64 {
+        let f = ((nm - LAMBDA_MIN) / BIN_NM).clamp(0.0, (self.cdf.len() - 1) as f64);
+        let i = (f as usize).min(self.cdf.len() - 2);
+        self.cdf[i] + (self.cdf[i + 1] - self.cdf[i]) * (f - i as f64)
+    }
+
     pub fn integral(&self) -> f64 {
         self.integral
     }
