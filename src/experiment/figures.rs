@@ -227,6 +227,9 @@ pub fn run(o: &FigureOptions) -> Result<Outcome> {
             super::sweep::run(&e, &super::sweep::SweepOptions { out: Some(dir), resume, ..opts.clone() })?;
         }
         super::spectral::write_report(&o.out.join("spectral"), crate::optics::glass::by_name("N-BK7")?)?;
+        let display = o.out.join("display");
+        crate::image_io::create_folder(&display)?;
+        super::display::write(&display.join("transforms.png"), &o.scenes)?;
     }
     write_index(&o.out, &ids, &records, o.quick)?;
     Ok(Outcome { dir, index: o.out.join("index.html"), failed })
@@ -325,7 +328,7 @@ fn write_index(out: &Path, ids: &[String], records: &BTreeMap<String, Record>, q
             ids.iter().filter(|id| report_of(id) == rep).map(|id| format!("<a href=\"#{id}\">{id}</a>")).collect::<Vec<_>>().join(", ")
         )?;
     }
-    h.push_str("<li><a href=\"#plots\">Plots from the shipped sweeps</a></li><li><a href=\"#spectral\">Spectral accuracy</a></li></ul></nav>\n");
+    h.push_str("<li><a href=\"#plots\">Plots from the shipped sweeps</a></li><li><a href=\"#display\">Display transforms</a></li><li><a href=\"#spectral\">Spectral accuracy</a></li></ul></nav>\n");
     let none = Record::default();
     for (rep, title) in reports {
         writeln!(h, "<h2 id=\"report-{rep}\">{}</h2>", esc(title))?;
@@ -368,6 +371,11 @@ fn write_index(out: &Path, ids: &[String], records: &BTreeMap<String, Record>, q
         for p in pngs {
             writeln!(h, "<figure><a href=\"{name}/{p}\"><img src=\"{name}/{p}\" alt=\"{p}\"></a><figcaption><code>{name}/{p}</code> (data: <a href=\"{name}/runs.csv\">runs.csv</a>)</figcaption></figure>")?;
         }
+    }
+    if out.join("display/transforms.png").exists() {
+        writeln!(h, "<h2 id=\"display\">Display transforms for spectral light</h2>")?;
+        writeln!(h, "<p>{}, each rendered once at its quick size and shown three ways: each channel clipped to [0, 1]; desaturated toward the grey of its own luminance (hue kept, the brightest parts no brighter than white paper); and the filmic AgX curve, where bright saturated light rolls smoothly toward white as on film (docs/physics.md §23). The photograph-like figures use AgX.</p>", super::display::FIGURES.join(", "))?;
+        writeln!(h, "<figure><a href=\"display/transforms.png\"><img src=\"display/transforms.png\" alt=\"display transforms\"></a></figure>")?;
     }
     let spectral = out.join("spectral");
     if spectral.join("colour_maps.png").exists() {

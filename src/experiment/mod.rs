@@ -2,6 +2,7 @@
 
 pub mod charts;
 pub mod close_up;
+pub mod display;
 pub mod figures;
 pub mod grid;
 pub mod labels;
