@@ -269,21 +269,17 @@ const GROUPS: [(&str, &[&str], &str); 8] = [
 
 /// One figure with its caption; `anchor` on its first appearance only (a
 /// figure may stand in two comparisons).
-fn figure_html(h: &mut String, out: &Path, id: &str, r: &Record, anchor: bool, quick: bool) -> Result<()> {
+fn figure_html(h: &mut String, out: &Path, id: &str, r: &Record, anchor: bool) -> Result<()> {
     let png = out.join("figures").join(format!("{id}.png"));
     // The caption as wide as the image.
-    let width = image::image_dimensions(&png).map_or(640, |(w, _)| if quick { 2 * w } else { w });
+    let width = image::image_dimensions(&png).map_or(640, |(w, _)| w);
     if anchor {
         writeln!(h, "<figure id=\"{id}\" style=\"width:{width}px\">")?;
     } else {
         writeln!(h, "<figure style=\"width:{width}px\">")?;
     }
     if let Ok((w, hh)) = image::image_dimensions(&png) {
-        // At 1:1 in the full set, so figures compared side by side are seen
-        // as rendered; the quick set's half-size images at twice their size,
-        // so they read at the size of the full set's.
-        let zoom = if quick { 2 } else { 1 };
-        let (w, hh) = (w * zoom, hh * zoom);
+        // At 1:1, so figures compared side by side are seen as rendered.
         writeln!(h, "<a href=\"figures/{id}.png\"><img src=\"figures/{id}.png\" alt=\"{id}\" width=\"{w}\" height=\"{hh}\"></a>")?;
     } else {
         writeln!(h, "<p class=\"missing\">not rendered yet: <code>refract figures --only {id}</code></p>")?;
@@ -295,7 +291,7 @@ fn figure_html(h: &mut String, out: &Path, id: &str, r: &Record, anchor: bool, q
 }
 
 fn write_index(out: &Path, ids: &[String], records: &BTreeMap<String, Record>, quick: bool) -> Result<()> {
-    let mut h = String::from("<!doctype html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>refract: the reports' figures</title>\n<style>body{font-family:sans-serif;margin:2em;background:#fafafa}p,nav{max-width:1400px}figure{display:inline-block;vertical-align:top;margin:0 1.5em 2em 0;white-space:normal}img{border:1px solid #ccc;background:#000}.group{border-left:4px solid #58a;padding-left:1em;margin-bottom:1.5em;white-space:nowrap;overflow-x:auto}.look{font-weight:bold;color:#245;white-space:normal}figcaption{font-size:90%}code{font-size:85%;color:#555}.missing{color:#a00}.banner{background:#fe9;padding:.6em 1em;border:1px solid #cb6}nav li{margin:.2em 0}</style></head><body>\n<h1>refract: every figure of the four reports</h1>\n");
+    let mut h = String::from("<!doctype html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>refract: the reports' figures</title>\n<style>body{font-family:sans-serif;margin:2em;background:#fafafa}p,nav{max-width:1400px}figure{display:inline-block;vertical-align:top;margin:0 1em 1.5em 0}img{border:1px solid #ccc;background:#000}.group{border-left:4px solid #58a;padding-left:1em;margin-bottom:1.5em}.look{font-weight:bold;color:#245}figcaption{font-size:90%}code{font-size:85%;color:#555}.missing{color:#a00}.banner{background:#fe9;padding:.6em 1em;border:1px solid #cb6}nav li{margin:.2em 0}</style></head><body>\n<h1>refract: every figure of the four reports</h1>\n");
     if quick {
         h.push_str("<p class=\"banner\"><b>Quick set</b> (<code>figures --quick</code>): smaller images and fewer samples, for a fast look. The full-quality set is <code>results/index.html</code>.</p>\n");
     } else {
@@ -345,13 +341,13 @@ fn write_index(out: &Path, ids: &[String], records: &BTreeMap<String, Record>, q
                 groups_done.push(g);
                 writeln!(h, "<div class=\"group\"><p class=\"look\">Compare: {}</p>", esc(look))?;
                 for m in members.iter().filter(|m| ids.iter().any(|i| i == *m) || EXTRAS.iter().any(|e| e.0 == **m)) {
-                    figure_html(&mut h, out, m, records.get(*m).unwrap_or(&none), !shown.contains(m), quick)?;
+                    figure_html(&mut h, out, m, records.get(*m).unwrap_or(&none), !shown.contains(m))?;
                     shown.push(m);
                 }
                 h.push_str("</div>\n");
             }
             if !shown.contains(&id.as_str()) {
-                figure_html(&mut h, out, id, records.get(id).unwrap_or(&none), true, quick)?;
+                figure_html(&mut h, out, id, records.get(id).unwrap_or(&none), true)?;
                 shown.push(id);
             }
         }

@@ -208,8 +208,11 @@ fn add_bench(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism) -> Result<
     let Emission::Beam { centre: start, half, .. } = &mut scene.lights[0].emission else { bail!("the bench's first light is the slit beam") };
     *half = DVec2::new(0.002, half.y);
     let start = *start;
-    let (x0, x1) = (start.x - 0.2, strip_centre.x + 0.06);
-    let (y0, y1) = (strip_centre.y.min(0.0) - 0.3, strip_centre.y.max(0.0) + 0.3);
+    // The camera of Pictures 4-6: behind the lamp and to its side, above
+    // the table, looking down the bench.
+    let bench_cam = DVec3::new(start.x - 0.5, -0.36, 0.3);
+    let (x0, x1) = (bench_cam.x - 0.1, strip_centre.x + 0.06);
+    let (y0, y1) = (strip_centre.y.min(0.0) - 0.42, strip_centre.y.max(0.0) + 0.3);
     super::matte(scene, "table", DVec3::new(x0, y0, z), DVec3::new(x1 - x0, 0.0, 0.0), DVec3::new(0.0, y1 - y0, 0.0), [0.35; 3]);
     // The lamp housing: a dark box whose front face (with the slit) stands
     // 1 mm behind where the beam starts, so the beam leaves through it.
@@ -248,12 +251,31 @@ fn add_bench(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism) -> Result<
     let (cam, target, hfov): (DVec3, DVec3, f64) = match o.view {
         // Behind the lamp and to its side, above the table: the lamp near,
         // the beam running away down the bench, the prism, the screen.
-        View::Scene => (DVec3::new(start.x - 0.5, -0.36, 0.3), DVec3::new(0.15, strip_centre.y * 0.5, -0.04), 50.0),
+        View::Scene => (bench_cam, DVec3::new(0.15, strip_centre.y * 0.5, -0.04), 50.0),
         // Square on to the strip from 40 cm: the strip across the frame.
         View::Screen => (strip_centre - DVec3::new(0.4, 0.0, 0.0), strip_centre, 2.0 * (0.5 * 0.17 / 0.4f64).atan().to_degrees()),
-        // High above the bench's side.
-        View::Overview => (DVec3::new(0.18, -0.75, 1.05), DVec3::new(0.17, 0.02, -0.08), 66.0),
+        // High above the bench's side, the camera of Pictures 4-6 in view.
+        View::Overview => (DVec3::new(0.0, -1.5, 1.4), DVec3::new(0.0, -0.1, 0.02), 64.0),
     };
+    if o.view == View::Overview {
+        // That camera drawn where it stands: a grey body 8 x 5 x 5 cm on a
+        // post from the table.
+        let (l, w, h) = (0.08, 0.05, 0.05);
+        let c = bench_cam - DVec3::new(l / 2.0, w / 2.0, h / 2.0);
+        let body = [0.45; 3];
+        super::matte(scene, "camera top", c + DVec3::new(0.0, 0.0, h), DVec3::new(l, 0.0, 0.0), DVec3::new(0.0, w, 0.0), body);
+        super::matte(scene, "camera side", c, DVec3::new(l, 0.0, 0.0), DVec3::new(0.0, 0.0, h), body);
+        super::matte(scene, "camera front", c + DVec3::new(l, 0.0, 0.0), DVec3::new(0.0, w, 0.0), DVec3::new(0.0, 0.0, h), body);
+        super::matte(scene, "camera back", c, DVec3::new(0.0, 0.0, h), DVec3::new(0.0, w, 0.0), body);
+        super::matte(
+            scene,
+            "tripod",
+            DVec3::new(bench_cam.x - 0.006, bench_cam.y, z),
+            DVec3::new(0.012, 0.0, 0.0),
+            DVec3::new(0.0, 0.0, bench_cam.z - h / 2.0 - z),
+            body,
+        );
+    }
     let vfov = 2.0 * ((hfov.to_radians() / 2.0).tan() / aspect).atan();
     scene.camera = Camera::look_at(cam, target, DVec3::Z, vfov.to_degrees(), o.width, o.height);
     Ok(())
@@ -268,8 +290,8 @@ const BENCH_HAZE: f64 = 9.0;
 /// prism at it. The lamp is a spiral CFL seen from the side, as real ones
 /// are: a helix of glowing tube, each turn's near half crossing the axis
 /// one way and its far half, behind, the other way. Its width as seen
-/// through the prism (`LAMP_WIDTH` at `LAMP_DISTANCE`, 0.23 degrees) is
-/// just under the gap between the orange (587 nm) and red (611 nm) copies
+/// through the prism (`LAMP_WIDTH` at `LAMP_DISTANCE`, 0.16 degrees) is
+/// two thirds of the gap between the orange (587 nm) and red (611 nm) copies
 /// with the 80 degree flint, the closest pair, so every copy stands apart.
 fn add_lamp(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism, design: &World, d_line: &ProbeRay) -> Result<()> {
     let x = d_line.exit_point.x + LAMP_DISTANCE;
@@ -343,10 +365,10 @@ pub fn lamp_image_angle(design: &World, cam: DVec3, lamp_x: f64, nm: f64) -> Opt
 /// How far the lamp stands past the prism's exit face, m.
 pub const LAMP_DISTANCE: f64 = 10.0;
 /// The spiral's outer diameter and height, the tube's diameter, m, and its
-/// turns: a small (11 W) spiral CFL.
-pub const LAMP_WIDTH: f64 = 0.04;
-const LAMP_HEIGHT: f64 = 0.09;
-const LAMP_TUBE: f64 = 0.008;
+/// turns: a miniature spiral CFL.
+pub const LAMP_WIDTH: f64 = 0.028;
+const LAMP_HEIGHT: f64 = 0.07;
+const LAMP_TUBE: f64 = 0.006;
 const LAMP_TURNS: usize = 5;
 
 /// The spiral lamp at distance `x` along the axis, as emitting
