@@ -324,7 +324,11 @@ fn write_index(out: &Path, ids: &[String], records: &BTreeMap<String, Record>, q
             ids.iter().filter(|id| report_of(id) == rep).map(|id| format!("<a href=\"#{id}\">{id}</a>")).collect::<Vec<_>>().join(", ")
         )?;
     }
-    h.push_str("<li><a href=\"#plots\">Plots from the shipped sweeps</a></li><li><a href=\"#display\">Display transforms</a></li><li><a href=\"#spectral\">Spectral accuracy</a></li></ul></nav>\n");
+    h.push_str("<li><a href=\"#plots\">Plots from the shipped sweeps</a></li>");
+    if out.join("display/transforms.png").exists() {
+        h.push_str("<li><a href=\"#display\">Display transforms</a></li>");
+    }
+    h.push_str("<li><a href=\"#spectral\">Spectral accuracy</a></li></ul></nav>\n");
     let none = Record::default();
     for (rep, title) in reports {
         writeln!(h, "<h2 id=\"report-{rep}\">{}</h2>", esc(title))?;
