@@ -49,7 +49,7 @@ pub fn parse(v: &Value) -> Result<CloseUp, String> {
     };
     let width = match fraction(t.get("width")) {
         Some(w) if w > 0.05 && at[0] + w <= 1.0 => w,
-        _ => return Err("`width` must be a fraction of the figure's width above 0.05 that keeps the inset inside it".into()),
+        _ => return Err("`width` must be a fraction of the figure's width above 0.05 that keeps the close-up inside it".into()),
     };
     let aspect = match fraction(t.get("aspect")) {
         Some(a) if (0.2..=10.0).contains(&a) => a,
