@@ -9,7 +9,7 @@
 //! [close_up]
 //! at = [0.02, 0.03]    # top-left corner: x from the left, y from the top
 //! width = 0.45         # fraction of the figure's width
-//! aspect = 2.5         # the inset's width over its height
+//! aspect = 2.5         # the close-up's width over its height
 //! label = "the screen, enlarged"
 //! [close_up.params]       # what differs from the figure's parameters
 //! view = "screen"
@@ -79,12 +79,12 @@ impl CloseUp {
     }
 }
 
-/// Pastes the `iw` x `ih` RGB image `inset` into `buf` (`w` wide) at
+/// Pastes the `iw` x `ih` RGB image `close` into `buf` (`w` wide) at
 /// `at`, inside a light frame 2 pixels wide (drawn over the figure).
-pub fn paste(buf: &mut [u8], w: usize, inset: &[u8], [iw, ih]: [usize; 2], [x, y]: [usize; 2]) {
+pub fn paste(buf: &mut [u8], w: usize, close: &[u8], [iw, ih]: [usize; 2], [x, y]: [usize; 2]) {
     for r in 0..ih {
         let dst = ((y + r) * w + x) * 3;
-        buf[dst..dst + iw * 3].copy_from_slice(&inset[r * iw * 3..(r + 1) * iw * 3]);
+        buf[dst..dst + iw * 3].copy_from_slice(&close[r * iw * 3..(r + 1) * iw * 3]);
     }
     let h = buf.len() / 3 / w;
     let mut set = |px: isize, py: isize| {
@@ -134,7 +134,7 @@ mod tests {
         let mut buf = vec![0u8; w * h * 3];
         paste(&mut buf, w, &[100u8; 4 * 3 * 3], [4, 3], [5, 4]);
         let px = |x: usize, y: usize| buf[(y * w + x) * 3];
-        assert_eq!((px(5, 4), px(8, 6)), (100, 100), "the inset's corners");
+        assert_eq!((px(5, 4), px(8, 6)), (100, 100), "the close-up's corners");
         assert_eq!((px(4, 4), px(3, 3), px(9, 7)), (225, 225, 225), "the frame");
         assert_eq!((px(2, 2), px(12, 4)), (0, 0), "outside the frame");
     }
