@@ -15,6 +15,7 @@
 //! view = "screen"
 //! ```
 
+use super::labels::number;
 use toml::Value;
 
 #[derive(Clone, Debug, PartialEq)]
@@ -30,10 +31,6 @@ pub struct CloseUp {
     pub label: Option<String>,
 }
 
-fn fraction(v: Option<&Value>) -> Option<f64> {
-    v.and_then(|v| v.as_float().or_else(|| v.as_integer().map(|i| i as f64)))
-}
-
 /// Reads a scene file's `[close_up]` table; the error names the key.
 pub fn parse(v: &Value) -> Result<CloseUp, String> {
     let Value::Table(t) = v else { return Err("must be a table ([close_up])".into()) };
@@ -41,17 +38,17 @@ pub fn parse(v: &Value) -> Result<CloseUp, String> {
         return Err(format!("unknown key `{k}`; expected at, width, aspect, label and params"));
     }
     let at = match t.get("at") {
-        Some(Value::Array(a)) if a.len() == 2 => match (fraction(a.first()), fraction(a.get(1))) {
+        Some(Value::Array(a)) if a.len() == 2 => match (number(a.first()), number(a.get(1))) {
             (Some(x), Some(y)) if (0.0..1.0).contains(&x) && (0.0..1.0).contains(&y) => [x, y],
             _ => return Err("`at` must be two fractions of the figure, each from 0 to under 1".into()),
         },
         _ => return Err("`at` must be [x, y], the top-left corner as fractions of the figure".into()),
     };
-    let width = match fraction(t.get("width")) {
+    let width = match number(t.get("width")) {
         Some(w) if w > 0.05 && at[0] + w <= 1.0 => w,
         _ => return Err("`width` must be a fraction of the figure's width above 0.05 that keeps the close-up inside it".into()),
     };
-    let aspect = match fraction(t.get("aspect")) {
+    let aspect = match number(t.get("aspect")) {
         Some(a) if (0.2..=10.0).contains(&a) => a,
         None => 16.0 / 9.0,
         _ => return Err("`aspect` (width over height) must be from 0.2 to 10".into()),

@@ -271,14 +271,15 @@ const GROUPS: [(&str, &[&str], &str); 8] = [
 /// figure may stand in two comparisons).
 fn figure_html(h: &mut String, out: &Path, id: &str, r: &Record, anchor: bool) -> Result<()> {
     let png = out.join("figures").join(format!("{id}.png"));
+    let size = image::image_dimensions(&png).ok();
     // The caption as wide as the image.
-    let width = image::image_dimensions(&png).map_or(640, |(w, _)| w);
+    let width = size.map_or(640, |(w, _)| w);
     if anchor {
         writeln!(h, "<figure id=\"{id}\" style=\"width:{width}px\">")?;
     } else {
         writeln!(h, "<figure style=\"width:{width}px\">")?;
     }
-    if let Ok((w, hh)) = image::image_dimensions(&png) {
+    if let Some((w, hh)) = size {
         // At 1:1, so figures compared side by side are seen as rendered.
         writeln!(h, "<a href=\"figures/{id}.png\"><img src=\"figures/{id}.png\" alt=\"{id}\" width=\"{w}\" height=\"{hh}\"></a>")?;
     } else {

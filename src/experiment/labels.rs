@@ -22,6 +22,11 @@ pub struct Label {
     pub at: [f64; 2],
 }
 
+/// A TOML number, integer or float, as f64 (`at = [1, 0.5]`).
+pub(super) fn number(v: Option<&Value>) -> Option<f64> {
+    v.and_then(|v| v.as_float().or_else(|| v.as_integer().map(|i| i as f64)))
+}
+
 /// Reads the `label` array of a scene file; the error names the entry and
 /// its key.
 pub fn parse(v: &Value) -> Result<Vec<Label>, String> {
@@ -40,13 +45,10 @@ pub fn parse(v: &Value) -> Result<Vec<Label>, String> {
                 _ => return Err(format!("entry {n}: `text` must be a string of 1 to 40 characters")),
             };
             let at = match t.get("at") {
-                Some(Value::Array(a)) if a.len() == 2 => {
-                    let f = |v: &Value| v.as_float().or_else(|| v.as_integer().map(|i| i as f64));
-                    match (f(&a[0]), f(&a[1])) {
-                        (Some(x), Some(y)) if (0.0..=1.0).contains(&x) && (0.0..=1.0).contains(&y) => [x, y],
-                        _ => return Err(format!("entry {n}: `at` must be two fractions of the image, each from 0 to 1")),
-                    }
-                }
+                Some(Value::Array(a)) if a.len() == 2 => match (number(a.first()), number(a.get(1))) {
+                    (Some(x), Some(y)) if (0.0..=1.0).contains(&x) && (0.0..=1.0).contains(&y) => [x, y],
+                    _ => return Err(format!("entry {n}: `at` must be two fractions of the image, each from 0 to 1")),
+                },
                 _ => return Err(format!("entry {n}: `at` must be [x, y], fractions of the width and height")),
             };
             Ok(Label { text, at })
