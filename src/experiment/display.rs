@@ -1,7 +1,7 @@
 //! The display transforms side by side: four photograph-like figures, each
 //! rendered once (from its own scene file, at its quick size and its own
-//! exposure) and shown three ways, clipped, desaturated and through the
-//! filmic AgX curve (docs/physics.md §23), so a reader can see what each
+//! exposure) and shown four ways, clipped, desaturated, through the
+//! filmic AgX curve and through AgX with its print look (docs/physics.md §23), so a reader can see what each
 //! does to a spectrum: `results/display/transforms.png` in the gallery.
 
 use super::labels::{draw, Label};
@@ -14,7 +14,8 @@ use std::path::Path;
 /// The figures compared: the lamp's lines, the bench's strip, the album
 /// cover's fan and the laser's spectrum on a wall.
 pub const FIGURES: [&str; 4] = ["css552-p1", "css552-p5", "pm-dark-side", "pm-laser-prism"];
-const MAPS: [(GamutMap, &str); 3] = [(GamutMap::Clip, "clip"), (GamutMap::Desaturate, "desaturate"), (GamutMap::Agx, "agx")];
+const MAPS: [(GamutMap, &str); 4] =
+    [(GamutMap::Clip, "clip"), (GamutMap::Desaturate, "desaturate"), (GamutMap::Agx, "agx"), (GamutMap::AgxPunchy, "agx-punchy")];
 /// Each tile's width in pixels (heights follow the figures' aspects).
 const TILE: usize = 320;
 

@@ -375,7 +375,7 @@ fn write_index(out: &Path, ids: &[String], records: &BTreeMap<String, Record>, q
     }
     if out.join("display/transforms.png").exists() {
         writeln!(h, "<h2 id=\"display\">Display transforms for spectral light</h2>")?;
-        writeln!(h, "<p>{}, each rendered once at its quick size and shown three ways: each channel clipped to [0, 1]; desaturated toward the grey of its own luminance (hue kept, the brightest parts no brighter than white paper); and the filmic AgX curve, where bright saturated light rolls smoothly toward white as on film (docs/physics.md §23). The photograph-like figures use AgX.</p>", super::display::FIGURES.join(", "))?;
+        writeln!(h, "<p>{}, each rendered once at its quick size and shown four ways: each channel clipped to [0, 1]; desaturated toward the grey of its own luminance (hue kept, the brightest parts no brighter than white paper); the filmic AgX curve, where bright saturated light rolls smoothly toward white as on film; and AgX with a print look (more contrast and saturation), which sinks faint light toward black as contrasty film does (docs/physics.md §23). The photograph-like figures use AgX or its print look.</p>", super::display::FIGURES.join(", "))?;
         writeln!(h, "<figure><a href=\"display/transforms.png\"><img src=\"display/transforms.png\" alt=\"display transforms\"></a></figure>")?;
     }
     let spectral = out.join("spectral");

@@ -180,16 +180,19 @@ fn add_screen(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism, design: &
 /// How far the bench view's screen stands past the prism, m: near enough
 /// that prism and strip are both large in one view.
 const BENCH_SCREEN_DISTANCE: f64 = 0.8;
+/// The height of the room's walls around the bench, m.
+const WALL_HEIGHT: f64 = 0.6;
 
 /// Pictures 3-6 as photographs of an optics bench would show them: a grey
 /// table under the prism (which stands on it); a lamp housing whose slit
 /// sends the white beam (4 mm x 2 cm here, wide enough to see as a patch
 /// on the screen) down the bench; the beam's path shown by a thin haze,
 /// white up to the prism and a narrow fan of colours after it; a white
-/// screen standing on the table 0.8 m past the prism; the room lit dimly
-/// from above and behind by a broad collimated light (daylight through a
-/// window: every photon lands where the camera looks, and the haze leaves
-/// it out). The view (`View`) is the bench from behind and above the lamp
+/// screen standing on the table 0.8 m past the prism; grey walls behind
+/// the screen and along the bench's far side, so the glass shows a room;
+/// the room lit dimly from above, behind and the near side by a broad
+/// collimated light (daylight through a window: every photon lands where
+/// the camera looks, and the haze leaves it out). The view (`View`) is the bench from behind and above the lamp
 /// (Pictures 4-6), the screen close up, or the whole bench from high above
 /// its side (Picture 3).
 fn add_bench(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism) -> Result<()> {
@@ -210,9 +213,9 @@ fn add_bench(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism) -> Result<
     let start = *start;
     // The camera of Pictures 4-6: behind the lamp and to its side, above
     // the table, looking down the bench.
-    let bench_cam = DVec3::new(start.x - 0.5, -0.36, 0.3);
+    let bench_cam = DVec3::new(start.x - 0.54, -0.37, 0.32);
     let (x0, x1) = (bench_cam.x - 0.1, strip_centre.x + 0.06);
-    let (y0, y1) = (strip_centre.y.min(0.0) - 0.42, strip_centre.y.max(0.0) + 0.3);
+    let (y0, y1) = (strip_centre.y.min(0.0) - 0.8, strip_centre.y.max(0.0) + 0.3);
     super::matte(scene, "table", DVec3::new(x0, y0, z), DVec3::new(x1 - x0, 0.0, 0.0), DVec3::new(0.0, y1 - y0, 0.0), [0.35; 3]);
     // The lamp housing: a dark box whose front face (with the slit) stands
     // 1 mm behind where the beam starts, so the beam leaves through it.
@@ -225,19 +228,43 @@ fn add_bench(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism) -> Result<
     super::matte(scene, "lamp side", DVec3::new(bx - bd, by0, z), DVec3::new(bd, 0.0, 0.0), DVec3::new(0.0, 0.0, bh), housing);
     super::matte(scene, "lamp side", DVec3::new(bx - bd, by1, z), DVec3::new(0.0, 0.0, bh), DVec3::new(bd, 0.0, 0.0), housing);
     super::matte(scene, "lamp top", DVec3::new(bx - bd, by0, z + bh), DVec3::new(bd, 0.0, 0.0), DVec3::new(0.0, bw, 0.0), housing);
+    // The room's walls behind the screen and across the bench, light grey:
+    // what the prism's faces reflect and what is seen through them, so the
+    // glass shows the room as a photograph's would, not black sky.
+    // They reach down to the floor, a table's height (0.75 m) below.
+    let (wall, floor) = ([0.5; 3], z - 0.75);
+    let up = DVec3::new(0.0, 0.0, WALL_HEIGHT + 0.75);
+    super::matte(scene, "back wall", DVec3::new(x1, y0, floor), up, DVec3::new(0.0, y1 - y0, 0.0), wall);
+    super::matte(scene, "far side wall", DVec3::new(x0, y1, floor), DVec3::new(x1 - x0, 0.0, 0.0), up, wall);
     // The window light: down onto the table, 20 degrees from behind the
-    // lamp, so the screen's face is lit too. Its footprint covers the
-    // table; photons are shared half and half with the beam.
-    let dir = DVec3::new(20f64.to_radians().sin(), 0.0, -20f64.to_radians().cos());
-    let mid = DVec3::new((x0 + x1) / 2.0, (y0 + y1) / 2.0, z);
-    let v = DVec3::Y.cross(dir).normalize();
-    let half = DVec2::new((y1 - y0) / 2.0 + 0.02, (x1 - x0) / 2.0 * dir.z.abs() + 0.05);
+    // lamp, so the screen's face and the back wall are lit too. Its
+    // footprint covers the table and reaches the back wall's top; photons
+    // are shared half and half with the beam.
+    // Tipped 20 degrees from the vertical toward +x and 15 toward +y, so
+    // that the back wall and the far side wall are lit as well.
+    let dir = DVec3::new(20f64.to_radians().tan(), 15f64.to_radians().tan(), -1.0).normalize();
+    let u = (DVec3::Y - dir * dir.y).normalize();
+    let v = u.cross(dir);
+    // The footprint: the table's corners and the lit walls' tops, seen
+    // along the light.
+    let top = z + WALL_HEIGHT;
+    let corners = [(x0, y0, z), (x1, y0, z), (x0, y1, z), (x1, y1, z), (x1, y0, top), (x1, y1, top), (x0, y1, top)].map(|(x, y, z)| DVec3::new(x, y, z));
+    let (lo, hi) = corners.iter().fold((DVec2::splat(f64::MAX), DVec2::splat(f64::MIN)), |(lo, hi), c| {
+        let p = DVec2::new(c.dot(u), c.dot(v));
+        (lo.min(p), hi.max(p))
+    });
+    let (mid, half) = ((lo + hi) / 2.0, (hi - lo) / 2.0 + 0.02);
+    let table_mid = DVec3::new((x0 + x1) / 2.0, (y0 + y1) / 2.0, z);
+    let centre = dir * (table_mid.dot(dir) - 1.5) + u * mid.x + v * mid.y;
+    // 200 W over a table-sized footprint (its extents plus 2 cm and 5 cm
+    // as first drawn); the same power per area over this larger one.
+    let power = 200.0 * half.x * half.y / (((y1 - y0) / 2.0 + 0.02) * ((x1 - x0) / 2.0 * 20f64.to_radians().cos() + 0.05));
     scene.haze_skip.push(scene.lights.len());
     scene.lights.push(Light {
         name: "window light".into(),
-        emission: Emission::Beam { centre: mid - dir * 1.5, dir, u: DVec3::Y, v, half, disc: false, polarisation: None },
+        emission: Emission::Beam { centre, dir, u, v, half, disc: false, polarisation: None },
         spectrum: light_spectrum(o, "D65")?,
-        power: 200.0,
+        power,
     });
     scene.photon_shares = Some(vec![0.5, 0.5]);
     // Light straight from either beam by shadow rays (docs/physics.md
@@ -255,7 +282,7 @@ fn add_bench(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism) -> Result<
         // Square on to the strip from 40 cm: the strip across the frame.
         View::Screen => (strip_centre - DVec3::new(0.4, 0.0, 0.0), strip_centre, 2.0 * (0.5 * 0.17 / 0.4f64).atan().to_degrees()),
         // High above the bench's side, the camera of Pictures 4-6 in view.
-        View::Overview => (DVec3::new(0.0, -1.5, 1.4), DVec3::new(0.0, -0.1, 0.02), 64.0),
+        View::Overview => (DVec3::new(-0.22, -1.5, 1.2), DVec3::new(-0.2, -0.1, 0.0), 62.0),
     };
     if o.view == View::Overview {
         // That camera drawn where it stands: a grey body 8 x 5 x 5 cm on a
@@ -367,9 +394,9 @@ pub const LAMP_DISTANCE: f64 = 10.0;
 /// The spiral's outer diameter and height, the tube's diameter, m, and its
 /// turns: a miniature spiral CFL.
 pub const LAMP_WIDTH: f64 = 0.028;
-const LAMP_HEIGHT: f64 = 0.07;
-const LAMP_TUBE: f64 = 0.006;
-const LAMP_TURNS: usize = 5;
+const LAMP_HEIGHT: f64 = 0.08;
+const LAMP_TUBE: f64 = 0.0075;
+const LAMP_TURNS: usize = 6;
 
 /// The spiral lamp at distance `x` along the axis, as emitting
 /// parallelograms facing -x (corner, edge along the tube, edge across it):

@@ -158,6 +158,11 @@ crate::named_enum! {
         /// outset, so the brightest saturated light rolls smoothly toward
         /// white as on film and nothing posterises.
         Agx = "agx",
+        /// AgX with a print look (§23): the display values raised to a
+        /// power and their saturation raised, as AgX's "Punchy" look does,
+        /// so faint light between bright features sinks toward black as on
+        /// contrasty film.
+        AgxPunchy = "agx-punchy",
     }
 }
 
@@ -180,6 +185,7 @@ impl GamutMap {
                 }
             }
             GamutMap::Agx => agx(desaturate(v)),
+            GamutMap::AgxPunchy => punchy(agx(desaturate(v))),
         }
     }
 }
@@ -210,6 +216,19 @@ pub fn agx(v: DVec3) -> DVec3 {
     let encode = |x: f64| ((x.max(1e-10).log2() - AGX_MIN_EV) / (AGX_MAX_EV - AGX_MIN_EV)).clamp(0.0, 1.0);
     let y = DVec3::new(agx_sigmoid(encode(c.x)), agx_sigmoid(encode(c.y)), agx_sigmoid(encode(c.z)));
     outset(y.powf(2.4)).clamp(DVec3::ZERO, DVec3::ONE)
+}
+
+/// The print look's power and saturation (§23): an ASC CDL with slope 1
+/// and offset 0 on AgX's display-linear output.
+const PUNCHY_POWER: f64 = 1.6;
+const PUNCHY_SATURATION: f64 = 1.3;
+
+/// The print look (§23): ASC CDL power, then saturation about Rec. 709
+/// luma, clamped to [0, 1].
+pub fn punchy(v: DVec3) -> DVec3 {
+    let c = v.max(DVec3::ZERO).powf(PUNCHY_POWER);
+    let y = DVec3::splat(SRGB_LUMA.dot(c));
+    (y + (c - y) * PUNCHY_SATURATION).clamp(DVec3::ZERO, DVec3::ONE)
 }
 
 /// AgX's sigmoid (§23) on the log-encoded x in [0, 1], giving a display
@@ -319,6 +338,23 @@ mod tests {
             }
         }
         assert_eq!(GamutMap::Agx.apply(LinearRgb(DVec3::new(f64::NAN, 1.0, 1.0))), DVec3::ZERO);
+    }
+
+    #[test]
+    fn punchy_sinks_faint_light_and_keeps_black_white_and_grey() {
+        // Display-linear 3 % of white falls to 0.03^1.6 (§23), white and
+        // black stay, a grey stays grey.
+        assert!((punchy(DVec3::splat(0.03)).x - 0.03f64.powf(1.6)).abs() < 1e-12);
+        assert_eq!(punchy(DVec3::ONE), DVec3::ONE);
+        assert_eq!(punchy(DVec3::ZERO), DVec3::ZERO);
+        let g = punchy(DVec3::splat(0.4));
+        assert!((g.x - g.y).abs() < 1e-12 && (g.y - g.z).abs() < 1e-12);
+        // Saturation rises: a muted red moves away from its luma.
+        let (c, p) = (DVec3::new(0.6, 0.3, 0.3), punchy(DVec3::new(0.6, 0.3, 0.3)));
+        assert!(p.x / p.y > (c.x / c.y).powf(1.6), "{p}");
+        // Through the whole map, faint light is darker than under plain AgX.
+        let faint = LinearRgb(DVec3::splat(0.01));
+        assert!(GamutMap::AgxPunchy.apply(faint).x < 0.5 * GamutMap::Agx.apply(faint).x);
     }
 
     #[test]
