@@ -424,7 +424,9 @@ fn ray_diagram(png: &Path) -> Result<String> {
     let s = amici()?;
     let (w, h) = (900u32, 520u32);
     let mut buf = vec![0u8; (w * h * 3) as usize];
-    let lambdas = [404.7, 435.8, 480.0, 520.0, 546.1, 587.6, 620.0, 656.3, 700.0];
+    // Wavelengths whose CIE colours are told apart: violet, blue, azure,
+    // cyan-green, green, yellow, orange, red.
+    let lambdas = [404.7, 465.0, 485.0, 505.0, 546.1, 575.0, 600.0, 656.3];
     {
         let root = BitMapBackend::with_buffer(&mut buf, (w, h)).into_drawing_area();
         root.fill(&WHITE).map_err(plot_err)?;
@@ -456,6 +458,15 @@ fn ray_diagram(png: &Path) -> Result<String> {
                 .label(format!("{nm} nm"))
                 .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], colour.stroke_width(3)));
         }
+        // The white ray, one path for every wavelength up to the prism,
+        // drawn over them in grey.
+        let p = crate::world::probe::probe(&s, 587.6);
+        let white: Vec<(f64, f64)> = p.path.iter().take(2).map(|v| (v.x, v.y)).collect();
+        let grey = RGBColor(110, 110, 110);
+        c.draw_series(LineSeries::new(white, grey.stroke_width(3)))
+            .map_err(plot_err)?
+            .label("white light")
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], grey.stroke_width(3)));
         c.configure_series_labels()
             .position(SeriesLabelPosition::UpperLeft)
             .background_style(WHITE.mix(0.9))
@@ -474,7 +485,8 @@ fn colour_compare(png: &Path, quick: bool, scenes: &Path) -> Result<String> {
     super::plot::register();
     let file = SceneFile::load(&scenes.join("pm-dark-side.toml"), quick)?;
     let mut cfg = super::params::prism_config(&file.params)?;
-    let (tw, th) = if quick { (240usize, 150usize) } else { (480, 300) };
+    // Three tiles across fit a 1400 px page at 1:1.
+    let (tw, th) = if quick { (220usize, 150usize) } else { (440, 300) };
     let (label_h, font) = if quick { (22usize, 15) } else { (36, 24) };
     let indent = if quick { 10 } else { 14 };
     (cfg.scene.width, cfg.scene.height) = (tw, th);
@@ -488,10 +500,10 @@ fn colour_compare(png: &Path, quick: bool, scenes: &Path) -> Result<String> {
         cfg.colours = *map;
         let mut scene = build(&cfg.scene)?;
         // The crop: the prism and the whole fan, the incoming beam's last
-        // part (the figure's own camera, 21 degrees instead of 24 and
-        // centred 7 cm lower, on a wider tile).
-        let centre = glam::DVec3::new(0.28, -0.22, 0.0);
-        scene.camera = crate::world::Camera::look_at(centre + glam::DVec3::Z * 2.8, centre, glam::DVec3::Y, 21.0, tw, th);
+        // part (the figure's own camera, 23 degrees instead of 24 and
+        // centred lower and to the right, on a wider tile).
+        let centre = glam::DVec3::new(0.33, -0.25, 0.0);
+        scene.camera = crate::world::Camera::look_at(centre + glam::DVec3::Z * 2.8, centre, glam::DVec3::Y, 23.0, tw, th);
         let r = crate::spectral::render_world(&cfg, &scene, &crate::progress::Silent)?;
         let tile = r.render.image.to_srgb8(r.exposure, cfg.gamut);
         let (x0, y0) = ((k % cols) * tw, (k / cols) * (th + label_h) + label_h);
