@@ -214,7 +214,7 @@ fn add_bench(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism) -> Result<
     // The camera of Pictures 4-6: behind the lamp and to its side, above
     // the table, looking down the bench.
     let bench_cam = DVec3::new(start.x - 0.54, -0.37, 0.32);
-    let (x0, x1) = (bench_cam.x - 0.1, strip_centre.x + 0.06);
+    let (x0, x1) = (bench_cam.x - 0.5, strip_centre.x + 0.06);
     let (y0, y1) = (strip_centre.y.min(0.0) - 0.8, strip_centre.y.max(0.0) + 0.3);
     super::matte(scene, "table", DVec3::new(x0, y0, z), DVec3::new(x1 - x0, 0.0, 0.0), DVec3::new(0.0, y1 - y0, 0.0), [0.35; 3]);
     // The lamp housing: a dark box whose front face (with the slit) stands
