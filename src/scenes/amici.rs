@@ -180,6 +180,10 @@ fn add_screen(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism, design: &
 /// How far the bench view's screen stands past the prism, m: near enough
 /// that prism and strip are both large in one view.
 const BENCH_SCREEN_DISTANCE: f64 = 0.8;
+/// The window light's power over a table-sized footprint, W: the room
+/// clearly seen under the figures' display (AgX with its print look at
+/// exposure 0.005), the strip still far brighter than the screen around it.
+const WINDOW_POWER: f64 = 600.0;
 /// The height of the room's walls around the bench, m.
 const WALL_HEIGHT: f64 = 0.6;
 
@@ -232,7 +236,7 @@ fn add_bench(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism) -> Result<
     // what the prism's faces reflect and what is seen through them, so the
     // glass shows the room as a photograph's would, not black sky.
     // They reach down to the floor, a table's height (0.75 m) below.
-    let (wall, floor) = ([0.5; 3], z - 0.75);
+    let (wall, floor) = ([0.7; 3], z - 0.75);
     let up = DVec3::new(0.0, 0.0, WALL_HEIGHT + 0.75);
     super::matte(scene, "back wall", DVec3::new(x1, y0, floor), up, DVec3::new(0.0, y1 - y0, 0.0), wall);
     super::matte(scene, "far side wall", DVec3::new(x0, y1, floor), DVec3::new(x1 - x0, 0.0, 0.0), up, wall);
@@ -256,9 +260,9 @@ fn add_bench(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism) -> Result<
     let (mid, half) = ((lo + hi) / 2.0, (hi - lo) / 2.0 + 0.02);
     let table_mid = DVec3::new((x0 + x1) / 2.0, (y0 + y1) / 2.0, z);
     let centre = dir * (table_mid.dot(dir) - 1.5) + u * mid.x + v * mid.y;
-    // 200 W over a table-sized footprint (its extents plus 2 cm and 5 cm
-    // as first drawn); the same power per area over this larger one.
-    let power = 200.0 * half.x * half.y / (((y1 - y0) / 2.0 + 0.02) * ((x1 - x0) / 2.0 * 20f64.to_radians().cos() + 0.05));
+    // WINDOW_POWER over a table-sized footprint (its extents plus 2 cm and
+    // 5 cm); the same power per area over this larger one.
+    let power = WINDOW_POWER * half.x * half.y / (((y1 - y0) / 2.0 + 0.02) * ((x1 - x0) / 2.0 * 20f64.to_radians().cos() + 0.05));
     scene.haze_skip.push(scene.lights.len());
     scene.lights.push(Light {
         name: "window light".into(),
@@ -282,7 +286,7 @@ fn add_bench(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism) -> Result<
         // Square on to the strip from 40 cm: the strip across the frame.
         View::Screen => (strip_centre - DVec3::new(0.4, 0.0, 0.0), strip_centre, 2.0 * (0.5 * 0.17 / 0.4f64).atan().to_degrees()),
         // High above the bench's side, the camera of Pictures 4-6 in view.
-        View::Overview => (DVec3::new(-0.22, -1.5, 1.2), DVec3::new(-0.2, -0.1, 0.0), 62.0),
+        View::Overview => (DVec3::new(-0.16, -1.5, 1.2), DVec3::new(-0.14, -0.1, 0.0), 66.0),
     };
     if o.view == View::Overview {
         // That camera drawn where it stands: a grey body 8 x 5 x 5 cm on a
@@ -317,9 +321,11 @@ const BENCH_HAZE: f64 = 9.0;
 /// prism at it. The lamp is a spiral CFL seen from the side, as real ones
 /// are: a helix of glowing tube, each turn's near half crossing the axis
 /// one way and its far half, behind, the other way. Its width as seen
-/// through the prism (`LAMP_WIDTH` at `LAMP_DISTANCE`, 0.16 degrees) is
-/// two thirds of the gap between the orange (587 nm) and red (611 nm) copies
-/// with the 80 degree flint, the closest pair, so every copy stands apart.
+/// through the prism (`LAMP_WIDTH` at `LAMP_DISTANCE`, 0.10 degrees) is
+/// under half the gap between the orange (587 nm) and red (611 nm) copies
+/// with the 80 degree flint, the closest pair, so every copy stands apart
+/// on black; and the phosphors' continuum, whose brightness at a point
+/// grows with the band of wavelengths one lamp's width spans, stays dim.
 fn add_lamp(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism, design: &World, d_line: &ProbeRay) -> Result<()> {
     let x = d_line.exit_point.x + LAMP_DISTANCE;
     let spectrum = light_spectrum(o, "cfl-lines")?;
@@ -393,7 +399,7 @@ pub fn lamp_image_angle(design: &World, cam: DVec3, lamp_x: f64, nm: f64) -> Opt
 pub const LAMP_DISTANCE: f64 = 10.0;
 /// The spiral's outer diameter and height, the tube's diameter, m, and its
 /// turns: a miniature spiral CFL.
-pub const LAMP_WIDTH: f64 = 0.028;
+pub const LAMP_WIDTH: f64 = 0.018;
 const LAMP_HEIGHT: f64 = 0.08;
 const LAMP_TUBE: f64 = 0.0075;
 const LAMP_TURNS: usize = 6;
