@@ -278,30 +278,33 @@ fn sweeps_lock_their_folder_and_resume_drops_garbage() {
     lines.push(lines[1].clone());
     std::fs::write(out.join("runs.csv"), lines.join("\n") + "\n").unwrap();
     let o = sweep(&[&tiny(), "--quick", "--resume", "--out", out.to_str().unwrap()], &repo(""));
-    assert!(o.status.success(), "{}", stderr(&o));
-    let (_, r) = rows(&out);
-    assert_eq!(r.len(), 4, "only the experiment's 4 quick runs remain");
-    assert!(stderr(&o).contains("4 of 4 runs"), "{}", stderr(&o));
+    assert_clean_failure(&o, "runs.csv: holds 6 runs (1 of experiment 999, 5 of experiment tiny@");
 }
 
-/// `--resume` keeps only rows of this version of the experiment file: after
-/// an edit, every run is run again.
+/// `--resume` goes on only from rows of this version of the experiment
+/// file: after an edit it refuses, and `--fresh` moves the old record
+/// aside and runs every run again.
 #[test]
-fn resume_reruns_what_an_edited_experiment_file_made() {
+fn resume_refuses_what_an_edited_experiment_file_made() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("o");
     assert!(sweep(&[&tiny(), "--out", out.to_str().unwrap()], &repo("")).status.success());
     let (h, r) = rows(&out);
     let c = h.iter().position(|x| x == "experiment").unwrap();
     let before = r[0][c].clone();
+    let old = std::fs::read(out.join("runs.csv")).unwrap();
     let edited = dir.path().join("tiny.toml");
     std::fs::write(&edited, std::fs::read_to_string(tiny()).unwrap() + "\n# edited\n").unwrap();
     let o = sweep(&[edited.to_str().unwrap(), "--out", out.to_str().unwrap(), "--resume"], &repo(""));
+    assert_clean_failure(&o, &format!("{}/runs.csv: holds 6 runs (6 of experiment {before}), not of tiny@", out.display()));
+    assert_eq!(std::fs::read(out.join("runs.csv")).unwrap(), old);
+    let o = sweep(&[edited.to_str().unwrap(), "--out", out.to_str().unwrap(), "--fresh"], &repo(""));
     assert!(o.status.success(), "{}", stderr(&o));
     let (_, r) = rows(&out);
     let fingerprints: std::collections::BTreeSet<&str> = r.iter().map(|r| r[c].as_str()).collect();
     assert_eq!((r.len(), fingerprints.len()), (6, 1), "{fingerprints:?}");
     assert!(!fingerprints.contains(before.as_str()), "every row is of the edited file: {fingerprints:?}");
+    assert_eq!(std::fs::read(out.join("runs.csv.1")).unwrap(), old, "the old record is kept aside");
 }
 
 /// Temporary files a killed run left (`.NAME.PID.tmp`, its process gone)

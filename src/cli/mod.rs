@@ -193,12 +193,15 @@ pub struct SweepArgs {
     #[arg(long)]
     pub quick: bool,
     /// Keep the rows already in runs.csv and run only the missing ones
-    #[arg(long)]
+    #[arg(long, conflicts_with = "fresh")]
     pub resume: bool,
+    /// Start anew: move the folder's record aside (runs.csv.N, images.N, reference.png.N) first
+    #[arg(long)]
+    pub fresh: bool,
     /// Runs at once (each then gets its share of the cores; timings are fairest with 1)
     #[arg(long, default_value_t = 1)]
     pub jobs: usize,
-    /// Output folder [default: results/NAME]
+    /// Output folder [default: results/NAME, or results/quick/NAME with --quick so the committed record stays]
     #[arg(long)]
     pub out: Option<PathBuf>,
     /// Only runs whose id modulo N is I (0 <= I < N), for job arrays; join with `sweep merge`
@@ -245,7 +248,7 @@ pub struct PlanArgs {
     /// Number of shards (balanced by estimated cost; each holds whole chains along the first sweep axis, so at most as many shards as chains) [default: 4, or the chains if fewer]
     #[arg(long)]
     pub shards: Option<usize>,
-    /// Folder for the plan, the shards (in shards/I) and the merged results [default: results/NAME]
+    /// Folder for the plan, the shards (in shards/I) and the merged results [default: results/NAME, or results/quick/NAME with --quick]
     #[arg(long)]
     pub out: Option<PathBuf>,
     /// The file's [quick] settings
@@ -494,7 +497,12 @@ fn run_sweep(args: SweepArgs) -> Result<()> {
     if args.jobs == 0 || args.jobs > 256 {
         bail!("--jobs: {} is not between 1 and 256", args.jobs);
     }
-    let opts = sweep::SweepOptions { resume: args.resume, jobs: args.jobs, out: args.out, shard: args.shard, max_runs: args.max_runs };
+    let on_record = match (args.resume, args.fresh) {
+        (true, _) => sweep::OnRecord::Resume,
+        (_, true) => sweep::OnRecord::Fresh,
+        _ => sweep::OnRecord::Refuse,
+    };
+    let opts = sweep::SweepOptions { on_record, jobs: args.jobs, out: args.out, shard: args.shard, max_runs: args.max_runs };
     let (_, summary) = sweep::run(&e, &opts)?;
     eprintln!("{summary}");
     Ok(())

@@ -11,6 +11,7 @@ pub mod params;
 pub mod plan;
 pub mod plot;
 pub mod reader;
+pub mod record;
 pub mod scene_file;
 pub mod spec;
 pub mod spectral;

@@ -18,9 +18,24 @@ use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 use toml::Value;
 
+/// What a sweep does with a record already in its folder.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum OnRecord {
+    /// Refuse a record of another experiment (or file version, or quick
+    /// against full), naming `--fresh`.
+    #[default]
+    Refuse,
+    /// Keep this experiment's rows and run only the missing ones.
+    Resume,
+    /// Move any record aside (`runs.csv.N`) and start again.
+    Fresh,
+    /// Resume this experiment's rows; move another's aside (`figures`).
+    ResumeOrFresh,
+}
+
 #[derive(Clone, Debug, Default)]
 pub struct SweepOptions {
-    pub resume: bool,
+    pub on_record: OnRecord,
     pub jobs: usize,
     pub out: Option<PathBuf>,
     /// (I, N): run only the runs `plan::assign` gives shard I of N.
@@ -49,13 +64,6 @@ fn run_one(mode: Mode, params: &[(String, Value)], meshes: &MeshCache) -> Outcom
             Outcome { frame: None, cells: vec![("status", "error".into()), ("error", format!("internal error: {msg}")), ("failed", "1".into())] }
         }
     }
-}
-
-/// Complete rows of an existing runs.csv (a torn last line is dropped).
-/// Whether `dir` holds no runs.csv, or one with this experiment's columns
-/// (so `--resume` can go on from it).
-pub fn resumable(e: &Experiment, dir: &Path) -> bool {
-    read_rows(&dir.join("runs.csv"), &e.columns()).is_ok()
 }
 
 fn read_rows(path: &Path, header: &[String]) -> Result<Vec<Vec<String>>> {
@@ -145,7 +153,7 @@ impl Drop for FolderLock {
 
 /// Runs the experiment; returns the output folder and a summary line.
 pub fn run(e: &Experiment, opts: &SweepOptions) -> Result<(PathBuf, String)> {
-    let dir = opts.out.clone().unwrap_or_else(|| PathBuf::from("results").join(&e.name));
+    let dir = opts.out.clone().unwrap_or_else(|| e.default_folder());
     if dir.exists() && !dir.is_dir() {
         bail!("--out: {} is not a folder; a sweep writes a folder of results", dir.display());
     }
@@ -157,14 +165,8 @@ pub fn run(e: &Experiment, opts: &SweepOptions) -> Result<(PathBuf, String)> {
     let header = e.columns();
     let csv_path = dir.join("runs.csv");
     let all = expand(e);
-    let mut existing = if opts.resume { read_rows(&csv_path, &header)? } else { Vec::new() };
-    // Only rows of this experiment's runs, each once: a garbage or foreign
-    // row is dropped, not counted forever.
-    let mut seen = HashSet::new();
-    // Rows of another version of the experiment file are stale: run again.
-    let fp = header.iter().position(|h| h == "experiment");
-    existing.retain(|r| fp.is_none_or(|c| r[c] == e.fingerprint) && r[0].parse::<usize>().is_ok_and(|id| id < all.len() && seen.insert(id)));
-    // Start the file afresh with the complete rows only.
+    let existing = keep_or_move(e, &dir, &header, opts.on_record)?;
+    // Start the file afresh with the kept rows only.
     write_rows(&csv_path, &header, &existing)?;
     let done: HashSet<usize> = existing.iter().filter_map(|r| r[0].parse().ok()).collect();
     let meshes = MeshCache::default();
@@ -195,6 +197,54 @@ pub fn run(e: &Experiment, opts: &SweepOptions) -> Result<(PathBuf, String)> {
     let mine: Vec<&RunSpec> = sweep.all.iter().filter(ours).filter(|r| !done.contains(&r.id)).take(opts.max_runs.unwrap_or(usize::MAX)).collect();
     sweep.run_all(&mine, opts.jobs)?;
     sweep.finish(&csv_path, opts.shard, wanted)
+}
+
+/// What a sweep keeps of the record already in `dir`, as `how` says: the
+/// rows to go on from (only this experiment's, each run once), after
+/// moving any other record aside. A record of another experiment, of
+/// another version of its file, or of its quick version against the full
+/// one (or the other way) is refused unless `how` moves it aside.
+fn keep_or_move(e: &Experiment, dir: &Path, header: &[String], how: OnRecord) -> Result<Vec<Vec<String>>> {
+    use super::record::{describe, inspect, move_aside, Found};
+    let found = inspect(dir, header)?;
+    let csv = dir.join("runs.csv");
+    let fresh_hint = |what: &str| {
+        format!(
+            "{}: holds {what}; write elsewhere with --out, or run again with --fresh to move that record aside (to runs.csv.N, images.N) and start anew",
+            csv.display()
+        )
+    };
+    let move_it = |note: &str| -> Result<Vec<Vec<String>>> {
+        let to = move_aside(dir)?;
+        eprintln!("note: {note}; moved it aside to {}", to.display());
+        Ok(Vec::new())
+    };
+    match found {
+        Found::Nothing => Ok(Vec::new()),
+        Found::OtherColumns(n) => match how {
+            OnRecord::Fresh | OnRecord::ResumeOrFresh => move_it(&format!("{} holds {n} rows with other columns", csv.display())),
+            _ => bail!("{}", fresh_hint(&format!("{n} rows with other columns than this experiment's (another experiment, or another version of refract)"))),
+        },
+        Found::Rows { rows, fingerprints } => {
+            let ours = fingerprints.len() == 1 && fingerprints.contains_key(&e.fingerprint);
+            match how {
+                OnRecord::Fresh => move_it(&format!("{} held {}", csv.display(), describe(&fingerprints))),
+                _ if !ours && how == OnRecord::ResumeOrFresh => {
+                    move_it(&format!("{} held {}, not of {}", csv.display(), describe(&fingerprints), e.fingerprint))
+                }
+                _ if !ours => {
+                    let version = if e.quick { "this experiment file's --quick version" } else { "this experiment file (full quality, not --quick)" };
+                    bail!("{}", fresh_hint(&format!("{}, not of {} ({version})", describe(&fingerprints), e.fingerprint)))
+                }
+                OnRecord::Resume | OnRecord::ResumeOrFresh => {
+                    let all = expand(e).len();
+                    let mut seen = HashSet::new();
+                    Ok(rows.into_iter().filter(|r| r[0].parse::<usize>().is_ok_and(|id| id < all && seen.insert(id))).collect())
+                }
+                OnRecord::Refuse => Ok(Vec::new()),
+            }
+        }
+    }
 }
 
 /// The reference run's frame (the fixed parameters with the reference's
@@ -461,7 +511,7 @@ pub fn merge(dirs: &[PathBuf], out: &Path, experiment: Option<&Experiment>, resu
     let merged = format!("merged {} rows from {} folders into {}", rows.len(), dirs.len(), out.join("runs.csv").display());
     match experiment {
         Some(e) if !missing.is_empty() => {
-            let (_, summary) = run(e, &SweepOptions { resume: true, jobs: 1, out: Some(out.to_path_buf()), shard: None, max_runs: None })?;
+            let (_, summary) = run(e, &SweepOptions { on_record: OnRecord::Resume, jobs: 1, out: Some(out.to_path_buf()), shard: None, max_runs: None })?;
             Ok(format!("{merged}; ran the {} missing here: {summary}", missing.len()))
         }
         _ => Ok(merged),
