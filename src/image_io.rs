@@ -141,6 +141,14 @@ pub fn remove_stale_temps(dir: &Path) -> usize {
     removed
 }
 
+/// Removes this process's own temporary files in `dir` (a write cut short
+/// by an interruption).
+pub fn remove_own_temps(dir: &Path) -> usize {
+    let Ok(entries) = std::fs::read_dir(if dir.as_os_str().is_empty() { Path::new(".") } else { dir }) else { return 0 };
+    let suffix = format!(".{}.tmp", std::process::id());
+    entries.flatten().filter(|e| e.file_name().to_string_lossy().ends_with(&suffix) && std::fs::remove_file(e.path()).is_ok()).count()
+}
+
 fn temp_sibling(path: &Path) -> PathBuf {
     let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
     path.with_file_name(format!(".{name}.{}.tmp", std::process::id()))

@@ -464,6 +464,22 @@ fn run_prism(args: PrismArgs) -> Result<()> {
     modes::prism::run_to_files(&cfg, args.timing_csv.as_deref(), &crate::terminal::Bars::new(), &mut |line| eprintln!("{line}"))
 }
 
+/// This command line as it would go on from where it stops: `--fresh`
+/// dropped, `--resume` added, each word quoted for a POSIX shell if needed.
+fn resume_command() -> String {
+    let mut words: Vec<String> = vec!["refract".into()];
+    words.extend(std::env::args().skip(1).filter(|a| a != "--fresh" && a != "--resume"));
+    words.push("--resume".into());
+    let quote = |w: &String| {
+        if !w.is_empty() && w.chars().all(|c| c.is_ascii_alphanumeric() || "-_./=:,@%+".contains(c)) {
+            w.clone()
+        } else {
+            format!("'{}'", w.replace('\'', "'\\''"))
+        }
+    };
+    words.iter().map(quote).collect::<Vec<_>>().join(" ")
+}
+
 fn run_sweep(args: SweepArgs) -> Result<()> {
     use crate::experiment::{spec::Experiment, sweep};
     match args.merge {
@@ -502,7 +518,7 @@ fn run_sweep(args: SweepArgs) -> Result<()> {
         (_, true) => sweep::OnRecord::Fresh,
         _ => sweep::OnRecord::Refuse,
     };
-    let opts = sweep::SweepOptions { on_record, jobs: args.jobs, out: args.out, shard: args.shard, max_runs: args.max_runs };
+    let opts = sweep::SweepOptions { on_record, jobs: args.jobs, out: args.out, shard: args.shard, max_runs: args.max_runs, again: resume_command() };
     let (_, summary) = sweep::run(&e, &opts)?;
     eprintln!("{summary}");
     Ok(())

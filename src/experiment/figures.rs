@@ -216,7 +216,8 @@ pub fn run(o: &FigureOptions) -> Result<Outcome> {
         // figures again changes no committed file; missing runs are run.
         // A record of another version of the experiment file (or of
         // refract: other columns) is moved aside, not lost.
-        let opts = super::sweep::SweepOptions { jobs: 1, on_record: super::sweep::OnRecord::ResumeOrFresh, ..Default::default() };
+        let again = format!("refract figures{} --out {}", if o.quick { " --quick" } else { "" }, o.out.display());
+        let opts = super::sweep::SweepOptions { jobs: 1, on_record: super::sweep::OnRecord::ResumeOrFresh, again, ..Default::default() };
         for (name, _) in SWEEPS {
             let e = super::spec::Experiment::load(&PathBuf::from("experiments").join(format!("{name}.toml")), o.quick)?;
             super::sweep::run(&e, &super::sweep::SweepOptions { out: Some(o.out.join(name)), ..opts.clone() })?;

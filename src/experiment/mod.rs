@@ -5,6 +5,7 @@ pub mod close_up;
 pub mod display;
 pub mod figures;
 pub mod grid;
+pub mod interrupt;
 pub mod labels;
 pub mod metrics;
 pub mod params;

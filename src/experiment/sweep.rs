@@ -5,6 +5,7 @@
 //! A run that fails is a row with its error, never a crashed sweep.
 
 pub use super::grid::{expand, RunSpec};
+use super::interrupt;
 use super::metrics::{self, Frame};
 use super::params::{cell, Mode};
 use super::spec::Experiment;
@@ -15,7 +16,7 @@ use anyhow::{bail, Context, Result};
 use std::collections::{HashMap, HashSet};
 use std::io::Write;
 use std::path::{Path, PathBuf};
-use std::sync::Mutex;
+use std::sync::{Arc, Mutex};
 use toml::Value;
 
 /// What a sweep does with a record already in its folder.
@@ -42,6 +43,9 @@ pub struct SweepOptions {
     pub shard: Option<(usize, usize)>,
     /// Stop after this many runs (to test interruption).
     pub max_runs: Option<usize>,
+    /// The command that goes on from where this sweep stops (named when it
+    /// is interrupted); `refract sweep FILE --resume` if empty.
+    pub again: String,
 }
 
 /// What one run measured, as named cells.
@@ -110,7 +114,7 @@ struct Sweep<'a> {
     /// Frames of finished runs, for the next run's `changed_px`.
     frames: Mutex<HashMap<usize, Frame>>,
     /// runs.csv, open for appending one row per run.
-    file: Mutex<std::fs::File>,
+    file: Arc<Mutex<std::fs::File>>,
     errors: Mutex<Vec<anyhow::Error>>,
 }
 
@@ -145,9 +149,15 @@ impl FolderLock {
     }
 }
 
+impl FolderLock {
+    fn release(&self) {
+        let _ = std::fs::remove_file(&self.0);
+    }
+}
+
 impl Drop for FolderLock {
     fn drop(&mut self) {
-        let _ = std::fs::remove_file(&self.0);
+        self.release();
     }
 }
 
@@ -158,7 +168,7 @@ pub fn run(e: &Experiment, opts: &SweepOptions) -> Result<(PathBuf, String)> {
         bail!("--out: {} is not a folder; a sweep writes a folder of results", dir.display());
     }
     crate::image_io::create_folder(&dir)?;
-    let _lock = FolderLock::take(&dir)?;
+    let lock = Arc::new(FolderLock::take(&dir)?);
     // What a sweep killed while writing left behind.
     crate::image_io::remove_stale_temps(&dir);
     crate::image_io::remove_stale_temps(&dir.join("images"));
@@ -169,6 +179,16 @@ pub fn run(e: &Experiment, opts: &SweepOptions) -> Result<(PathBuf, String)> {
     // Start the file afresh with the kept rows only.
     write_rows(&csv_path, &header, &existing)?;
     let done: HashSet<usize> = existing.iter().filter_map(|r| r[0].parse().ok()).collect();
+    let shard_of = opts.shard.map(|(_, n)| super::plan::assign(&all, n));
+    let ours = |r: &&RunSpec| match (opts.shard, &shard_of) {
+        (Some((i, _)), Some(s)) => s[r.id] == i,
+        _ => true,
+    };
+    let wanted = all.iter().filter(ours).count();
+    let mine: Vec<usize> = all.iter().filter(ours).filter(|r| !done.contains(&r.id)).take(opts.max_runs.unwrap_or(usize::MAX)).map(|r| r.id).collect();
+    let file = Arc::new(Mutex::new(std::fs::OpenOptions::new().append(true).open(&csv_path)?));
+    let again = if opts.again.is_empty() { format!("refract sweep {} --resume --out {}", e.name, dir.display()) } else { opts.again.clone() };
+    let _interrupt = interrupt::Guard::new(on_interrupt(&dir, Arc::clone(&lock), Arc::clone(&file), wanted, again));
     let meshes = MeshCache::default();
     let reference = reference_frame(e, &dir, &meshes)?;
     if e.images {
@@ -183,20 +203,39 @@ pub fn run(e: &Experiment, opts: &SweepOptions) -> Result<(PathBuf, String)> {
         meshes,
         reference,
         frames: Mutex::new(HashMap::new()),
-        file: Mutex::new(std::fs::OpenOptions::new().append(true).open(&csv_path)?),
+        file,
         errors: Mutex::new(Vec::new()),
         header,
         dir,
     };
-    let shard_of = opts.shard.map(|(_, n)| super::plan::assign(&sweep.all, n));
-    let ours = |r: &&RunSpec| match (opts.shard, &shard_of) {
-        (Some((i, _)), Some(s)) => s[r.id] == i,
-        _ => true,
-    };
-    let wanted = sweep.all.iter().filter(ours).count();
-    let mine: Vec<&RunSpec> = sweep.all.iter().filter(ours).filter(|r| !done.contains(&r.id)).take(opts.max_runs.unwrap_or(usize::MAX)).collect();
+    let mine: Vec<&RunSpec> = mine.iter().map(|&id| &sweep.all[id]).collect();
     sweep.run_all(&mine, opts.jobs)?;
     sweep.finish(&csv_path, opts.shard, wanted)
+}
+
+/// What SIGINT or SIGTERM does during a sweep: waits for a row being
+/// written (then holds runs.csv so no other is begun), discards the run
+/// under way (its temporary files), releases the lock, says how many runs
+/// are saved and the command that goes on, and exits.
+fn on_interrupt(dir: &Path, lock: Arc<FolderLock>, file: Arc<Mutex<std::fs::File>>, wanted: usize, again: String) -> impl Fn(i32) + Send + 'static {
+    let dir = dir.to_path_buf();
+    move |sig| {
+        let held = file.lock().unwrap_or_else(|e| e.into_inner());
+        let csv = dir.join("runs.csv");
+        let saved = std::fs::read_to_string(&csv).map_or(0, |t| t.matches('\n').count().saturating_sub(1));
+        crate::image_io::remove_own_temps(&dir);
+        crate::image_io::remove_own_temps(&dir.join("images"));
+        lock.release();
+        use std::io::IsTerminal;
+        let fresh_line = if std::io::stderr().is_terminal() { "\n" } else { "" };
+        eprintln!(
+            "{fresh_line}refract: stopped by {}: {saved} of {wanted} runs saved in {} (the run under way was discarded); to finish, run: {again}",
+            interrupt::name(sig),
+            csv.display()
+        );
+        drop(held);
+        std::process::exit(interrupt::status_of(sig));
+    }
 }
 
 /// What a sweep keeps of the record already in `dir`, as `how` says: the
@@ -241,7 +280,14 @@ fn keep_or_move(e: &Experiment, dir: &Path, header: &[String], how: OnRecord) ->
                     let mut seen = HashSet::new();
                     Ok(rows.into_iter().filter(|r| r[0].parse::<usize>().is_ok_and(|id| id < all && seen.insert(id))).collect())
                 }
-                OnRecord::Refuse => Ok(Vec::new()),
+                OnRecord::Refuse => {
+                    let total = expand(e).len();
+                    let have = rows.iter().filter_map(|r| r[0].parse::<usize>().ok()).filter(|&id| id < total).collect::<HashSet<_>>().len();
+                    bail!(
+                        "{}: already holds {have} of the {total} runs of this experiment; run again with --resume to run only the missing ones, or with --fresh to move the record aside (to runs.csv.N) and run them all",
+                        csv.display()
+                    )
+                }
             }
         }
     }
@@ -511,7 +557,7 @@ pub fn merge(dirs: &[PathBuf], out: &Path, experiment: Option<&Experiment>, resu
     let merged = format!("merged {} rows from {} folders into {}", rows.len(), dirs.len(), out.join("runs.csv").display());
     match experiment {
         Some(e) if !missing.is_empty() => {
-            let (_, summary) = run(e, &SweepOptions { on_record: OnRecord::Resume, jobs: 1, out: Some(out.to_path_buf()), shard: None, max_runs: None })?;
+            let (_, summary) = run(e, &SweepOptions { on_record: OnRecord::Resume, jobs: 1, out: Some(out.to_path_buf()), ..Default::default() })?;
             Ok(format!("{merged}; ran the {} missing here: {summary}", missing.len()))
         }
         _ => Ok(merged),
