@@ -254,33 +254,6 @@ fn render_and_sweep_make_the_same_image() {
     }
 }
 
-/// A second sweep into a folder another sweep is writing stops with the
-/// holder's pid; a lock left by a process that is gone is taken over; and
-/// `--resume` drops rows that are not this experiment's runs.
-#[test]
-fn sweeps_lock_their_folder_and_resume_drops_garbage() {
-    let dir = tempfile::tempdir().unwrap();
-    let out = dir.path().join("out");
-    std::fs::create_dir_all(&out).unwrap();
-    let me = std::process::id();
-    std::fs::write(out.join(".lock"), me.to_string()).unwrap();
-    let o = sweep(&[&tiny(), "--quick", "--out", out.to_str().unwrap()], &repo(""));
-    assert_clean_failure(&o, &format!("another sweep (pid {me}) is writing this folder"));
-    std::fs::write(out.join(".lock"), "4000000000").unwrap();
-    let o = sweep(&[&tiny(), "--quick", "--out", out.to_str().unwrap()], &repo(""));
-    assert!(o.status.success(), "a stale lock is taken over: {}", stderr(&o));
-    assert!(!out.join(".lock").exists(), "the lock is removed at the end");
-    // A garbage row with a valid width, and a duplicate of run 0.
-    let text = std::fs::read_to_string(out.join("runs.csv")).unwrap();
-    let mut lines: Vec<String> = text.lines().map(str::to_string).collect();
-    let width = lines[0].split(',').count();
-    lines.push(vec!["999"; width].join(","));
-    lines.push(lines[1].clone());
-    std::fs::write(out.join("runs.csv"), lines.join("\n") + "\n").unwrap();
-    let o = sweep(&[&tiny(), "--quick", "--resume", "--out", out.to_str().unwrap()], &repo(""));
-    assert_clean_failure(&o, "runs.csv: holds 6 runs (1 of experiment 999, 5 of experiment tiny@");
-}
-
 /// `--resume` goes on only from rows of this version of the experiment
 /// file: after an edit it refuses, and `--fresh` moves the old record
 /// aside and runs every run again.
@@ -305,32 +278,6 @@ fn resume_refuses_what_an_edited_experiment_file_made() {
     assert_eq!((r.len(), fingerprints.len()), (6, 1), "{fingerprints:?}");
     assert!(!fingerprints.contains(before.as_str()), "every row is of the edited file: {fingerprints:?}");
     assert_eq!(std::fs::read(out.join("runs.csv.1")).unwrap(), old, "the old record is kept aside");
-}
-
-/// Temporary files a killed run left (`.NAME.PID.tmp`, its process gone)
-/// are removed by the next run into the folder; a live process's are kept.
-#[test]
-fn the_next_run_removes_stale_temporary_files() {
-    let dir = tempfile::tempdir().unwrap();
-    let out = dir.path().join("out");
-    std::fs::create_dir_all(out.join("images")).unwrap();
-    let stale = [out.join(".runs.csv.999999999.tmp"), out.join("images").join(".3.png.999999998.tmp")];
-    let live = out.join(format!(".runs.csv.{}.tmp", std::process::id()));
-    for p in stale.iter().chain([&live]) {
-        std::fs::write(p, b"partial").unwrap();
-    }
-    let o = sweep(&[&tiny(), "--out", out.to_str().unwrap()], &repo(""));
-    assert!(o.status.success(), "{}", stderr(&o));
-    for p in &stale {
-        assert!(!p.exists(), "{} left", p.display());
-    }
-    assert!(live.exists(), "a live process's temporary file must stay");
-    // A single render does the same beside its output.
-    let img = dir.path().join(".one.png.999999997.tmp");
-    std::fs::write(&img, b"partial").unwrap();
-    let o = run(&["interior", "--off", "off/cube.off", "--size", "16,16", "--out", dir.path().join("one.png").to_str().unwrap()], "", &repo(""));
-    assert!(o.status.success(), "{}", stderr(&o));
-    assert!(!img.exists());
 }
 
 /// A plan has no shard without work: asked for more shards than the grid

@@ -145,3 +145,163 @@ fn ctrl_c_then_a_plain_rerun_keeps_every_saved_row_and_the_lock_is_gone() {
     assert_eq!(std::fs::read(out.join("runs.csv.1")).unwrap(), before);
     assert_eq!(row_count(&out), 1);
 }
+
+/// A lock file as refract writes it, for an owner like this process with
+/// the given pid, start time and pid namespace.
+fn lock_text(pid: u32, start: u64, pidns: u64) -> String {
+    let me = refract::owner::Owner::me();
+    format!(
+        "refract lock\nhost={}\nboot={}\npidns={pidns}\npid={pid}\nstart={start}\nsince=1795574400\ntoken=0123456789abcdef\ncommand=refract sweep other.toml\n",
+        me.host, me.boot
+    )
+}
+
+#[test]
+fn two_sweeps_started_together_exactly_one_runs_and_the_other_names_the_holder() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = slow_experiment(dir.path());
+    for trial in 0..3 {
+        let out = dir.path().join(format!("out{trial}"));
+        let start = || {
+            bin()
+                .args(["sweep", file.to_str().unwrap(), "--out", out.to_str().unwrap(), "--max-runs", "2"])
+                .stdout(std::process::Stdio::piped())
+                .stderr(std::process::Stdio::piped())
+                .spawn()
+                .unwrap()
+        };
+        let (a, b) = (start(), start());
+        let ids = [a.id(), b.id()];
+        let outs = [a.wait_with_output().unwrap(), b.wait_with_output().unwrap()];
+        let won: Vec<usize> = (0..2).filter(|&i| outs[i].status.success()).collect();
+        assert_eq!(won.len(), 1, "trial {trial}: {} and {}", stderr(&outs[0]), stderr(&outs[1]));
+        let lost = &outs[1 - won[0]];
+        assert_clean_failure(lost, &format!("{}: held by pid {} on host", out.join(".lock").display(), ids[won[0]]));
+        assert!(stderr(lost).contains("--break-lock"), "{}", stderr(lost));
+        assert_eq!(row_count(&out), 2);
+        assert!(!out.join(".lock").exists());
+    }
+}
+
+#[test]
+fn a_lock_is_taken_over_only_when_its_owner_is_provably_gone_here() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    std::fs::create_dir_all(&out).unwrap();
+    let me = refract::owner::Owner::me();
+    let lock = out.join(".lock");
+    let tiny = repo("tests/data/tiny.toml").display().to_string();
+    let sweep = |extra: &[&str]| {
+        let mut args = vec!["sweep", &tiny, "--out", out.to_str().unwrap(), "--fresh"];
+        args.extend(extra);
+        run(&args, "", &repo(""))
+    };
+    // A pid alive here (pid 1) but not the owner: another pid namespace
+    // (a container, or `unshare --pid`), where that pid may be a live sweep.
+    std::fs::write(&lock, lock_text(1, 12345, me.pidns + 1)).unwrap();
+    let o = sweep(&[]);
+    assert_clean_failure(&o, &format!("{}: held by pid 1 on host {} (in another container or pid namespace", lock.display(), me.host));
+    assert!(stderr(&o).contains("since 2026-11-25 02:40 UTC: refract sweep other.toml") && stderr(&o).contains("--break-lock"), "{}", stderr(&o));
+    // Another boot or host: the same.
+    std::fs::write(&lock, lock_text(4_000_000, 12345, me.pidns).replace(&me.boot, "another-boot")).unwrap();
+    assert_clean_failure(&sweep(&[]), "(another host, or before a reboot: this process cannot see it)");
+    // A lock that is empty, or not refract's (an older version wrote a bare pid).
+    for text in ["", "1"] {
+        std::fs::write(&lock, text).unwrap();
+        assert_clean_failure(&sweep(&[]), &format!("{}: cannot tell who holds it", lock.display()));
+    }
+    // --break-lock removes it, naming what it removed.
+    let o = sweep(&["--break-lock"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stderr(&o).contains("broke the lock of an unreadable lock (1 bytes)"), "{}", stderr(&o));
+    // Pid 1 in this namespace with another start time: provably gone (the
+    // pid was reused), so taken over without a flag.
+    std::fs::write(&lock, lock_text(1, 1, me.pidns)).unwrap();
+    let o = sweep(&[]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stderr(&o).contains("took over the lock of pid 1 on host") && stderr(&o).contains("which is gone"), "{}", stderr(&o));
+    assert!(!lock.exists(), "the lock is removed at the end");
+}
+
+/// A sweep in another pid namespace (`unshare --pid`, as a container
+/// would be) holds the folder: a sweep outside cannot see it and waits.
+#[test]
+fn a_sweep_in_another_pid_namespace_keeps_its_lock() {
+    let probe = std::process::Command::new("unshare").args(["--pid", "--fork", "--mount-proc", "true"]).output();
+    if !probe.is_ok_and(|o| o.status.success()) {
+        eprintln!("skipped: unshare --pid is not allowed here");
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let file = slow_experiment(dir.path());
+    let out = dir.path().join("out");
+    let inner = std::process::Command::new("unshare")
+        .args([
+            "--pid",
+            "--fork",
+            "--mount-proc",
+            env!("CARGO_BIN_EXE_refract"),
+            "sweep",
+            file.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+            "--max-runs",
+            "3",
+        ])
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let start = std::time::Instant::now();
+    while !out.join(".lock").exists() {
+        assert!(start.elapsed().as_secs() < 60);
+        std::thread::sleep(std::time::Duration::from_millis(10));
+    }
+    let o = run(&["sweep", file.to_str().unwrap(), "--out", out.to_str().unwrap(), "--resume"], "", dir.path());
+    let done = inner.wait_with_output().unwrap();
+    assert!(done.status.success(), "{}", stderr(&done));
+    assert_clean_failure(&o, "held by pid 1 on host");
+    assert_eq!(row_count(&out), 3, "no row lost");
+}
+
+/// Temporary files a killed refract left (`.NAME.TOKEN.tmp`, the token
+/// naming a refract here that is gone) are removed by the next run into
+/// the folder; another program's files named alike, a live process's and
+/// those of a refract it cannot see stay.
+#[test]
+fn the_next_run_removes_only_its_own_kind_of_stale_temporary_files() {
+    use refract::owner::Owner;
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    std::fs::create_dir_all(out.join("images")).unwrap();
+    let me = Owner::me();
+    let gone = Owner { pid: 4_000_000, ..me.clone() }.token();
+    let stale = [out.join(format!(".runs.csv.{gone}.tmp")), out.join("images").join(format!(".3.png.{gone}.tmp"))];
+    let keep = [
+        out.join(format!(".runs.csv.{}.tmp", me.token())),
+        out.join(".notes.txt.999999999.tmp"),
+        out.join(format!(".runs.csv.{}.tmp", Owner { pid: 4_000_000, pidns: me.pidns + 1, ..me.clone() }.token())),
+    ];
+    for p in stale.iter().chain(&keep) {
+        std::fs::write(p, b"partial").unwrap();
+    }
+    let o = run(&["sweep", repo("tests/data/tiny.toml").to_str().unwrap(), "--out", out.to_str().unwrap()], "", &repo(""));
+    assert!(o.status.success(), "{}", stderr(&o));
+    for p in &stale {
+        assert!(!p.exists(), "{} left", p.display());
+    }
+    for p in &keep {
+        assert!(p.exists(), "{} removed", p.display());
+    }
+    // A single render does the same beside its output, and so do figures.
+    let img = dir.path().join(format!(".one.png.{gone}.tmp"));
+    std::fs::write(&img, b"partial").unwrap();
+    let o = run(&["interior", "--off", "off/cube.off", "--size", "16,16", "--out", dir.path().join("one.png").to_str().unwrap()], "", &repo(""));
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(!img.exists());
+    let figs = dir.path().join("figs");
+    std::fs::create_dir_all(figs.join("figures")).unwrap();
+    let left = figs.join("figures").join(format!(".css552-p2.png.{gone}.tmp"));
+    std::fs::write(&left, b"partial").unwrap();
+    let o = run(&["figures", "--quick", "--only", "css552-p2", "--out", figs.to_str().unwrap()], "", &repo(""));
+    assert!(!left.exists(), "figures left its own stale file: {}", stderr(&o));
+}

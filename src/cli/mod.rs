@@ -204,6 +204,9 @@ pub struct SweepArgs {
     /// Output folder [default: results/NAME, or results/quick/NAME with --quick so the committed record stays]
     #[arg(long)]
     pub out: Option<PathBuf>,
+    /// Remove the output folder's lock whoever holds it (only when the sweep it names is known to be gone, e.g. on another host)
+    #[arg(long)]
+    pub break_lock: bool,
     /// Only runs whose id modulo N is I (0 <= I < N), for job arrays; join with `sweep merge`
     #[arg(long, value_name = "I/N", value_parser = parse_shard)]
     pub shard: Option<(usize, usize)>,
@@ -231,6 +234,9 @@ pub enum SweepCommand {
         /// Run here the runs no shard holds, instead of refusing
         #[arg(long, requires = "experiment")]
         resume: bool,
+        /// Remove the output folder's lock whoever holds it (only when the sweep it names is known to be gone)
+        #[arg(long)]
+        break_lock: bool,
     },
     /// Write a script that runs the sweep's shards on GNU parallel or as a
     /// Slurm job array, then merges them into the folder an unsharded
@@ -468,7 +474,7 @@ fn run_prism(args: PrismArgs) -> Result<()> {
 /// dropped, `--resume` added, each word quoted for a POSIX shell if needed.
 fn resume_command() -> String {
     let mut words: Vec<String> = vec!["refract".into()];
-    words.extend(std::env::args().skip(1).filter(|a| a != "--fresh" && a != "--resume"));
+    words.extend(std::env::args().skip(1).filter(|a| a != "--fresh" && a != "--resume" && a != "--break-lock"));
     words.push("--resume".into());
     let quote = |w: &String| {
         if !w.is_empty() && w.chars().all(|c| c.is_ascii_alphanumeric() || "-_./=:,@%+".contains(c)) {
@@ -483,9 +489,9 @@ fn resume_command() -> String {
 fn run_sweep(args: SweepArgs) -> Result<()> {
     use crate::experiment::{spec::Experiment, sweep};
     match args.merge {
-        Some(SweepCommand::Merge { dirs, out, experiment, quick, resume }) => {
+        Some(SweepCommand::Merge { dirs, out, experiment, quick, resume, break_lock }) => {
             let e = experiment.map(|p| Experiment::load(&p, quick)).transpose()?;
-            eprintln!("{}", sweep::merge(&dirs, &out, e.as_ref(), resume)?);
+            eprintln!("{}", sweep::merge(&dirs, &out, e.as_ref(), resume, break_lock)?);
             return Ok(());
         }
         Some(SweepCommand::Plan(p)) => {
@@ -518,7 +524,15 @@ fn run_sweep(args: SweepArgs) -> Result<()> {
         (_, true) => sweep::OnRecord::Fresh,
         _ => sweep::OnRecord::Refuse,
     };
-    let opts = sweep::SweepOptions { on_record, jobs: args.jobs, out: args.out, shard: args.shard, max_runs: args.max_runs, again: resume_command() };
+    let opts = sweep::SweepOptions {
+        on_record,
+        jobs: args.jobs,
+        out: args.out,
+        shard: args.shard,
+        max_runs: args.max_runs,
+        break_lock: args.break_lock,
+        again: resume_command(),
+    };
     let (_, summary) = sweep::run(&e, &opts)?;
     eprintln!("{summary}");
     Ok(())

@@ -182,6 +182,11 @@ pub fn run(o: &FigureOptions) -> Result<Outcome> {
     crate::image_io::create_folder(&o.out).context("--out")?;
     let dir = o.out.join("figures");
     crate::image_io::create_folder(&dir)?;
+    // What a figures run killed while writing left behind (the sweeps'
+    // folders are tidied by the sweeps).
+    for d in [o.out.clone(), dir.clone(), o.out.join("display"), o.out.join("spectral"), o.out.join("timings")] {
+        crate::image_io::remove_stale_temps(&d);
+    }
     let mut records = read_records(&o.out);
     let bar = crate::terminal::counter(todo.len() as u64, "figures", "");
     let mut failed = Vec::new();

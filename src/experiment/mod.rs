@@ -7,6 +7,7 @@ pub mod figures;
 pub mod grid;
 pub mod interrupt;
 pub mod labels;
+pub mod lock;
 pub mod metrics;
 pub mod params;
 pub mod plan;

@@ -6,6 +6,7 @@
 
 pub use super::grid::{expand, RunSpec};
 use super::interrupt;
+use super::lock::{FolderLock, Taken};
 use super::metrics::{self, Frame};
 use super::params::{cell, Mode};
 use super::spec::Experiment;
@@ -43,6 +44,8 @@ pub struct SweepOptions {
     pub shard: Option<(usize, usize)>,
     /// Stop after this many runs (to test interruption).
     pub max_runs: Option<usize>,
+    /// Remove the folder's lock whoever holds it (`--break-lock`).
+    pub break_lock: bool,
     /// The command that goes on from where this sweep stops (named when it
     /// is interrupted); `refract sweep FILE --resume` if empty.
     pub again: String,
@@ -118,47 +121,17 @@ struct Sweep<'a> {
     errors: Mutex<Vec<anyhow::Error>>,
 }
 
-/// A sweep's claim on its output folder: `.lock` holds the process id,
-/// and a second sweep into the same folder stops with a clear error
-/// (two writers would lose rows). A lock whose process is gone is stale
-/// and taken over. Removed when the sweep ends.
-struct FolderLock(PathBuf);
-
-impl FolderLock {
-    fn take(dir: &Path) -> Result<FolderLock> {
-        let path = dir.join(".lock");
-        for _ in 0..2 {
-            match std::fs::OpenOptions::new().write(true).create_new(true).open(&path) {
-                Ok(mut f) => {
-                    write!(f, "{}", std::process::id())?;
-                    return Ok(FolderLock(path));
-                }
-                Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => {
-                    let holder = std::fs::read_to_string(&path).unwrap_or_default();
-                    let alive = holder.trim().parse::<u32>().is_ok_and(|pid| Path::new(&format!("/proc/{pid}")).exists());
-                    if alive {
-                        bail!("{}: another sweep (pid {}) is writing this folder; wait for it, or use another --out", dir.display(), holder.trim());
-                    }
-                    // Stale: its process is gone.
-                    let _ = std::fs::remove_file(&path);
-                }
-                Err(e) => return Err(e).with_context(|| format!("cannot create {}", path.display())),
-            }
-        }
-        bail!("{}: cannot take the folder's lock", dir.display())
+/// Takes `dir`'s lock (`lock::FolderLock`) for this command, saying so
+/// when it took over a lock whose owner was gone or broke one.
+fn take_lock(dir: &Path, break_lock: bool) -> Result<FolderLock> {
+    let command = std::env::args().collect::<Vec<_>>().join(" ");
+    let (lock, taken) = FolderLock::take(dir, &command, break_lock)?;
+    match taken {
+        Taken::Fresh => {}
+        Taken::Stale(who) => eprintln!("note: {}: took over the lock of {who}, which is gone", lock.path().display()),
+        Taken::Broken(who) => eprintln!("note: {}: broke the lock of {who} (--break-lock)", lock.path().display()),
     }
-}
-
-impl FolderLock {
-    fn release(&self) {
-        let _ = std::fs::remove_file(&self.0);
-    }
-}
-
-impl Drop for FolderLock {
-    fn drop(&mut self) {
-        self.release();
-    }
+    Ok(lock)
 }
 
 /// Runs the experiment; returns the output folder and a summary line.
@@ -168,7 +141,7 @@ pub fn run(e: &Experiment, opts: &SweepOptions) -> Result<(PathBuf, String)> {
         bail!("--out: {} is not a folder; a sweep writes a folder of results", dir.display());
     }
     crate::image_io::create_folder(&dir)?;
-    let lock = Arc::new(FolderLock::take(&dir)?);
+    let lock = Arc::new(take_lock(&dir, opts.break_lock)?);
     // What a sweep killed while writing left behind.
     crate::image_io::remove_stale_temps(&dir);
     crate::image_io::remove_stale_temps(&dir.join("images"));
@@ -465,7 +438,7 @@ fn load_frame(path: &Path) -> Option<Frame> {
 /// that two shards both hold, and, with `experiment` given, runs that no
 /// shard holds (naming them, and how to run them) unless `resume`, which
 /// runs them here.
-pub fn merge(dirs: &[PathBuf], out: &Path, experiment: Option<&Experiment>, resume: bool) -> Result<String> {
+pub fn merge(dirs: &[PathBuf], out: &Path, experiment: Option<&Experiment>, resume: bool, break_lock: bool) -> Result<String> {
     let mut header: Option<Vec<String>> = None;
     let mut rows: Vec<(Vec<String>, usize)> = Vec::new();
     for (k, d) in dirs.iter().enumerate() {
@@ -536,7 +509,7 @@ pub fn merge(dirs: &[PathBuf], out: &Path, experiment: Option<&Experiment>, resu
     }
     crate::image_io::create_folder(out)?;
     {
-        let _lock = FolderLock::take(out)?;
+        let _lock = take_lock(out, break_lock)?;
         // The run images and the reference image travel with their rows.
         for (r, k) in &rows {
             let from = dirs[*k].join("images").join(format!("{}.png", r[0]));
