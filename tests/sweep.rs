@@ -164,7 +164,13 @@ fn failing_runs_are_rows_and_bad_files_name_the_line() {
         .replace("OFF_BAD", &bad.display().to_string());
     std::fs::write(&file, &text).unwrap();
     let o = sweep(&[file.to_str().unwrap(), "--out", dir.path().join("o").to_str().unwrap()], &repo(""));
-    assert!(o.status.success(), "{}", stderr(&o));
+    // Every row is saved; the status and the first error say one failed.
+    assert_clean_failure(&o, "e: 3 of 3 runs in ");
+    assert!(
+        stderr(&o).contains("(1 failed); the first failed run, 1 (malformed mesh): ") && stderr(&o).contains("bad.off:1: expected the keyword OFF"),
+        "{}",
+        stderr(&o)
+    );
     let (h, r) = rows(&dir.path().join("o"));
     let col = |n: &str| h.iter().position(|c| c == n).unwrap();
     assert_eq!(r.len(), 3);
@@ -212,7 +218,9 @@ fn shipped_experiments_parse_and_stability_records_failures_as_rows() {
     assert_clean_failure(&o, "big.toml:5: `sweep`: the experiment has 2020101 runs (cases x sweep values x repeats); at most 100000");
     let dir = tempfile::tempdir().unwrap();
     let o = sweep(&[repo("experiments/stability.toml").to_str().unwrap(), "--quick", "--out", dir.path().to_str().unwrap()], &repo(""));
-    assert!(o.status.success(), "{}", stderr(&o));
+    // Its runs fail on purpose: each a row, and the status says so.
+    assert_clean_failure(&o, "stability: ");
+    assert!(stderr(&o).contains("failed); the first failed run, "), "{}", stderr(&o));
     let (h, r) = rows(dir.path());
     let col = |n: &str| h.iter().position(|c| c == n).unwrap();
     let tir = r.iter().find(|x| x[col("case")].contains("totally reflected")).unwrap();

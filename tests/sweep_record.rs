@@ -305,3 +305,48 @@ fn the_next_run_removes_only_its_own_kind_of_stale_temporary_files() {
     let o = run(&["figures", "--quick", "--only", "css552-p2", "--out", figs.to_str().unwrap()], "", &repo(""));
     assert!(!left.exists(), "figures left its own stale file: {}", stderr(&o));
 }
+
+/// A reference run that fails is named, the metrics against it are marked,
+/// their plot is not drawn empty, and the sweep ends with a non-zero
+/// status; a sweep whose every run fails too.
+#[test]
+fn a_failed_reference_or_failed_runs_end_the_sweep_non_zero() {
+    let dir = tempfile::tempdir().unwrap();
+    let bad = dir.path().join("bad.off");
+    std::fs::write(&bad, "PLY\n").unwrap();
+    let cube = repo("off/cube.off").display().to_string();
+    let file = dir.path().join("r.toml");
+    let text = format!(
+        "name = \"r\"\nmode = \"interior\"\n[fixed]\noff = \"{cube}\"\nsize = [16, 16]\n[sweep]\ntrace = [0, 2]\n[reference]\noff = \"{}\"\n[[outputs.plot]]\nx = \"param_trace\"\ny = \"rmse\"\nfile = \"rmse-vs-trace\"\n[[outputs.plot]]\nx = \"param_trace\"\ny = \"rays\"\nfile = \"rays-vs-trace\"\n",
+        bad.display()
+    );
+    std::fs::write(&file, &text).unwrap();
+    let out = dir.path().join("o");
+    let o = run(&["sweep", file.to_str().unwrap(), "--out", out.to_str().unwrap()], "", dir.path());
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(err.lines().next().unwrap().starts_with("refract: the reference run failed: ") && err.contains("bad.off:1: expected the keyword OFF"), "{err}");
+    assert!(err.contains("note: plot rmse-vs-trace not drawn: no run has a value of rmse (the reference run failed)"), "{err}");
+    let last = err.trim_end().lines().last().unwrap();
+    assert!(last.starts_with("refract: error: r: 2 of 2 runs in") && last.contains("(0 failed); the reference run failed: "), "{last}");
+    let text = std::fs::read_to_string(out.join("runs.csv")).unwrap();
+    let mut r = csv::Reader::from_reader(text.as_bytes());
+    let h: Vec<String> = r.headers().unwrap().iter().map(str::to_string).collect();
+    for row in r.records() {
+        let row = row.unwrap();
+        for m in ["rmse", "psnr", "rel_rmse"] {
+            assert_eq!(&row[h.iter().position(|c| c == m).unwrap()], "no reference");
+        }
+    }
+    assert!(!out.join("rmse-vs-trace.png").exists() && !out.join("rmse-vs-trace.svg").exists(), "no empty plot");
+    assert!(out.join("rays-vs-trace.png").exists());
+    // Every run failing: non-zero, the first error named.
+    std::fs::write(&file, text_all_fail(&bad)).unwrap();
+    let o = run(&["sweep", file.to_str().unwrap(), "--out", dir.path().join("o2").to_str().unwrap()], "", dir.path());
+    assert_clean_failure(&o, "r: 2 of 2 runs in ");
+    assert!(stderr(&o).contains("(2 failed); the first failed run, 0: ") && stderr(&o).contains("bad.off:1"), "{}", stderr(&o));
+}
+
+fn text_all_fail(bad: &Path) -> String {
+    format!("name = \"r\"\nmode = \"interior\"\n[fixed]\noff = \"{}\"\nsize = [16, 16]\n[sweep]\ntrace = [0, 2]\n", bad.display())
+}

@@ -533,7 +533,13 @@ fn run_sweep(args: SweepArgs) -> Result<()> {
         break_lock: args.break_lock,
         again: resume_command(),
     };
-    let (_, summary) = sweep::run(&e, &opts)?;
-    eprintln!("{summary}");
-    Ok(())
+    let o = sweep::run(&e, &opts)?;
+    match o.failure {
+        // Every row is saved; the status says not all went well.
+        Some(why) => bail!("{}; {why}", o.summary),
+        None => {
+            eprintln!("{}", o.summary);
+            Ok(())
+        }
+    }
 }

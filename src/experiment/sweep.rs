@@ -51,24 +51,39 @@ pub struct SweepOptions {
     pub again: String,
 }
 
+/// How a sweep ended.
+#[derive(Debug)]
+pub struct Outcome {
+    pub dir: PathBuf,
+    /// "NAME: 20 of 20 runs in DIR/runs.csv (0 failed)".
+    pub summary: String,
+    /// Why the sweep must end with a non-zero status, if it must: its
+    /// first failed run's error, and a failed reference run's.
+    pub failure: Option<String>,
+}
+
+/// The cell the metrics against the reference get when the reference run
+/// failed.
+pub const NO_REFERENCE: &str = "no reference";
+
 /// What one run measured, as named cells.
 type Measured = Vec<(&'static str, String)>;
 
-struct Outcome {
+struct RunOutcome {
     frame: Option<Frame>,
     cells: Measured,
 }
 
-fn run_one(mode: Mode, params: &[(String, Value)], meshes: &MeshCache) -> Outcome {
+fn run_one(mode: Mode, params: &[(String, Value)], meshes: &MeshCache) -> RunOutcome {
     let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-        mode.render(params, &crate::progress::Silent, meshes).map(|run| Outcome { frame: Some(run.frame()), cells: run.record.cells() })
+        mode.render(params, &crate::progress::Silent, meshes).map(|run| RunOutcome { frame: Some(run.frame()), cells: run.record.cells() })
     }));
     match result {
         Ok(Ok(o)) => o,
-        Ok(Err(e)) => Outcome { frame: None, cells: vec![("status", "error".into()), ("error", format!("{e:#}")), ("failed", "1".into())] },
+        Ok(Err(e)) => RunOutcome { frame: None, cells: vec![("status", "error".into()), ("error", format!("{e:#}")), ("failed", "1".into())] },
         Err(p) => {
             let msg = p.downcast_ref::<String>().cloned().or_else(|| p.downcast_ref::<&str>().map(|s| s.to_string())).unwrap_or_else(|| "panic".into());
-            Outcome { frame: None, cells: vec![("status", "error".into()), ("error", format!("internal error: {msg}")), ("failed", "1".into())] }
+            RunOutcome { frame: None, cells: vec![("status", "error".into()), ("error", format!("internal error: {msg}")), ("failed", "1".into())] }
         }
     }
 }
@@ -114,6 +129,8 @@ struct Sweep<'a> {
     by_place: HashMap<(String, u32, Vec<usize>), usize>,
     meshes: MeshCache,
     reference: Option<Frame>,
+    /// The reference run's error, if it failed.
+    reference_error: Option<String>,
     /// Frames of finished runs, for the next run's `changed_px`.
     frames: Mutex<HashMap<usize, Frame>>,
     /// runs.csv, open for appending one row per run.
@@ -135,7 +152,7 @@ fn take_lock(dir: &Path, break_lock: bool) -> Result<FolderLock> {
 }
 
 /// Runs the experiment; returns the output folder and a summary line.
-pub fn run(e: &Experiment, opts: &SweepOptions) -> Result<(PathBuf, String)> {
+pub fn run(e: &Experiment, opts: &SweepOptions) -> Result<Outcome> {
     let dir = opts.out.clone().unwrap_or_else(|| e.default_folder());
     if dir.exists() && !dir.is_dir() {
         bail!("--out: {} is not a folder; a sweep writes a folder of results", dir.display());
@@ -163,7 +180,10 @@ pub fn run(e: &Experiment, opts: &SweepOptions) -> Result<(PathBuf, String)> {
     let again = if opts.again.is_empty() { format!("refract sweep {} --resume --out {}", e.name, dir.display()) } else { opts.again.clone() };
     let _interrupt = interrupt::Guard::new(on_interrupt(&dir, Arc::clone(&lock), Arc::clone(&file), wanted, again));
     let meshes = MeshCache::default();
-    let reference = reference_frame(e, &dir, &meshes)?;
+    let (reference, reference_error) = reference_frame(e, &dir, &meshes)?;
+    if let Some(err) = &reference_error {
+        eprintln!("refract: the reference run failed: {err}; the runs go on, with rmse, psnr and rel_rmse marked `{NO_REFERENCE}`");
+    }
     if e.images {
         crate::image_io::create_folder(&dir.join("images"))?;
     }
@@ -175,6 +195,7 @@ pub fn run(e: &Experiment, opts: &SweepOptions) -> Result<(PathBuf, String)> {
         all,
         meshes,
         reference,
+        reference_error,
         frames: Mutex::new(HashMap::new()),
         file,
         errors: Mutex::new(Vec::new()),
@@ -267,14 +288,20 @@ fn keep_or_move(e: &Experiment, dir: &Path, header: &[String], how: OnRecord) ->
 }
 
 /// The reference run's frame (the fixed parameters with the reference's
-/// overrides), written as reference.png.
-fn reference_frame(e: &Experiment, dir: &Path, meshes: &MeshCache) -> Result<Option<Frame>> {
-    let Some(p) = e.reference_params() else { return Ok(None) };
+/// overrides), written as reference.png, or the reference run's error.
+fn reference_frame(e: &Experiment, dir: &Path, meshes: &MeshCache) -> Result<(Option<Frame>, Option<String>)> {
+    let Some(p) = e.reference_params() else { return Ok((None, None)) };
     let o = run_one(e.mode, &p, meshes);
-    if let Some(f) = &o.frame {
-        write_rgb8(&dir.join("reference.png"), f.width, f.height, &f.display)?;
+    match &o.frame {
+        Some(f) => {
+            write_rgb8(&dir.join("reference.png"), f.width, f.height, &f.display)?;
+            Ok((o.frame, None))
+        }
+        None => {
+            let err = o.cells.iter().find(|(k, _)| *k == "error").map_or_else(|| "no image".to_string(), |(_, v)| v.clone());
+            Ok((None, Some(err)))
+        }
     }
-    Ok(o.frame)
 }
 
 impl Sweep<'_> {
@@ -330,6 +357,11 @@ impl Sweep<'_> {
         cells.insert("nan_count", metrics::non_finite(f).to_string());
         cells.insert("fireflies", metrics::fireflies(f).to_string());
         cells.insert("highlight_px", metrics::highlight_pixels(f).to_string());
+        if self.reference_error.is_some() {
+            for m in ["rmse", "psnr", "rel_rmse"] {
+                cells.insert(m, NO_REFERENCE.into());
+            }
+        }
         if let Some(rf) = &self.reference {
             if let Some((rmse, psnr)) = metrics::rmse_psnr(f, rf) {
                 cells.insert("rmse", crate::timing::cell(rmse));
@@ -382,16 +414,20 @@ impl Sweep<'_> {
 
     /// Sorts the rows by run id, draws the plots, and sums up.
     /// `wanted`: how many runs this sweep (or shard) holds when complete.
-    fn finish(&self, csv_path: &Path, shard: Option<(usize, usize)>, wanted: usize) -> Result<(PathBuf, String)> {
+    fn finish(&self, csv_path: &Path, shard: Option<(usize, usize)>, wanted: usize) -> Result<Outcome> {
         let mut rows = read_rows(csv_path, &self.header)?;
         rows.sort_by_key(|r| r[0].parse::<usize>().unwrap_or(usize::MAX));
         rows.dedup_by(|a, b| a[0] == b[0]);
         write_rows(csv_path, &self.header, &rows)?;
         let complete = rows.len() >= wanted;
         if complete || shard.is_some() {
-            super::charts::draw_all(self.e, &self.dir, &self.header, &rows)?;
+            let why = if self.reference_error.is_some() { " (the reference run failed)" } else { "" };
+            for (file, column) in super::charts::draw_all(self.e, &self.dir, &self.header, &rows)? {
+                eprintln!("note: plot {file} not drawn: no run has a value of {column}{why}");
+            }
         }
-        let failed = rows.iter().filter(|r| r[self.header.iter().position(|h| h == "failed").unwrap_or(0)] == "1").count();
+        let col = |name: &str| self.header.iter().position(|h| h == name).unwrap_or(0);
+        let failed: Vec<&Vec<String>> = rows.iter().filter(|r| r[col("failed")] == "1").collect();
         let (what, again) = match shard {
             Some((i, n)) => (format!(" of shard {i}/{n}"), "; run this shard again with --resume to finish it"),
             None => (String::new(), "; run again with --resume to finish"),
@@ -402,10 +438,18 @@ impl Sweep<'_> {
             rows.len(),
             wanted,
             csv_path.display(),
-            failed,
+            failed.len(),
             if complete { "" } else { again }
         );
-        Ok((self.dir.clone(), summary))
+        let mut why = Vec::new();
+        if let Some(r) = failed.first() {
+            let case = if r[col("case")].is_empty() { String::new() } else { format!(" ({})", r[col("case")]) };
+            why.push(format!("the first failed run, {}{case}: {}", r[0], r[col("error")]));
+        }
+        if let Some(err) = &self.reference_error {
+            why.push(format!("the reference run failed: {err} (rmse, psnr and rel_rmse are marked `{NO_REFERENCE}`)"));
+        }
+        Ok(Outcome { dir: self.dir.clone(), summary, failure: (!why.is_empty()).then(|| why.join("; ")) })
     }
 }
 
@@ -524,14 +568,20 @@ pub fn merge(dirs: &[PathBuf], out: &Path, experiment: Option<&Experiment>, resu
         let rows: Vec<Vec<String>> = rows.iter().map(|(r, _)| r.clone()).collect();
         write_rows(&out.join("runs.csv"), &header, &rows)?;
         if let (Some(e), true) = (experiment, missing.is_empty()) {
-            super::charts::draw_all(e, out, &header, &rows)?;
+            for (file, column) in super::charts::draw_all(e, out, &header, &rows)? {
+                eprintln!("note: plot {file} not drawn: no run has a value of {column}");
+            }
         }
     }
     let merged = format!("merged {} rows from {} folders into {}", rows.len(), dirs.len(), out.join("runs.csv").display());
     match experiment {
         Some(e) if !missing.is_empty() => {
-            let (_, summary) = run(e, &SweepOptions { on_record: OnRecord::Resume, jobs: 1, out: Some(out.to_path_buf()), ..Default::default() })?;
-            Ok(format!("{merged}; ran the {} missing here: {summary}", missing.len()))
+            let o = run(e, &SweepOptions { on_record: OnRecord::Resume, jobs: 1, out: Some(out.to_path_buf()), ..Default::default() })?;
+            let line = format!("{merged}; ran the {} missing here: {}", missing.len(), o.summary);
+            match o.failure {
+                Some(why) => bail!("{line}; {why}"),
+                None => Ok(line),
+            }
         }
         _ => Ok(merged),
     }
