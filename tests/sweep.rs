@@ -123,6 +123,9 @@ fn shards_merged_equal_the_unsharded_run() {
     let cut = &text[..text.trim_end().rfind(',').unwrap()];
     std::fs::write(Path::new(&d("copy0")).join("runs.csv"), cut).unwrap();
     let o = sweep(&["merge", &d("shard0"), &d("copy0"), "--out", &d("twice")], &repo(""));
+    assert_clean_failure(&o, &format!("{}/runs.csv:{}: the last line does not end in a newline", d("copy0"), text.trim_end().lines().count()));
+    std::fs::write(Path::new(&d("copy0")).join("runs.csv"), format!("{cut}\n")).unwrap();
+    let o = sweep(&["merge", &d("shard0"), &d("copy0"), "--out", &d("twice")], &repo(""));
     assert_clean_failure(&o, &format!("{}/runs.csv:{}: not a whole run", d("copy0"), text.trim_end().lines().count()));
     std::fs::write(Path::new(&d("copy0")).join("runs.csv"), "x,y\n1,2\n").unwrap();
     let o = sweep(&["merge", &d("shard0"), &d("copy0"), "--out", &d("twice")], &repo(""));

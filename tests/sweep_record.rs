@@ -350,3 +350,91 @@ fn a_failed_reference_or_failed_runs_end_the_sweep_non_zero() {
 fn text_all_fail(bad: &Path) -> String {
     format!("name = \"r\"\nmode = \"interior\"\n[fixed]\noff = \"{}\"\nsize = [16, 16]\n[sweep]\ntrace = [0, 2]\n", bad.display())
 }
+
+/// Merge refuses a shard whose last row was cut inside a number (it would
+/// read as another number), a shard still being written, and names a run
+/// a shard holds twice; it never replaces a record it does not contain.
+#[test]
+fn merge_refuses_cut_locked_and_doubled_shards() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = |n: &str| dir.path().join(n);
+    let tiny = repo("tests/data/tiny.toml").display().to_string();
+    for s in ["0/2", "1/2"] {
+        let o = run(&["sweep", &tiny, "--out", d(&format!("s{}", &s[..1])).to_str().unwrap(), "--shard", s], "", &repo(""));
+        assert!(o.status.success(), "{}", stderr(&o));
+    }
+    let merge = |shards: [&str; 2], extra: &[&str]| {
+        let (a, b, m) = (d(shards[0]).display().to_string(), d(shards[1]).display().to_string(), d("merged").display().to_string());
+        let mut args = vec!["sweep", "merge", &a, &b, "--out", &m, "--experiment", &tiny];
+        args.extend(extra);
+        run(&args, "", &repo(""))
+    };
+    // The last cell cut short (`0.757080` -> `0.757`): a whole-looking row.
+    let whole = std::fs::read_to_string(d("s1/runs.csv")).unwrap();
+    std::fs::create_dir(d("cut")).unwrap();
+    std::fs::write(d("cut/runs.csv"), &whole[..whole.len() - 4]).unwrap();
+    let o = merge(["s0", "cut"], &[]);
+    assert_clean_failure(&o, &format!("cut/runs.csv:{}: the last line does not end in a newline", whole.lines().count()));
+    assert!(!d("merged/runs.csv").exists());
+    // A shard still being written (a live owner's lock).
+    let me = refract::owner::Owner::me();
+    let lock = format!(
+        "refract lock\nhost={}\nboot={}\npidns={}\npid={}\nstart={}\nsince=1795574400\ntoken=ab\ncommand=refract sweep tiny.toml --shard 1/2\n",
+        me.host, me.boot, me.pidns, me.pid, me.start
+    );
+    std::fs::write(d("s1/.lock"), lock).unwrap();
+    let o = merge(["s0", "s1"], &[]);
+    assert_clean_failure(&o, &format!("s1: this shard is still being written (its lock is held by pid {} on host", me.pid));
+    std::fs::remove_file(d("s1/.lock")).unwrap();
+    // A run twice in one shard.
+    let mut lines: Vec<&str> = whole.lines().collect();
+    lines.push(lines[1]);
+    std::fs::create_dir(d("twice")).unwrap();
+    std::fs::write(d("twice/runs.csv"), lines.join("\n") + "\n").unwrap();
+    let o = merge(["s0", "twice"], &[]);
+    let id = lines[1].split(',').next().unwrap();
+    assert_clean_failure(&o, &format!("twice/runs.csv: run {id} is twice (lines 2 and {}); each run is one row", lines.len()));
+    // The good merge; again into the same folder is fine (it holds every
+    // row there); a record it does not contain is refused, or with
+    // --fresh moved aside.
+    assert!(merge(["s0", "s1"], &[]).status.success());
+    assert!(merge(["s0", "s1"], &[]).status.success());
+    let merged = std::fs::read(d("merged/runs.csv")).unwrap();
+    let edited = String::from_utf8(merged.clone()).unwrap().replacen(",ok,", ",okay,", 1);
+    std::fs::write(d("merged/runs.csv"), &edited).unwrap();
+    assert_clean_failure(&merge(["s0", "s1"], &[]), "merged/runs.csv:2: holds run 0 as the merge does not");
+    let o = merge(["s0", "s1"], &["--fresh"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(std::fs::read_to_string(d("merged/runs.csv.1")).unwrap(), edited);
+    assert_eq!(std::fs::read(d("merged/runs.csv")).unwrap(), merged);
+}
+
+/// `--resume` names what it will not go on from: a row that is no run of
+/// the experiment, a run twice with different cells (a run twice the same
+/// is kept once, said so), and a last line cut off mid-write.
+#[test]
+fn resume_names_bad_and_doubled_rows() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let tiny = repo("tests/data/tiny.toml").display().to_string();
+    let sweep = |extra: &str| run(&["sweep", &tiny, "--quick", "--out", out.to_str().unwrap(), extra], "", &repo(""));
+    assert!(sweep("--fresh").status.success());
+    let text = std::fs::read_to_string(out.join("runs.csv")).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    let garbage = lines[1].replacen(&format!("{},", lines[1].split(',').next().unwrap()), "999,", 1);
+    std::fs::write(out.join("runs.csv"), format!("{text}{garbage}\n")).unwrap();
+    assert_clean_failure(&sweep("--resume"), &format!("runs.csv:{}: `999` is not a run of this experiment (its runs are 0 to 3)", lines.len() + 1));
+    let other = lines[2].replacen(",ok,", ",okay,", 1);
+    std::fs::write(out.join("runs.csv"), format!("{text}{other}\n")).unwrap();
+    assert_clean_failure(&sweep("--resume"), "runs.csv: run 1 is twice, with different cells (lines 3 and 6)");
+    // The same row twice, and a torn last line (run 3's, cut off).
+    let partial = &lines[4][..lines[4].len() / 2];
+    let kept: Vec<&str> = lines[..4].to_vec();
+    std::fs::write(out.join("runs.csv"), format!("{}\n{}\n{partial}", kept.join("\n"), lines[2])).unwrap();
+    let o = sweep("--resume");
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stderr(&o).contains("runs.csv: run 1 is twice (lines 3 and 5), the same both times; kept once"), "{}", stderr(&o));
+    assert!(stderr(&o).contains("runs.csv:6: the last line was cut off mid-write (no newline); that run runs again"), "{}", stderr(&o));
+    assert!(stderr(&o).contains("4 of 4 runs"), "{}", stderr(&o));
+    assert_eq!(row_count(&out), 4);
+}

@@ -234,6 +234,9 @@ pub enum SweepCommand {
         /// Run here the runs no shard holds, instead of refusing
         #[arg(long, requires = "experiment")]
         resume: bool,
+        /// Move a record already in the output folder aside (runs.csv.N) instead of refusing
+        #[arg(long)]
+        fresh: bool,
         /// Remove the output folder's lock whoever holds it (only when the sweep it names is known to be gone)
         #[arg(long)]
         break_lock: bool,
@@ -489,9 +492,9 @@ fn resume_command() -> String {
 fn run_sweep(args: SweepArgs) -> Result<()> {
     use crate::experiment::{spec::Experiment, sweep};
     match args.merge {
-        Some(SweepCommand::Merge { dirs, out, experiment, quick, resume, break_lock }) => {
+        Some(SweepCommand::Merge { dirs, out, experiment, quick, resume, fresh, break_lock }) => {
             let e = experiment.map(|p| Experiment::load(&p, quick)).transpose()?;
-            eprintln!("{}", sweep::merge(&dirs, &out, e.as_ref(), resume, break_lock)?);
+            eprintln!("{}", sweep::merge(&dirs, &out, e.as_ref(), &sweep::MergeOptions { resume, fresh, break_lock })?);
             return Ok(());
         }
         Some(SweepCommand::Plan(p)) => {

@@ -258,7 +258,7 @@ fn keep_or_move(e: &Experiment, dir: &Path, header: &[String], how: OnRecord) ->
             OnRecord::Fresh | OnRecord::ResumeOrFresh => move_it(&format!("{} holds {n} rows with other columns", csv.display())),
             _ => bail!("{}", fresh_hint(&format!("{n} rows with other columns than this experiment's (another experiment, or another version of refract)"))),
         },
-        Found::Rows { rows, fingerprints } => {
+        Found::Rows { rows, fingerprints, torn } => {
             let ours = fingerprints.len() == 1 && fingerprints.contains_key(&e.fingerprint);
             match how {
                 OnRecord::Fresh => move_it(&format!("{} held {}", csv.display(), describe(&fingerprints))),
@@ -270,13 +270,18 @@ fn keep_or_move(e: &Experiment, dir: &Path, header: &[String], how: OnRecord) ->
                     bail!("{}", fresh_hint(&format!("{}, not of {} ({version})", describe(&fingerprints), e.fingerprint)))
                 }
                 OnRecord::Resume | OnRecord::ResumeOrFresh => {
-                    let all = expand(e).len();
-                    let mut seen = HashSet::new();
-                    Ok(rows.into_iter().filter(|r| r[0].parse::<usize>().is_ok_and(|id| id < all && seen.insert(id))).collect())
+                    let (kept, notes) = super::record::check_rows(&csv, rows, expand(e).len())?;
+                    for n in notes {
+                        eprintln!("note: {n}");
+                    }
+                    if let Some(line) = torn {
+                        eprintln!("note: {}:{line}: the last line was cut off mid-write (no newline); that run runs again", csv.display());
+                    }
+                    Ok(kept)
                 }
                 OnRecord::Refuse => {
                     let total = expand(e).len();
-                    let have = rows.iter().filter_map(|r| r[0].parse::<usize>().ok()).filter(|&id| id < total).collect::<HashSet<_>>().len();
+                    let have = rows.iter().filter_map(|(_, r)| r[0].parse::<usize>().ok()).filter(|&id| id < total).collect::<HashSet<_>>().len();
                     bail!(
                         "{}: already holds {have} of the {total} runs of this experiment; run again with --resume to run only the missing ones, or with --fresh to move the record aside (to runs.csv.N) and run them all",
                         csv.display()
@@ -482,15 +487,35 @@ fn load_frame(path: &Path) -> Option<Frame> {
 /// that two shards both hold, and, with `experiment` given, runs that no
 /// shard holds (naming them, and how to run them) unless `resume`, which
 /// runs them here.
-pub fn merge(dirs: &[PathBuf], out: &Path, experiment: Option<&Experiment>, resume: bool, break_lock: bool) -> Result<String> {
+pub fn merge(dirs: &[PathBuf], out: &Path, experiment: Option<&Experiment>, o: &MergeOptions) -> Result<String> {
     let mut header: Option<Vec<String>> = None;
+    // Each row with its shard and its line there.
     let mut rows: Vec<(Vec<String>, usize)> = Vec::new();
+    let mut lines: Vec<u64> = Vec::new();
     for (k, d) in dirs.iter().enumerate() {
         if dirs[..k].contains(d) {
             bail!("{} is given twice", d.display());
         }
+        // A shard still being written is not merged.
+        if let Some(holder) = FolderLock::holder(d) {
+            bail!(
+                "{}: this shard is still being written (its lock is held by {holder}); merge when it has finished, or if that sweep is gone, delete {}",
+                d.display(),
+                d.join(".lock").display()
+            );
+        }
         let p = d.join("runs.csv");
         let text = crate::data::read_input_text(&p).with_context(|| format!("cannot read {}", p.display()))?;
+        // A last line without its newline was cut off mid-write: its last
+        // cell may be a shorter, wrong number (0.757080 read as 0.757).
+        if !text.is_empty() && !text.ends_with('\n') {
+            bail!(
+                "{}:{}: the last line does not end in a newline (the shard was cut off while writing it); finish the shard with `refract sweep FILE --resume --shard I/N --out {}` first",
+                p.display(),
+                text.matches('\n').count() + 1,
+                d.display()
+            );
+        }
         let mut r = csv::Reader::from_reader(text.as_bytes());
         let h: Vec<String> = r.headers().with_context(|| format!("{}: unreadable header", p.display()))?.iter().map(str::to_string).collect();
         if h.first().map(String::as_str) != Some("run_id") {
@@ -515,6 +540,7 @@ pub fn merge(dirs: &[PathBuf], out: &Path, experiment: Option<&Experiment>, resu
                 bail!("{}:{}: `{}` is not a run id", p.display(), x.position().map_or(0, |at| at.line()), &x[0]);
             }
             rows.push((x.iter().map(str::to_string).collect(), k));
+            lines.push(x.position().map_or(0, |at| at.line()));
         }
     }
     let header = header.ok_or_else(|| anyhow::anyhow!("no folders to merge"))?;
@@ -533,16 +559,22 @@ pub fn merge(dirs: &[PathBuf], out: &Path, experiment: Option<&Experiment>, resu
             );
         }
     }
-    rows.sort_by_key(|(r, _)| r[0].parse::<usize>().unwrap_or(usize::MAX));
-    if let Some(w) = rows.windows(2).find(|w| w[0].0[0] == w[1].0[0]) {
-        bail!("run {} is in both {} and {}; each run belongs to one shard", w[0].0[0], dirs[w[0].1].display(), dirs[w[1].1].display());
+    let mut order: Vec<usize> = (0..rows.len()).collect();
+    order.sort_by_key(|&i| (rows[i].0[0].parse::<usize>().unwrap_or(usize::MAX), i));
+    if let Some(w) = order.windows(2).find(|w| rows[w[0]].0[0] == rows[w[1]].0[0]) {
+        let ((a, ka), (b, kb)) = (&rows[w[0]], &rows[w[1]]);
+        if ka == kb {
+            bail!("{}: run {} is twice (lines {} and {}); each run is one row", dirs[*ka].join("runs.csv").display(), a[0], lines[w[0]], lines[w[1]]);
+        }
+        bail!("run {} is in both {} and {}; each run belongs to one shard", b[0], dirs[*ka].display(), dirs[*kb].display());
     }
+    let rows: Vec<(Vec<String>, usize)> = order.into_iter().map(|i| rows[i].clone()).collect();
     let mut missing = Vec::new();
     if let Some(e) = experiment {
         let have: HashSet<usize> = rows.iter().filter_map(|(r, _)| r[0].parse().ok()).collect();
         let total = expand(e).len();
         missing = (0..total).filter(|id| !have.contains(id)).map(|id| id.to_string()).collect();
-        if !missing.is_empty() && !resume {
+        if !missing.is_empty() && !o.resume {
             bail!(
                 "runs {} are in no shard ({} of {}); run them into a shard's folder with `refract sweep FILE --resume --out DIR`, or merge with --resume to run them here, then merge again",
                 missing.join(", "),
@@ -553,7 +585,24 @@ pub fn merge(dirs: &[PathBuf], out: &Path, experiment: Option<&Experiment>, resu
     }
     crate::image_io::create_folder(out)?;
     {
-        let _lock = take_lock(out, break_lock)?;
+        let _lock = take_lock(out, o.break_lock)?;
+        // A record already in `out` is replaced only by one that holds
+        // every row of it, unchanged; else it is moved aside (--fresh).
+        if let super::record::Found::Rows { rows: old, .. } = super::record::inspect(out, &header)? {
+            let lost = old.iter().find(|(_, r)| !rows.iter().any(|(m, _)| m == r));
+            match lost {
+                None => {}
+                Some(_) if o.fresh => {
+                    let to = super::record::move_aside(out)?;
+                    eprintln!("note: moved the record in {} aside to {}", out.display(), to.display());
+                }
+                Some((line, r)) => bail!(
+                    "{}:{line}: holds run {} as the merge does not (another run, or another version of the experiment); merge into another --out, or with --fresh to move that record aside (to runs.csv.N)",
+                    out.join("runs.csv").display(),
+                    r[0]
+                ),
+            }
+        }
         // The run images and the reference image travel with their rows.
         for (r, k) in &rows {
             let from = dirs[*k].join("images").join(format!("{}.png", r[0]));
@@ -585,6 +634,17 @@ pub fn merge(dirs: &[PathBuf], out: &Path, experiment: Option<&Experiment>, resu
         }
         _ => Ok(merged),
     }
+}
+
+/// How `merge` treats the folder it writes.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct MergeOptions {
+    /// Run here the runs no shard holds.
+    pub resume: bool,
+    /// Move a record in the output folder aside instead of refusing.
+    pub fresh: bool,
+    /// Remove the output folder's lock whoever holds it.
+    pub break_lock: bool,
 }
 
 /// Copies a file to a temporary sibling of `to`, then renames it there.
