@@ -62,7 +62,21 @@ pub fn check_output(path: &Path, allowed: &[ImageFormat]) -> Result<ImageFormat,
     let Some(format) = format else { return Err(format!("`{shown}` does not end in an image extension refract writes here ({})", names())) };
     match path.parent().filter(|d| !d.as_os_str().is_empty()) {
         Some(dir) if !dir.is_dir() => Err(format!("folder {} does not exist", dir.display())),
-        _ => Ok(format),
+        _ => check_writable(path).map(|_| format),
+    }
+}
+
+/// Checks, before any work, that the folder of `path` takes a new file: the
+/// temporary file the output would be written to is made and removed.
+pub fn check_writable(path: &Path) -> Result<(), String> {
+    let tmp = temp_sibling(path);
+    let dir = path.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    match std::fs::OpenOptions::new().write(true).create_new(true).open(&tmp) {
+        Ok(_) => {
+            let _ = std::fs::remove_file(&tmp);
+            Ok(())
+        }
+        Err(e) => Err(format!("cannot write in the folder {}: {e}", dir.display())),
     }
 }
 

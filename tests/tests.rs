@@ -34,6 +34,8 @@ mod float_flags;
 mod sweep;
 // Saved work is never lost: records, reruns, interruptions, locks.
 mod sweep_record;
+// Checks made before any work: output folders, bounds, empty meshes.
+mod prework_checks;
 // Sweeps through GNU parallel and Slurm (ignored unless the engines are there).
 mod scale_out;
 // The figures of the four reports and their gallery; scene files.

@@ -1,0 +1,62 @@
+//! Every check that can be made before the work is made before it: an
+//! output folder that takes no file, coefficients out of range, a mesh
+//! with nothing to render; huge rotations are reduced, not a black image.
+
+use crate::common::*;
+
+#[test]
+fn an_unwritable_output_folder_is_refused_before_the_render() {
+    // /sys takes no new file, even for root (a chmod would not stop root).
+    for (mode, extra) in [("prism", vec!["--photons", "50000000"]), ("interior", vec!["--off", "off/cube.off", "--size", "2000,2000", "--trace", "8"])] {
+        let mut args = vec![mode, "--out", "/sys/refract-test.png"];
+        args.extend(extra);
+        let o = run(&args, "", &repo(""));
+        assert_clean_failure(&o, "--out: cannot write in the folder /sys: ");
+    }
+}
+
+#[test]
+fn coefficients_are_bounded_and_named() {
+    for flag in ["--ka", "--kd", "--ks", "--atten"] {
+        let o = run(&["interior", "--off", "off/cube.off", flag, "1e300", "--out", "/tmp/never.png"], "", &repo(""));
+        assert_clean_failure(&o, &format!("invalid value '1e300' for '{flag} <X>': 1e300 is not between 0 and "));
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("k.toml");
+    std::fs::write(&file, format!("name = \"k\"\nmode = \"interior\"\n[fixed]\noff = \"{}\"\nks = 1e300\n", repo("off/cube.off").display())).unwrap();
+    let o = run(&["sweep", file.to_str().unwrap(), "--out", dir.path().join("o").to_str().unwrap()], "", dir.path());
+    assert_clean_failure(&o, "k.toml:5: `ks`: 1e300 is not between 0 and 1000");
+    assert!(!dir.path().join("o").exists());
+}
+
+#[test]
+fn huge_rotations_are_reduced_not_a_black_image() {
+    let dir = tempfile::tempdir().unwrap();
+    let image = |rot: &str| {
+        let out = dir.path().join(format!("{}.png", rot.replace(',', "_")));
+        let o = run(&["interior", "--off", "off/cube.off", "--size", "24,24", "--rot", rot, "--out", out.to_str().unwrap()], "", &repo(""));
+        assert!(o.status.success(), "{}", stderr(&o));
+        image::open(&out).unwrap().to_rgb8().into_raw()
+    };
+    for rot in ["3.5e38,0,0", "1e300,1e300,1e300"] {
+        assert!(image(rot).iter().any(|&b| b > 0), "--rot {rot}: a black image");
+    }
+    // A whole number of turns more is the same angle.
+    assert_eq!(image("380,30,0"), image("20,30,0"));
+}
+
+#[test]
+fn a_mesh_with_no_faces_is_refused_in_off_as_in_obj() {
+    let dir = tempfile::tempdir().unwrap();
+    let off = dir.path().join("none.off");
+    std::fs::write(&off, "OFF\n3 0 0\n0 0 0\n1 0 0\n0 1 0\n").unwrap();
+    let out = dir.path().join("x.png");
+    let o = run(&["interior", "--off", off.to_str().unwrap(), "--size", "16,16", "--out", out.to_str().unwrap()], "", &repo(""));
+    assert_clean_failure(&o, &format!("{}: no faces to render (0 in the file", off.display()));
+    assert!(!out.exists(), "no black image");
+    let obj = dir.path().join("none.obj");
+    std::fs::write(&obj, "v 0 0 0\nv 1 0 0\nv 0 1 0\n").unwrap();
+    let o = run(&["prism", "--obj", obj.to_str().unwrap(), "--out", out.to_str().unwrap()], "", &repo(""));
+    assert_clean_failure(&o, "no usable faces");
+    assert!(!out.exists());
+}
