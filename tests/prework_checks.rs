@@ -60,3 +60,29 @@ fn a_mesh_with_no_faces_is_refused_in_off_as_in_obj() {
     assert_clean_failure(&o, "no usable faces");
     assert!(!out.exists());
 }
+
+/// Under a process limit (`prlimit --as`) that MemAvailable does not show,
+/// a run that would not fit is refused before any work, naming the limit.
+#[test]
+fn a_run_over_the_process_memory_limit_is_refused_naming_it() {
+    if !std::process::Command::new("prlimit").arg("--version").output().is_ok_and(|o| o.status.success()) {
+        eprintln!("skipped: no prlimit");
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("m.png");
+    let o = std::process::Command::new("prlimit")
+        .args(["--as=3000000000", env!("CARGO_BIN_EXE_refract"), "prism", "--map", "kdtree", "--photons", "250000000", "--out", out.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert_clean_failure(&o, "--photons 250000000 and --size 640x240 would need about ");
+    assert!(stderr(&o).contains("the process's address-space limit (RLIMIT_AS, `ulimit -v`) leaves 2."), "{}", stderr(&o));
+    assert!(!out.exists());
+    let o = std::process::Command::new("prlimit")
+        .args(["--data=200000000", env!("CARGO_BIN_EXE_refract"), "interior", "--off", "off/cube.off", "--size", "8000,8000", "--out", out.to_str().unwrap()])
+        .current_dir(repo(""))
+        .output()
+        .unwrap();
+    assert_clean_failure(&o, "--size 8000x8000 would need about ");
+    assert!(stderr(&o).contains("data-size limit (RLIMIT_DATA, `ulimit -d`) leaves 0.2 GiB"), "{}", stderr(&o));
+}
