@@ -136,13 +136,29 @@ pub fn check_regular(path: &std::path::Path) -> Result<(), String> {
 /// file, and no more than `max_input_bytes`, so a device or a FIFO named
 /// by mistake cannot be read until memory runs out.
 pub fn read_input(path: &std::path::Path) -> std::io::Result<Vec<u8>> {
+    let cap = max_input_bytes();
+    read_capped(path, cap, &format!("larger than the {cap}-byte limit on inputs (set REFRACT_MAX_INPUT_BYTES to raise it)"))
+}
+
+/// The most bytes a scene or experiment file may hold: 1 MiB. They are a
+/// page of TOML; a bigger one is a mistake, and parsing a TOML table
+/// takes several times its size in memory.
+pub const MAX_SETTINGS_BYTES: u64 = 1 << 20;
+
+/// Reads a scene or experiment file (`read_input` with the
+/// `MAX_SETTINGS_BYTES` cap) as UTF-8 text.
+pub fn read_settings_text(path: &std::path::Path) -> std::io::Result<String> {
+    let bytes = read_capped(path, MAX_SETTINGS_BYTES, &format!("larger than the {MAX_SETTINGS_BYTES}-byte limit on scene and experiment files"))?;
+    String::from_utf8(bytes).map_err(|_| std::io::Error::new(std::io::ErrorKind::InvalidData, "not UTF-8 text"))
+}
+
+fn read_capped(path: &std::path::Path, cap: u64, too_big_text: &str) -> std::io::Result<Vec<u8>> {
     use std::io::{Error, ErrorKind, Read};
     let meta = std::fs::metadata(path)?;
     if !meta.is_file() {
         return Err(Error::new(ErrorKind::InvalidInput, "not a regular file (a folder, device or FIFO); refract reads only regular files"));
     }
-    let cap = max_input_bytes();
-    let too_big = || Error::new(ErrorKind::InvalidInput, format!("larger than the {cap}-byte limit on inputs (set REFRACT_MAX_INPUT_BYTES to raise it)"));
+    let too_big = || Error::new(ErrorKind::InvalidInput, too_big_text.to_string());
     if meta.len() > cap {
         return Err(too_big());
     }

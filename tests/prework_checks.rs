@@ -86,3 +86,34 @@ fn a_run_over_the_process_memory_limit_is_refused_naming_it() {
     assert_clean_failure(&o, "--size 8000x8000 would need about ");
     assert!(stderr(&o).contains("data-size limit (RLIMIT_DATA, `ulimit -d`) leaves 0.2 GiB"), "{}", stderr(&o));
 }
+
+/// An experiment file's mistakes are found whatever the flags: in its
+/// [quick] version without --quick, two cases or plots of one name, one
+/// parameter under two names; and a scene or experiment file of more than
+/// 1 MiB is refused before it is parsed.
+#[test]
+fn experiment_files_are_checked_whole() {
+    let dir = tempfile::tempdir().unwrap();
+    let cube = repo("off/cube.off").display().to_string();
+    let file = dir.path().join("e.toml");
+    let head = format!("name = \"e\"\nmode = \"interior\"\n[fixed]\noff = \"{cube}\"\nsize = [8, 8]\n");
+    let refused = |body: &str, needle: &str| {
+        std::fs::write(&file, format!("{head}{body}")).unwrap();
+        let o = run(&["sweep", file.to_str().unwrap(), "--out", dir.path().join("o").to_str().unwrap()], "", dir.path());
+        assert_clean_failure(&o, needle);
+        assert!(!dir.path().join("o").exists(), "{needle}: nothing written");
+    };
+    refused("[quick]\nfixed = { size = [-1, 8] }\n", "width and height must be whole numbers from 1 to 16384 (in the file's [quick] version)");
+    refused("[[case]]\nname = \"a\"\nior = 1.2\n[[case]]\nname = \"a\"\nior = 1.4\n", "e.toml:10: `name`: `a` is also case 1's name; each case needs its own");
+    refused(
+        "[sweep]\ntrace = [0, 1]\n[[outputs.plot]]\nx = \"param_trace\"\ny = \"rays\"\nfile = \"p\"\n[[outputs.plot]]\nx = \"param_trace\"\ny = \"render_s\"\nfile = \"p\"\n",
+        "`file`: `p` is also plot 1's file; each plot needs its own",
+    );
+    refused("light = [0, 0, 0]\nlight_pos = [0.1, 0, 0]\n", "e.toml:7: `light_pos`: names the same parameter as `light` (in [fixed]); use one name");
+    let big = dir.path().join("big.toml");
+    std::fs::write(&big, format!("{head}# {}\n", "x".repeat(1 << 20))).unwrap();
+    for cmd in ["sweep", "render"] {
+        let o = run(&[cmd, big.to_str().unwrap()], "", dir.path());
+        assert_clean_failure(&o, "big.toml: cannot read: larger than the 1048576-byte limit on scene and experiment files");
+    }
+}
