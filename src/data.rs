@@ -55,6 +55,8 @@ fn memory_limits() -> Vec<(u64, String)> {
             // SAFETY: getrlimit writes one rlimit into `lim`.
             if unsafe { libc::getrlimit(res, &mut lim) } == 0 && lim.rlim_cur != libc::RLIM_INFINITY {
                 let used = kb_field(&status, field).unwrap_or(0);
+                // rlim_t is u64 on Linux but not on every unix.
+                #[allow(clippy::unnecessary_cast)]
                 out.push(((lim.rlim_cur as u64).saturating_sub(used), format!("the process's {how} leaves {{}}")));
             }
         }

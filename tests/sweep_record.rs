@@ -118,7 +118,7 @@ fn ctrl_c_then_a_plain_rerun_keeps_every_saved_row_and_the_lock_is_gone() {
     let err = stderr(&o);
     assert_eq!(o.status.code(), Some(130), "{err}");
     let saved = row_count(&out);
-    assert!(saved >= 2 && saved < 20, "{saved} rows");
+    assert!((2..20).contains(&saved), "{saved} rows");
     assert!(err.contains(&format!("stopped by Ctrl-C (SIGINT): {saved} of 20 runs saved in {}", out.join("runs.csv").display())), "{err}");
     assert!(err.contains(&format!("to finish, run: refract sweep {} --out {} --resume", file.display(), out.display())), "{err}");
     assert!(!out.join(".lock").exists(), "the lock is released");
