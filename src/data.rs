@@ -20,17 +20,85 @@ pub fn max_input_bytes() -> u64 {
     std::env::var("REFRACT_MAX_INPUT_BYTES").ok().and_then(|v| v.trim().parse().ok()).unwrap_or(2 << 30)
 }
 
-/// Memory the machine has free for a run, in bytes: Linux's MemAvailable,
-/// or what `REFRACT_AVAILABLE_MEMORY` says (to leave room for others on a
-/// shared machine); `None` where neither can be read, and then nothing is
+/// Memory a run may still take, in bytes, and what limits it (for the
+/// message, `{}` standing for the amount): the smallest of what the environment variable
+/// `REFRACT_AVAILABLE_MEMORY` says (to leave room for others on a shared
+/// machine), Linux's MemAvailable, the process's limits (RLIMIT_AS less
+/// the address space in use, RLIMIT_DATA less the data in use), and the
+/// cgroup's (a container's) `memory.max - memory.current` (cgroup v2) or
+/// `memory.limit_in_bytes - memory.usage_in_bytes` (v1), over the cgroup
+/// and its parents; `None` where none can be read, and then nothing is
 /// checked.
-pub fn available_memory() -> Option<u64> {
+pub fn available_memory() -> Option<(u64, String)> {
+    memory_limits().into_iter().min_by_key(|(b, _)| *b)
+}
+
+fn memory_limits() -> Vec<(u64, String)> {
+    let mut out = Vec::new();
     if let Some(v) = std::env::var("REFRACT_AVAILABLE_MEMORY").ok().and_then(|v| v.trim().parse().ok()) {
-        return Some(v);
+        out.push((v, "REFRACT_AVAILABLE_MEMORY allows {}".to_string()));
     }
-    let text = std::fs::read_to_string("/proc/meminfo").ok()?;
-    let kb: u64 = text.lines().find(|l| l.starts_with("MemAvailable:"))?.split_whitespace().nth(1)?.parse().ok()?;
-    Some(kb * 1024)
+    let read = |p: &str| std::fs::read_to_string(p).ok();
+    let kb_field =
+        |text: &str, key: &str| -> Option<u64> { text.lines().find(|l| l.starts_with(key))?.split_whitespace().nth(1)?.parse::<u64>().ok().map(|k| k * 1024) };
+    if let Some(free) = read("/proc/meminfo").and_then(|t| kb_field(&t, "MemAvailable:")) {
+        out.push((free, "this machine has {} free (MemAvailable)".to_string()));
+    }
+    #[cfg(unix)]
+    {
+        let status = read("/proc/self/status").unwrap_or_default();
+        for (res, field, how) in [
+            (libc::RLIMIT_AS, "VmSize:", "address-space limit (RLIMIT_AS, `ulimit -v`)"),
+            (libc::RLIMIT_DATA, "VmData:", "data-size limit (RLIMIT_DATA, `ulimit -d`)"),
+        ] {
+            let mut lim = libc::rlimit { rlim_cur: 0, rlim_max: 0 };
+            // SAFETY: getrlimit writes one rlimit into `lim`.
+            if unsafe { libc::getrlimit(res, &mut lim) } == 0 && lim.rlim_cur != libc::RLIM_INFINITY {
+                let used = kb_field(&status, field).unwrap_or(0);
+                // rlim_t is u64 on Linux but not on every unix.
+                #[allow(clippy::unnecessary_cast)]
+                out.push(((lim.rlim_cur as u64).saturating_sub(used), format!("the process's {how} leaves {{}}")));
+            }
+        }
+    }
+    if let Some(c) = cgroup_room() {
+        out.push(c);
+    }
+    out
+}
+
+/// The room left in this process's memory cgroup and its parents (the
+/// tightest), if any has a limit.
+fn cgroup_room() -> Option<(u64, String)> {
+    let cgroups = std::fs::read_to_string("/proc/self/cgroup").ok()?;
+    let num = |p: &std::path::Path| std::fs::read_to_string(p).ok().and_then(|t| t.trim().parse::<u64>().ok());
+    let mut best: Option<(u64, String)> = None;
+    for line in cgroups.lines() {
+        let mut f = line.splitn(3, ':');
+        let (Some(_), Some(controllers), Some(path)) = (f.next(), f.next(), f.next()) else { continue };
+        let (root, max, current, what) = if controllers.is_empty() {
+            ("/sys/fs/cgroup", "memory.max", "memory.current", "memory.max - memory.current")
+        } else if controllers.split(',').any(|c| c == "memory") {
+            ("/sys/fs/cgroup/memory", "memory.limit_in_bytes", "memory.usage_in_bytes", "memory.limit_in_bytes - memory.usage_in_bytes")
+        } else {
+            continue;
+        };
+        // From the cgroup up to the root (inside a container the cgroup's
+        // own folder is often the mount's root).
+        let mut dir = std::path::PathBuf::from(root).join(path.trim_start_matches('/'));
+        loop {
+            if let (Some(m), Some(c)) = (num(&dir.join(max)), num(&dir.join(current))) {
+                // Values near 2^63 mean "no limit".
+                if m < 1 << 60 && best.as_ref().is_none_or(|b| m.saturating_sub(c) < b.0) {
+                    best = Some((m.saturating_sub(c), format!("the cgroup's limit ({what} in {}) leaves {{}}", dir.display())));
+                }
+            }
+            if dir.as_os_str().len() <= root.len() || !dir.pop() {
+                break;
+            }
+        }
+    }
+    best
 }
 
 /// Refuses, before any work, a run whose estimated `need` (bytes) is more
@@ -40,11 +108,17 @@ pub fn check_memory(need: u64, what: &str) -> Result<(), String> {
     check_memory_against(need, available_memory(), what)
 }
 
-fn check_memory_against(need: u64, free: Option<u64>, what: &str) -> Result<(), String> {
+fn check_memory_against(need: u64, free: Option<(u64, String)>, what: &str) -> Result<(), String> {
     match free {
-        Some(free) if need > free => {
-            let gb = |b: u64| b as f64 / (1u64 << 30) as f64;
-            Err(format!("{what} would need about {:.1} GiB of memory; this machine has {:.1} GiB free", gb(need), gb(free)))
+        Some((free, limit)) if need > free => {
+            let size = |b: u64| {
+                if b >= 100 << 20 {
+                    format!("{:.1} GiB", b as f64 / (1u64 << 30) as f64)
+                } else {
+                    format!("{:.1} MiB", b as f64 / (1u64 << 20) as f64)
+                }
+            };
+            Err(format!("{what} would need about {} of memory; {}", size(need), limit.replace("{}", &size(free))))
         }
         _ => Ok(()),
     }
@@ -64,13 +138,29 @@ pub fn check_regular(path: &std::path::Path) -> Result<(), String> {
 /// file, and no more than `max_input_bytes`, so a device or a FIFO named
 /// by mistake cannot be read until memory runs out.
 pub fn read_input(path: &std::path::Path) -> std::io::Result<Vec<u8>> {
+    let cap = max_input_bytes();
+    read_capped(path, cap, &format!("larger than the {cap}-byte limit on inputs (set REFRACT_MAX_INPUT_BYTES to raise it)"))
+}
+
+/// The most bytes a scene or experiment file may hold: 1 MiB. They are a
+/// page of TOML; a bigger one is a mistake, and parsing a TOML table
+/// takes several times its size in memory.
+pub const MAX_SETTINGS_BYTES: u64 = 1 << 20;
+
+/// Reads a scene or experiment file (`read_input` with the
+/// `MAX_SETTINGS_BYTES` cap) as UTF-8 text.
+pub fn read_settings_text(path: &std::path::Path) -> std::io::Result<String> {
+    let bytes = read_capped(path, MAX_SETTINGS_BYTES, &format!("larger than the {MAX_SETTINGS_BYTES}-byte limit on scene and experiment files"))?;
+    String::from_utf8(bytes).map_err(|_| std::io::Error::new(std::io::ErrorKind::InvalidData, "not UTF-8 text"))
+}
+
+fn read_capped(path: &std::path::Path, cap: u64, too_big_text: &str) -> std::io::Result<Vec<u8>> {
     use std::io::{Error, ErrorKind, Read};
     let meta = std::fs::metadata(path)?;
     if !meta.is_file() {
         return Err(Error::new(ErrorKind::InvalidInput, "not a regular file (a folder, device or FIFO); refract reads only regular files"));
     }
-    let cap = max_input_bytes();
-    let too_big = || Error::new(ErrorKind::InvalidInput, format!("larger than the {cap}-byte limit on inputs (set REFRACT_MAX_INPUT_BYTES to raise it)"));
+    let too_big = || Error::new(ErrorKind::InvalidInput, too_big_text.to_string());
     if meta.len() > cap {
         return Err(too_big());
     }
@@ -138,11 +228,20 @@ mod memory_tests {
 
     #[test]
     fn a_run_bigger_than_free_memory_is_refused_by_name() {
+        let free = |b: u64| Some((b, "this machine has {} free (MemAvailable)".to_string()));
         assert_eq!(
-            check_memory_against(40 << 30, Some(20 << 30), "--photons 2000000000"),
-            Err("--photons 2000000000 would need about 40.0 GiB of memory; this machine has 20.0 GiB free".into())
+            check_memory_against(40 << 30, free(20 << 30), "--photons 2000000000"),
+            Err("--photons 2000000000 would need about 40.0 GiB of memory; this machine has 20.0 GiB free (MemAvailable)".into())
         );
-        assert!(check_memory_against(1 << 30, Some(20 << 30), "x").is_ok());
+        assert!(check_memory_against(1 << 30, free(20 << 30), "x").is_ok());
         assert!(check_memory_against(u64::MAX, None, "x").is_ok());
+    }
+
+    #[test]
+    fn the_tightest_limit_is_the_one_named() {
+        let all = memory_limits();
+        let (least, name) = available_memory().unwrap();
+        assert!(all.iter().all(|(b, _)| *b >= least) && all.iter().any(|(b, n)| *b == least && *n == name), "{all:?}");
+        assert!(all.iter().any(|(_, n)| n.contains("MemAvailable")), "{all:?}");
     }
 }

@@ -62,7 +62,21 @@ pub fn check_output(path: &Path, allowed: &[ImageFormat]) -> Result<ImageFormat,
     let Some(format) = format else { return Err(format!("`{shown}` does not end in an image extension refract writes here ({})", names())) };
     match path.parent().filter(|d| !d.as_os_str().is_empty()) {
         Some(dir) if !dir.is_dir() => Err(format!("folder {} does not exist", dir.display())),
-        _ => Ok(format),
+        _ => check_writable(path).map(|_| format),
+    }
+}
+
+/// Checks, before any work, that the folder of `path` takes a new file: the
+/// temporary file the output would be written to is made and removed.
+pub fn check_writable(path: &Path) -> Result<(), String> {
+    let tmp = temp_sibling(path);
+    let dir = path.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    match std::fs::OpenOptions::new().write(true).create_new(true).open(&tmp) {
+        Ok(_) => {
+            let _ = std::fs::remove_file(&tmp);
+            Ok(())
+        }
+        Err(e) => Err(format!("cannot write in the folder {}: {e}", dir.display())),
     }
 }
 
@@ -122,19 +136,33 @@ pub fn atomic_write(path: &Path, fill: impl FnOnce(&mut std::io::BufWriter<std::
     result.with_context(|| format!("writing {}", path.display()))
 }
 
-/// Removes the temporary files (`.NAME.PID.tmp`) that a refract killed
-/// while writing left in `dir`: those whose process is gone. Returns how
-/// many went. Errors (a folder that cannot be read) are ignored: this is
+/// Removes the temporary files (`.NAME.TOKEN.tmp`, `TOKEN` naming the
+/// refract that wrote it: `owner::Owner::token`) that a refract killed
+/// while writing left in `dir`: only those whose owner is provably gone
+/// (`Owner::gone`). Other programs' files, and files of a refract this
+/// process cannot see (another host or container), stay. Returns how many
+/// went. Errors (a folder that cannot be read) are ignored: this is
 /// tidying, not work.
 pub fn remove_stale_temps(dir: &Path) -> usize {
+    let me = crate::owner::Owner::me();
+    remove_temps(dir, |token| crate::owner::Owner::token_gone(token, &me))
+}
+
+/// Removes this process's own temporary files in `dir` (a write cut short
+/// by an interruption).
+pub fn remove_own_temps(dir: &Path) -> usize {
+    let mine = crate::owner::Owner::me().token();
+    remove_temps(dir, |token| token == mine)
+}
+
+fn remove_temps(dir: &Path, remove: impl Fn(&str) -> bool) -> usize {
     let Ok(entries) = std::fs::read_dir(if dir.as_os_str().is_empty() { Path::new(".") } else { dir }) else { return 0 };
     let mut removed = 0;
     for e in entries.flatten() {
         let name = e.file_name().to_string_lossy().into_owned();
         let Some(stem) = name.strip_prefix('.').and_then(|n| n.strip_suffix(".tmp")) else { continue };
-        let Some(pid) = stem.rsplit_once('.').and_then(|(_, p)| p.parse::<u32>().ok()) else { continue };
-        let alive = pid == std::process::id() || Path::new(&format!("/proc/{pid}")).exists();
-        if !alive && e.file_type().is_ok_and(|t| t.is_file()) && std::fs::remove_file(e.path()).is_ok() {
+        let Some((_, token)) = stem.rsplit_once('.') else { continue };
+        if remove(token) && e.file_type().is_ok_and(|t| t.is_file()) && std::fs::remove_file(e.path()).is_ok() {
             removed += 1;
         }
     }
@@ -143,7 +171,7 @@ pub fn remove_stale_temps(dir: &Path) -> usize {
 
 fn temp_sibling(path: &Path) -> PathBuf {
     let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
-    path.with_file_name(format!(".{name}.{}.tmp", std::process::id()))
+    path.with_file_name(format!(".{name}.{}.tmp", crate::owner::Owner::me().token()))
 }
 
 /// Reads a P6 PPM (used by tests and to compare runs).

@@ -5,7 +5,8 @@
 //! each, and `tests/layers.rs` checks the order):
 //! - leaves: `data` (embedded reference tables), `names` (user-facing
 //!   names of enums), `progress` (the progress trait), `sampling` (random
-//!   streams, radical inverses), `color`, `timing` (timing rows) and
+//!   streams, radical inverses), `color`, `timing` (timing rows), `owner` (who
+//!   wrote a lock or a temporary file, and whether it is provably gone) and
 //!   `image_io` (images and files a run writes);
 //! - physics: `spectrum` (light spectra, wavelength sampling, CIE colour,
 //!   the reports' colour maps), `optics` (Snell, Fresnel, glasses, IOR
@@ -37,6 +38,7 @@ pub mod mesh;
 pub mod modes;
 pub mod names;
 pub mod optics;
+pub mod owner;
 pub mod params;
 pub mod photon;
 pub mod progress;

@@ -7,13 +7,14 @@
 use crate::common::repo;
 
 /// From the bottom up, as docs/architecture.md lists them.
-const LAYERS: [&str; 22] = [
+const LAYERS: [&str; 23] = [
     "data",
     "names",
     "progress",
     "sampling",
     "color",
     "timing",
+    "owner",
     "image_io",
     "spectrum",
     "optics",

@@ -123,6 +123,9 @@ fn shards_merged_equal_the_unsharded_run() {
     let cut = &text[..text.trim_end().rfind(',').unwrap()];
     std::fs::write(Path::new(&d("copy0")).join("runs.csv"), cut).unwrap();
     let o = sweep(&["merge", &d("shard0"), &d("copy0"), "--out", &d("twice")], &repo(""));
+    assert_clean_failure(&o, &format!("{}/runs.csv:{}: the last line does not end in a newline", d("copy0"), text.trim_end().lines().count()));
+    std::fs::write(Path::new(&d("copy0")).join("runs.csv"), format!("{cut}\n")).unwrap();
+    let o = sweep(&["merge", &d("shard0"), &d("copy0"), "--out", &d("twice")], &repo(""));
     assert_clean_failure(&o, &format!("{}/runs.csv:{}: not a whole run", d("copy0"), text.trim_end().lines().count()));
     std::fs::write(Path::new(&d("copy0")).join("runs.csv"), "x,y\n1,2\n").unwrap();
     let o = sweep(&["merge", &d("shard0"), &d("copy0"), "--out", &d("twice")], &repo(""));
@@ -164,7 +167,13 @@ fn failing_runs_are_rows_and_bad_files_name_the_line() {
         .replace("OFF_BAD", &bad.display().to_string());
     std::fs::write(&file, &text).unwrap();
     let o = sweep(&[file.to_str().unwrap(), "--out", dir.path().join("o").to_str().unwrap()], &repo(""));
-    assert!(o.status.success(), "{}", stderr(&o));
+    // Every row is saved; the status and the first error say one failed.
+    assert_clean_failure(&o, "e: 3 of 3 runs in ");
+    assert!(
+        stderr(&o).contains("(1 failed); the first failed run, 1 (malformed mesh): ") && stderr(&o).contains("bad.off:1: expected the keyword OFF"),
+        "{}",
+        stderr(&o)
+    );
     let (h, r) = rows(&dir.path().join("o"));
     let col = |n: &str| h.iter().position(|c| c == n).unwrap();
     assert_eq!(r.len(), 3);
@@ -212,7 +221,9 @@ fn shipped_experiments_parse_and_stability_records_failures_as_rows() {
     assert_clean_failure(&o, "big.toml:5: `sweep`: the experiment has 2020101 runs (cases x sweep values x repeats); at most 100000");
     let dir = tempfile::tempdir().unwrap();
     let o = sweep(&[repo("experiments/stability.toml").to_str().unwrap(), "--quick", "--out", dir.path().to_str().unwrap()], &repo(""));
-    assert!(o.status.success(), "{}", stderr(&o));
+    // Its runs fail on purpose: each a row, and the status says so.
+    assert_clean_failure(&o, "stability: ");
+    assert!(stderr(&o).contains("failed); the first failed run, "), "{}", stderr(&o));
     let (h, r) = rows(dir.path());
     let col = |n: &str| h.iter().position(|c| c == n).unwrap();
     let tir = r.iter().find(|x| x[col("case")].contains("totally reflected")).unwrap();
@@ -254,80 +265,30 @@ fn render_and_sweep_make_the_same_image() {
     }
 }
 
-/// A second sweep into a folder another sweep is writing stops with the
-/// holder's pid; a lock left by a process that is gone is taken over; and
-/// `--resume` drops rows that are not this experiment's runs.
+/// `--resume` goes on only from rows of this version of the experiment
+/// file: after an edit it refuses, and `--fresh` moves the old record
+/// aside and runs every run again.
 #[test]
-fn sweeps_lock_their_folder_and_resume_drops_garbage() {
-    let dir = tempfile::tempdir().unwrap();
-    let out = dir.path().join("out");
-    std::fs::create_dir_all(&out).unwrap();
-    let me = std::process::id();
-    std::fs::write(out.join(".lock"), me.to_string()).unwrap();
-    let o = sweep(&[&tiny(), "--quick", "--out", out.to_str().unwrap()], &repo(""));
-    assert_clean_failure(&o, &format!("another sweep (pid {me}) is writing this folder"));
-    std::fs::write(out.join(".lock"), "4000000000").unwrap();
-    let o = sweep(&[&tiny(), "--quick", "--out", out.to_str().unwrap()], &repo(""));
-    assert!(o.status.success(), "a stale lock is taken over: {}", stderr(&o));
-    assert!(!out.join(".lock").exists(), "the lock is removed at the end");
-    // A garbage row with a valid width, and a duplicate of run 0.
-    let text = std::fs::read_to_string(out.join("runs.csv")).unwrap();
-    let mut lines: Vec<String> = text.lines().map(str::to_string).collect();
-    let width = lines[0].split(',').count();
-    lines.push(vec!["999"; width].join(","));
-    lines.push(lines[1].clone());
-    std::fs::write(out.join("runs.csv"), lines.join("\n") + "\n").unwrap();
-    let o = sweep(&[&tiny(), "--quick", "--resume", "--out", out.to_str().unwrap()], &repo(""));
-    assert!(o.status.success(), "{}", stderr(&o));
-    let (_, r) = rows(&out);
-    assert_eq!(r.len(), 4, "only the experiment's 4 quick runs remain");
-    assert!(stderr(&o).contains("4 of 4 runs"), "{}", stderr(&o));
-}
-
-/// `--resume` keeps only rows of this version of the experiment file: after
-/// an edit, every run is run again.
-#[test]
-fn resume_reruns_what_an_edited_experiment_file_made() {
+fn resume_refuses_what_an_edited_experiment_file_made() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("o");
     assert!(sweep(&[&tiny(), "--out", out.to_str().unwrap()], &repo("")).status.success());
     let (h, r) = rows(&out);
     let c = h.iter().position(|x| x == "experiment").unwrap();
     let before = r[0][c].clone();
+    let old = std::fs::read(out.join("runs.csv")).unwrap();
     let edited = dir.path().join("tiny.toml");
     std::fs::write(&edited, std::fs::read_to_string(tiny()).unwrap() + "\n# edited\n").unwrap();
     let o = sweep(&[edited.to_str().unwrap(), "--out", out.to_str().unwrap(), "--resume"], &repo(""));
+    assert_clean_failure(&o, &format!("{}/runs.csv: holds 6 runs (6 of experiment {before}), not of tiny@", out.display()));
+    assert_eq!(std::fs::read(out.join("runs.csv")).unwrap(), old);
+    let o = sweep(&[edited.to_str().unwrap(), "--out", out.to_str().unwrap(), "--fresh"], &repo(""));
     assert!(o.status.success(), "{}", stderr(&o));
     let (_, r) = rows(&out);
     let fingerprints: std::collections::BTreeSet<&str> = r.iter().map(|r| r[c].as_str()).collect();
     assert_eq!((r.len(), fingerprints.len()), (6, 1), "{fingerprints:?}");
     assert!(!fingerprints.contains(before.as_str()), "every row is of the edited file: {fingerprints:?}");
-}
-
-/// Temporary files a killed run left (`.NAME.PID.tmp`, its process gone)
-/// are removed by the next run into the folder; a live process's are kept.
-#[test]
-fn the_next_run_removes_stale_temporary_files() {
-    let dir = tempfile::tempdir().unwrap();
-    let out = dir.path().join("out");
-    std::fs::create_dir_all(out.join("images")).unwrap();
-    let stale = [out.join(".runs.csv.999999999.tmp"), out.join("images").join(".3.png.999999998.tmp")];
-    let live = out.join(format!(".runs.csv.{}.tmp", std::process::id()));
-    for p in stale.iter().chain([&live]) {
-        std::fs::write(p, b"partial").unwrap();
-    }
-    let o = sweep(&[&tiny(), "--out", out.to_str().unwrap()], &repo(""));
-    assert!(o.status.success(), "{}", stderr(&o));
-    for p in &stale {
-        assert!(!p.exists(), "{} left", p.display());
-    }
-    assert!(live.exists(), "a live process's temporary file must stay");
-    // A single render does the same beside its output.
-    let img = dir.path().join(".one.png.999999997.tmp");
-    std::fs::write(&img, b"partial").unwrap();
-    let o = run(&["interior", "--off", "off/cube.off", "--size", "16,16", "--out", dir.path().join("one.png").to_str().unwrap()], "", &repo(""));
-    assert!(o.status.success(), "{}", stderr(&o));
-    assert!(!img.exists());
+    assert_eq!(std::fs::read(out.join("runs.csv.1")).unwrap(), old, "the old record is kept aside");
 }
 
 /// A plan has no shard without work: asked for more shards than the grid

@@ -32,6 +32,10 @@ mod exact_reference;
 mod float_flags;
 // The experiment runner: rows, plots, resume, shards, failures as rows.
 mod sweep;
+// Saved work is never lost: records, reruns, interruptions, locks.
+mod sweep_record;
+// Checks made before any work: output folders, bounds, empty meshes.
+mod prework_checks;
 // Sweeps through GNU parallel and Slurm (ignored unless the engines are there).
 mod scale_out;
 // The figures of the four reports and their gallery; scene files.

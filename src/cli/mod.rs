@@ -193,14 +193,20 @@ pub struct SweepArgs {
     #[arg(long)]
     pub quick: bool,
     /// Keep the rows already in runs.csv and run only the missing ones
-    #[arg(long)]
+    #[arg(long, conflicts_with = "fresh")]
     pub resume: bool,
+    /// Start anew: move the folder's record aside (runs.csv.N, images.N, reference.png.N) first
+    #[arg(long)]
+    pub fresh: bool,
     /// Runs at once (each then gets its share of the cores; timings are fairest with 1)
     #[arg(long, default_value_t = 1)]
     pub jobs: usize,
-    /// Output folder [default: results/NAME]
+    /// Output folder [default: results/NAME, or results/quick/NAME with --quick so the committed record stays]
     #[arg(long)]
     pub out: Option<PathBuf>,
+    /// Remove the output folder's lock whoever holds it (only when the sweep it names is known to be gone, e.g. on another host)
+    #[arg(long)]
+    pub break_lock: bool,
     /// Only runs whose id modulo N is I (0 <= I < N), for job arrays; join with `sweep merge`
     #[arg(long, value_name = "I/N", value_parser = parse_shard)]
     pub shard: Option<(usize, usize)>,
@@ -228,6 +234,12 @@ pub enum SweepCommand {
         /// Run here the runs no shard holds, instead of refusing
         #[arg(long, requires = "experiment")]
         resume: bool,
+        /// Move a record already in the output folder aside (runs.csv.N) instead of refusing
+        #[arg(long)]
+        fresh: bool,
+        /// Remove the output folder's lock whoever holds it (only when the sweep it names is known to be gone)
+        #[arg(long)]
+        break_lock: bool,
     },
     /// Write a script that runs the sweep's shards on GNU parallel or as a
     /// Slurm job array, then merges them into the folder an unsharded
@@ -245,7 +257,7 @@ pub struct PlanArgs {
     /// Number of shards (balanced by estimated cost; each holds whole chains along the first sweep axis, so at most as many shards as chains) [default: 4, or the chains if fewer]
     #[arg(long)]
     pub shards: Option<usize>,
-    /// Folder for the plan, the shards (in shards/I) and the merged results [default: results/NAME]
+    /// Folder for the plan, the shards (in shards/I) and the merged results [default: results/NAME, or results/quick/NAME with --quick]
     #[arg(long)]
     pub out: Option<PathBuf>,
     /// The file's [quick] settings
@@ -461,12 +473,28 @@ fn run_prism(args: PrismArgs) -> Result<()> {
     modes::prism::run_to_files(&cfg, args.timing_csv.as_deref(), &crate::terminal::Bars::new(), &mut |line| eprintln!("{line}"))
 }
 
+/// This command line as it would go on from where it stops: `--fresh`
+/// dropped, `--resume` added, each word quoted for a POSIX shell if needed.
+fn resume_command() -> String {
+    let mut words: Vec<String> = vec!["refract".into()];
+    words.extend(std::env::args().skip(1).filter(|a| a != "--fresh" && a != "--resume" && a != "--break-lock"));
+    words.push("--resume".into());
+    let quote = |w: &String| {
+        if !w.is_empty() && w.chars().all(|c| c.is_ascii_alphanumeric() || "-_./=:,@%+".contains(c)) {
+            w.clone()
+        } else {
+            format!("'{}'", w.replace('\'', "'\\''"))
+        }
+    };
+    words.iter().map(quote).collect::<Vec<_>>().join(" ")
+}
+
 fn run_sweep(args: SweepArgs) -> Result<()> {
     use crate::experiment::{spec::Experiment, sweep};
     match args.merge {
-        Some(SweepCommand::Merge { dirs, out, experiment, quick, resume }) => {
+        Some(SweepCommand::Merge { dirs, out, experiment, quick, resume, fresh, break_lock }) => {
             let e = experiment.map(|p| Experiment::load(&p, quick)).transpose()?;
-            eprintln!("{}", sweep::merge(&dirs, &out, e.as_ref(), resume)?);
+            eprintln!("{}", sweep::merge(&dirs, &out, e.as_ref(), &sweep::MergeOptions { resume, fresh, break_lock })?);
             return Ok(());
         }
         Some(SweepCommand::Plan(p)) => {
@@ -494,8 +522,27 @@ fn run_sweep(args: SweepArgs) -> Result<()> {
     if args.jobs == 0 || args.jobs > 256 {
         bail!("--jobs: {} is not between 1 and 256", args.jobs);
     }
-    let opts = sweep::SweepOptions { resume: args.resume, jobs: args.jobs, out: args.out, shard: args.shard, max_runs: args.max_runs };
-    let (_, summary) = sweep::run(&e, &opts)?;
-    eprintln!("{summary}");
-    Ok(())
+    let on_record = match (args.resume, args.fresh) {
+        (true, _) => sweep::OnRecord::Resume,
+        (_, true) => sweep::OnRecord::Fresh,
+        _ => sweep::OnRecord::Refuse,
+    };
+    let opts = sweep::SweepOptions {
+        on_record,
+        jobs: args.jobs,
+        out: args.out,
+        shard: args.shard,
+        max_runs: args.max_runs,
+        break_lock: args.break_lock,
+        again: resume_command(),
+    };
+    let o = sweep::run(&e, &opts)?;
+    match o.failure {
+        // Every row is saved; the status says not all went well.
+        Some(why) => bail!("{}; {why}", o.summary),
+        None => {
+            eprintln!("{}", o.summary);
+            Ok(())
+        }
+    }
 }

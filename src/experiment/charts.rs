@@ -10,12 +10,24 @@ use anyhow::{anyhow, Result};
 use plotters::prelude::*;
 use std::path::Path;
 
-pub fn draw_all(e: &Experiment, dir: &Path, header: &[String], rows: &[Vec<String>]) -> Result<()> {
+/// Draws the experiment's plots; returns the files of line plots left
+/// undrawn because no run has a value to draw (an empty plot would read as
+/// a measurement), with the column that had none. An older drawing of
+/// such a plot is removed.
+pub fn draw_all(e: &Experiment, dir: &Path, header: &[String], rows: &[Vec<String>]) -> Result<Vec<(String, String)>> {
+    let mut undrawn = Vec::new();
     for p in &e.plots {
         match p.kind {
             PlotKind::Table => status_table(p, dir, header, rows)?,
             PlotKind::Line => {
                 let mut chart = line_chart(p, header, rows)?;
+                if chart.series.is_empty() {
+                    for ext in ["png", "svg"] {
+                        let _ = std::fs::remove_file(dir.join(format!("{}.{ext}", p.file)));
+                    }
+                    undrawn.push((p.file.clone(), p.y.clone()));
+                    continue;
+                }
                 chart.subtitle = fixed_text(e);
                 let timed = |c: &str| c.ends_with("_s") || c.ends_with("per_s");
                 if e.quick && (timed(&p.x) || timed(&p.y)) {
@@ -26,7 +38,7 @@ pub fn draw_all(e: &Experiment, dir: &Path, header: &[String], rows: &[Vec<Strin
             }
         }
     }
-    Ok(())
+    Ok(undrawn)
 }
 
 /// What the experiment held fixed, for the subtitle: the fixed parameters

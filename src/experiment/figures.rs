@@ -182,6 +182,11 @@ pub fn run(o: &FigureOptions) -> Result<Outcome> {
     crate::image_io::create_folder(&o.out).context("--out")?;
     let dir = o.out.join("figures");
     crate::image_io::create_folder(&dir)?;
+    // What a figures run killed while writing left behind (the sweeps'
+    // folders are tidied by the sweeps).
+    for d in [o.out.clone(), dir.clone(), o.out.join("display"), o.out.join("spectral"), o.out.join("timings")] {
+        crate::image_io::remove_stale_temps(&d);
+    }
     let mut records = read_records(&o.out);
     let bar = crate::terminal::counter(todo.len() as u64, "figures", "");
     let mut failed = Vec::new();
@@ -214,17 +219,13 @@ pub fn run(o: &FigureOptions) -> Result<Outcome> {
         // Resumed: a complete sweep is a record and is kept (its runs.csv
         // rewritten byte for byte, its plots redrawn), so running the
         // figures again changes no committed file; missing runs are run.
-        let opts = super::sweep::SweepOptions { jobs: 1, resume: true, ..Default::default() };
+        // A record of another version of the experiment file (or of
+        // refract: other columns) is moved aside, not lost.
+        let again = format!("refract figures{} --out {}", if o.quick { " --quick" } else { "" }, o.out.display());
+        let opts = super::sweep::SweepOptions { jobs: 1, on_record: super::sweep::OnRecord::ResumeOrFresh, again, ..Default::default() };
         for (name, _) in SWEEPS {
             let e = super::spec::Experiment::load(&PathBuf::from("experiments").join(format!("{name}.toml")), o.quick)?;
-            let dir = o.out.join(name);
-            // A runs.csv written by another version of refract (other
-            // columns) cannot be resumed: the sweep runs afresh.
-            let resume = super::sweep::resumable(&e, &dir);
-            if !resume {
-                eprintln!("note: {}/runs.csv has other columns than this version writes; running the {name} sweep afresh", dir.display());
-            }
-            super::sweep::run(&e, &super::sweep::SweepOptions { out: Some(dir), resume, ..opts.clone() })?;
+            super::sweep::run(&e, &super::sweep::SweepOptions { out: Some(o.out.join(name)), ..opts.clone() })?;
         }
         super::spectral::write_report(&o.out.join("spectral"), crate::optics::glass::by_name("N-BK7")?)?;
         let display = o.out.join("display");

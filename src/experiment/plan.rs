@@ -144,7 +144,7 @@ pub fn write(e: &Experiment, o: &PlanOptions) -> Result<String> {
     if o.cpus_per_task == 0 || o.cpus_per_task > 1024 {
         bail!("--cpus-per-task: {} is not between 1 and 1024", o.cpus_per_task);
     }
-    let dir = o.out.clone().unwrap_or_else(|| PathBuf::from("results").join(&e.name));
+    let dir = o.out.clone().unwrap_or_else(|| e.default_folder());
     crate::image_io::create_folder(&dir)?;
     let dir = absolute(&dir)?;
     let file = absolute(&o.file)?;

@@ -72,7 +72,7 @@ pub fn parse_toml(text: &str, file: &str) -> Result<Table> {
 
 impl Experiment {
     pub fn load(path: &Path, quick: bool) -> Result<Experiment> {
-        let text = crate::data::read_input_text(path).map_err(|e| anyhow!("{}: cannot read: {e}", path.display()))?;
+        let text = crate::data::read_settings_text(path).map_err(|e| anyhow!("{}: cannot read: {e}", path.display()))?;
         Experiment::parse(&text, &path.display().to_string(), quick)
     }
 
@@ -118,6 +118,36 @@ impl Experiment {
             quick,
             fingerprint,
         };
+        // Each name once: two cases of one name, two plots of one file
+        // (the second would overwrite the first), or one parameter under
+        // two of its names (`light` and `light_pos`: which would win?).
+        for (i, c) in e.cases.iter().enumerate() {
+            if let Some(j) = e.cases[..i].iter().position(|d| d.name == c.name) {
+                return Err(p.err("case", i, "name", format!("`{}` is also case {}'s name; each case needs its own", c.name, j + 1)));
+            }
+        }
+        for (i, plot) in e.plots.iter().enumerate() {
+            if let Some(j) = e.plots[..i].iter().position(|q| q.file == plot.file) {
+                return Err(p.err("outputs.plot", i, "file", format!("`{}` is also plot {}'s file; each plot needs its own", plot.file, j + 1)));
+            }
+        }
+        let mut named: Vec<(&str, &str, &str, usize)> = Vec::new();
+        let sections = e
+            .fixed
+            .iter()
+            .map(|(k, _)| (e.mode, k, "fixed", 0))
+            .chain(e.sweep.iter().map(|(k, _)| (e.mode, k, "sweep", 0)))
+            .chain(e.reference.iter().flatten().map(|(k, _)| (e.mode, k, "reference", 0)))
+            .chain(e.cases.iter().enumerate().flat_map(|(i, c)| c.params.iter().map(move |(k, _)| (c.mode, k, "case", i))));
+        for (mode, k, section, nth) in sections {
+            let Some(canon) = mode.canonical(k) else { continue };
+            match named.iter().find(|(c, other, _, _)| *c == canon && *other != k.as_str()) {
+                Some((_, other, s2, _)) => {
+                    return Err(p.err(section, nth, k, format!("names the same parameter as `{other}` (in [{s2}]); use one name")));
+                }
+                None => named.push((canon, k, section, nth)),
+            }
+        }
         // A plot's columns are known before any run: a misspelt one is
         // refused now, not after the sweep.
         let columns = e.columns();
@@ -167,6 +197,11 @@ impl Experiment {
             if let Ok(Some((key, why))) = e.mode.first_ignored(&given, over.iter().map(|(k, _)| k.as_str())) {
                 return Err(p.err("reference", 0, &key, format!("the reference run would ignore it: {why}")));
             }
+        }
+        // The [quick] version is checked too, with or without --quick: a
+        // mistake there is found now, not when someone first runs it.
+        if !quick && p.root.contains_key("quick") {
+            Experiment::parse(text, file, true).map_err(|err| anyhow!("{err:#} (in the file's [quick] version)"))?;
         }
         Ok(e)
     }

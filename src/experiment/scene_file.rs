@@ -44,7 +44,7 @@ pub struct SceneFile {
 
 impl SceneFile {
     pub fn load(path: &Path, quick: bool) -> Result<SceneFile> {
-        let text = crate::data::read_input_text(path).map_err(|e| anyhow!("{}: cannot read: {e}", path.display()))?;
+        let text = crate::data::read_settings_text(path).map_err(|e| anyhow!("{}: cannot read: {e}", path.display()))?;
         Self::parse(&text, &path.display().to_string(), quick)
     }
 

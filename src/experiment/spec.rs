@@ -103,6 +103,18 @@ pub const METRICS: [&str; 29] = [
 ];
 
 impl Experiment {
+    /// The folder a sweep (or a plan) writes unless told: `results/NAME`,
+    /// or `results/quick/NAME` for the quick version, so that a quick run
+    /// never touches the committed full-quality record.
+    pub fn default_folder(&self) -> std::path::PathBuf {
+        let results = std::path::Path::new("results");
+        if self.quick {
+            results.join("quick").join(&self.name)
+        } else {
+            results.join(&self.name)
+        }
+    }
+
     /// Parameter columns: the sweep axes, then case keys, then fixed keys.
     pub fn param_names(&self) -> Vec<String> {
         let mut names: Vec<String> = Vec::new();

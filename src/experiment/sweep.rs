@@ -5,6 +5,8 @@
 //! A run that fails is a row with its error, never a crashed sweep.
 
 pub use super::grid::{expand, RunSpec};
+use super::interrupt;
+use super::lock::{FolderLock, Taken};
 use super::metrics::{self, Frame};
 use super::params::{cell, Mode};
 use super::spec::Experiment;
@@ -15,47 +17,75 @@ use anyhow::{bail, Context, Result};
 use std::collections::{HashMap, HashSet};
 use std::io::Write;
 use std::path::{Path, PathBuf};
-use std::sync::Mutex;
+use std::sync::{Arc, Mutex};
 use toml::Value;
+
+/// What a sweep does with a record already in its folder.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum OnRecord {
+    /// Refuse a record of another experiment (or file version, or quick
+    /// against full), naming `--fresh`.
+    #[default]
+    Refuse,
+    /// Keep this experiment's rows and run only the missing ones.
+    Resume,
+    /// Move any record aside (`runs.csv.N`) and start again.
+    Fresh,
+    /// Resume this experiment's rows; move another's aside (`figures`).
+    ResumeOrFresh,
+}
 
 #[derive(Clone, Debug, Default)]
 pub struct SweepOptions {
-    pub resume: bool,
+    pub on_record: OnRecord,
     pub jobs: usize,
     pub out: Option<PathBuf>,
     /// (I, N): run only the runs `plan::assign` gives shard I of N.
     pub shard: Option<(usize, usize)>,
     /// Stop after this many runs (to test interruption).
     pub max_runs: Option<usize>,
+    /// Remove the folder's lock whoever holds it (`--break-lock`).
+    pub break_lock: bool,
+    /// The command that goes on from where this sweep stops (named when it
+    /// is interrupted); `refract sweep FILE --resume` if empty.
+    pub again: String,
 }
+
+/// How a sweep ended.
+#[derive(Debug)]
+pub struct Outcome {
+    pub dir: PathBuf,
+    /// "NAME: 20 of 20 runs in DIR/runs.csv (0 failed)".
+    pub summary: String,
+    /// Why the sweep must end with a non-zero status, if it must: its
+    /// first failed run's error, and a failed reference run's.
+    pub failure: Option<String>,
+}
+
+/// The cell the metrics against the reference get when the reference run
+/// failed.
+pub const NO_REFERENCE: &str = "no reference";
 
 /// What one run measured, as named cells.
 type Measured = Vec<(&'static str, String)>;
 
-struct Outcome {
+struct RunOutcome {
     frame: Option<Frame>,
     cells: Measured,
 }
 
-fn run_one(mode: Mode, params: &[(String, Value)], meshes: &MeshCache) -> Outcome {
+fn run_one(mode: Mode, params: &[(String, Value)], meshes: &MeshCache) -> RunOutcome {
     let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-        mode.render(params, &crate::progress::Silent, meshes).map(|run| Outcome { frame: Some(run.frame()), cells: run.record.cells() })
+        mode.render(params, &crate::progress::Silent, meshes).map(|run| RunOutcome { frame: Some(run.frame()), cells: run.record.cells() })
     }));
     match result {
         Ok(Ok(o)) => o,
-        Ok(Err(e)) => Outcome { frame: None, cells: vec![("status", "error".into()), ("error", format!("{e:#}")), ("failed", "1".into())] },
+        Ok(Err(e)) => RunOutcome { frame: None, cells: vec![("status", "error".into()), ("error", format!("{e:#}")), ("failed", "1".into())] },
         Err(p) => {
             let msg = p.downcast_ref::<String>().cloned().or_else(|| p.downcast_ref::<&str>().map(|s| s.to_string())).unwrap_or_else(|| "panic".into());
-            Outcome { frame: None, cells: vec![("status", "error".into()), ("error", format!("internal error: {msg}")), ("failed", "1".into())] }
+            RunOutcome { frame: None, cells: vec![("status", "error".into()), ("error", format!("internal error: {msg}")), ("failed", "1".into())] }
         }
     }
-}
-
-/// Complete rows of an existing runs.csv (a torn last line is dropped).
-/// Whether `dir` holds no runs.csv, or one with this experiment's columns
-/// (so `--resume` can go on from it).
-pub fn resumable(e: &Experiment, dir: &Path) -> bool {
-    read_rows(&dir.join("runs.csv"), &e.columns()).is_ok()
 }
 
 fn read_rows(path: &Path, header: &[String]) -> Result<Vec<Vec<String>>> {
@@ -99,76 +129,61 @@ struct Sweep<'a> {
     by_place: HashMap<(String, u32, Vec<usize>), usize>,
     meshes: MeshCache,
     reference: Option<Frame>,
+    /// The reference run's error, if it failed.
+    reference_error: Option<String>,
     /// Frames of finished runs, for the next run's `changed_px`.
     frames: Mutex<HashMap<usize, Frame>>,
     /// runs.csv, open for appending one row per run.
-    file: Mutex<std::fs::File>,
+    file: Arc<Mutex<std::fs::File>>,
     errors: Mutex<Vec<anyhow::Error>>,
 }
 
-/// A sweep's claim on its output folder: `.lock` holds the process id,
-/// and a second sweep into the same folder stops with a clear error
-/// (two writers would lose rows). A lock whose process is gone is stale
-/// and taken over. Removed when the sweep ends.
-struct FolderLock(PathBuf);
-
-impl FolderLock {
-    fn take(dir: &Path) -> Result<FolderLock> {
-        let path = dir.join(".lock");
-        for _ in 0..2 {
-            match std::fs::OpenOptions::new().write(true).create_new(true).open(&path) {
-                Ok(mut f) => {
-                    write!(f, "{}", std::process::id())?;
-                    return Ok(FolderLock(path));
-                }
-                Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => {
-                    let holder = std::fs::read_to_string(&path).unwrap_or_default();
-                    let alive = holder.trim().parse::<u32>().is_ok_and(|pid| Path::new(&format!("/proc/{pid}")).exists());
-                    if alive {
-                        bail!("{}: another sweep (pid {}) is writing this folder; wait for it, or use another --out", dir.display(), holder.trim());
-                    }
-                    // Stale: its process is gone.
-                    let _ = std::fs::remove_file(&path);
-                }
-                Err(e) => return Err(e).with_context(|| format!("cannot create {}", path.display())),
-            }
-        }
-        bail!("{}: cannot take the folder's lock", dir.display())
+/// Takes `dir`'s lock (`lock::FolderLock`) for this command, saying so
+/// when it took over a lock whose owner was gone or broke one.
+fn take_lock(dir: &Path, break_lock: bool) -> Result<FolderLock> {
+    let command = std::env::args().collect::<Vec<_>>().join(" ");
+    let (lock, taken) = FolderLock::take(dir, &command, break_lock)?;
+    match taken {
+        Taken::Fresh => {}
+        Taken::Stale(who) => eprintln!("note: {}: took over the lock of {who}, which is gone", lock.path().display()),
+        Taken::Broken(who) => eprintln!("note: {}: broke the lock of {who} (--break-lock)", lock.path().display()),
     }
-}
-
-impl Drop for FolderLock {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_file(&self.0);
-    }
+    Ok(lock)
 }
 
 /// Runs the experiment; returns the output folder and a summary line.
-pub fn run(e: &Experiment, opts: &SweepOptions) -> Result<(PathBuf, String)> {
-    let dir = opts.out.clone().unwrap_or_else(|| PathBuf::from("results").join(&e.name));
+pub fn run(e: &Experiment, opts: &SweepOptions) -> Result<Outcome> {
+    let dir = opts.out.clone().unwrap_or_else(|| e.default_folder());
     if dir.exists() && !dir.is_dir() {
         bail!("--out: {} is not a folder; a sweep writes a folder of results", dir.display());
     }
     crate::image_io::create_folder(&dir)?;
-    let _lock = FolderLock::take(&dir)?;
+    let lock = Arc::new(take_lock(&dir, opts.break_lock)?);
     // What a sweep killed while writing left behind.
     crate::image_io::remove_stale_temps(&dir);
     crate::image_io::remove_stale_temps(&dir.join("images"));
     let header = e.columns();
     let csv_path = dir.join("runs.csv");
     let all = expand(e);
-    let mut existing = if opts.resume { read_rows(&csv_path, &header)? } else { Vec::new() };
-    // Only rows of this experiment's runs, each once: a garbage or foreign
-    // row is dropped, not counted forever.
-    let mut seen = HashSet::new();
-    // Rows of another version of the experiment file are stale: run again.
-    let fp = header.iter().position(|h| h == "experiment");
-    existing.retain(|r| fp.is_none_or(|c| r[c] == e.fingerprint) && r[0].parse::<usize>().is_ok_and(|id| id < all.len() && seen.insert(id)));
-    // Start the file afresh with the complete rows only.
+    let existing = keep_or_move(e, &dir, &header, opts.on_record)?;
+    // Start the file afresh with the kept rows only.
     write_rows(&csv_path, &header, &existing)?;
     let done: HashSet<usize> = existing.iter().filter_map(|r| r[0].parse().ok()).collect();
+    let shard_of = opts.shard.map(|(_, n)| super::plan::assign(&all, n));
+    let ours = |r: &&RunSpec| match (opts.shard, &shard_of) {
+        (Some((i, _)), Some(s)) => s[r.id] == i,
+        _ => true,
+    };
+    let wanted = all.iter().filter(ours).count();
+    let mine: Vec<usize> = all.iter().filter(ours).filter(|r| !done.contains(&r.id)).take(opts.max_runs.unwrap_or(usize::MAX)).map(|r| r.id).collect();
+    let file = Arc::new(Mutex::new(std::fs::OpenOptions::new().append(true).open(&csv_path)?));
+    let again = if opts.again.is_empty() { format!("refract sweep {} --resume --out {}", e.name, dir.display()) } else { opts.again.clone() };
+    let _interrupt = interrupt::Guard::new(on_interrupt(&dir, Arc::clone(&lock), Arc::clone(&file), wanted, again));
     let meshes = MeshCache::default();
-    let reference = reference_frame(e, &dir, &meshes)?;
+    let (reference, reference_error) = reference_frame(e, &dir, &meshes)?;
+    if let Some(err) = &reference_error {
+        eprintln!("refract: the reference run failed: {err}; the runs go on, with rmse, psnr and rel_rmse marked `{NO_REFERENCE}`");
+    }
     if e.images {
         crate::image_io::create_folder(&dir.join("images"))?;
     }
@@ -180,32 +195,118 @@ pub fn run(e: &Experiment, opts: &SweepOptions) -> Result<(PathBuf, String)> {
         all,
         meshes,
         reference,
+        reference_error,
         frames: Mutex::new(HashMap::new()),
-        file: Mutex::new(std::fs::OpenOptions::new().append(true).open(&csv_path)?),
+        file,
         errors: Mutex::new(Vec::new()),
         header,
         dir,
     };
-    let shard_of = opts.shard.map(|(_, n)| super::plan::assign(&sweep.all, n));
-    let ours = |r: &&RunSpec| match (opts.shard, &shard_of) {
-        (Some((i, _)), Some(s)) => s[r.id] == i,
-        _ => true,
-    };
-    let wanted = sweep.all.iter().filter(ours).count();
-    let mine: Vec<&RunSpec> = sweep.all.iter().filter(ours).filter(|r| !done.contains(&r.id)).take(opts.max_runs.unwrap_or(usize::MAX)).collect();
+    let mine: Vec<&RunSpec> = mine.iter().map(|&id| &sweep.all[id]).collect();
     sweep.run_all(&mine, opts.jobs)?;
     sweep.finish(&csv_path, opts.shard, wanted)
 }
 
-/// The reference run's frame (the fixed parameters with the reference's
-/// overrides), written as reference.png.
-fn reference_frame(e: &Experiment, dir: &Path, meshes: &MeshCache) -> Result<Option<Frame>> {
-    let Some(p) = e.reference_params() else { return Ok(None) };
-    let o = run_one(e.mode, &p, meshes);
-    if let Some(f) = &o.frame {
-        write_rgb8(&dir.join("reference.png"), f.width, f.height, &f.display)?;
+/// What SIGINT or SIGTERM does during a sweep: waits for a row being
+/// written (then holds runs.csv so no other is begun), discards the run
+/// under way (its temporary files), releases the lock, says how many runs
+/// are saved and the command that goes on, and exits.
+fn on_interrupt(dir: &Path, lock: Arc<FolderLock>, file: Arc<Mutex<std::fs::File>>, wanted: usize, again: String) -> impl Fn(i32) + Send + 'static {
+    let dir = dir.to_path_buf();
+    move |sig| {
+        let held = file.lock().unwrap_or_else(|e| e.into_inner());
+        let csv = dir.join("runs.csv");
+        let saved = std::fs::read_to_string(&csv).map_or(0, |t| t.matches('\n').count().saturating_sub(1));
+        crate::image_io::remove_own_temps(&dir);
+        crate::image_io::remove_own_temps(&dir.join("images"));
+        lock.release();
+        use std::io::IsTerminal;
+        let fresh_line = if std::io::stderr().is_terminal() { "\n" } else { "" };
+        eprintln!(
+            "{fresh_line}refract: stopped by {}: {saved} of {wanted} runs saved in {} (the run under way was discarded); to finish, run: {again}",
+            interrupt::name(sig),
+            csv.display()
+        );
+        drop(held);
+        std::process::exit(interrupt::status_of(sig));
     }
-    Ok(o.frame)
+}
+
+/// What a sweep keeps of the record already in `dir`, as `how` says: the
+/// rows to go on from (only this experiment's, each run once), after
+/// moving any other record aside. A record of another experiment, of
+/// another version of its file, or of its quick version against the full
+/// one (or the other way) is refused unless `how` moves it aside.
+fn keep_or_move(e: &Experiment, dir: &Path, header: &[String], how: OnRecord) -> Result<Vec<Vec<String>>> {
+    use super::record::{describe, inspect, move_aside, Found};
+    let found = inspect(dir, header)?;
+    let csv = dir.join("runs.csv");
+    let fresh_hint = |what: &str| {
+        format!(
+            "{}: holds {what}; write elsewhere with --out, or run again with --fresh to move that record aside (to runs.csv.N, images.N) and start anew",
+            csv.display()
+        )
+    };
+    let move_it = |note: &str| -> Result<Vec<Vec<String>>> {
+        let to = move_aside(dir)?;
+        eprintln!("note: {note}; moved it aside to {}", to.display());
+        Ok(Vec::new())
+    };
+    match found {
+        Found::Nothing => Ok(Vec::new()),
+        Found::OtherColumns(n) => match how {
+            OnRecord::Fresh | OnRecord::ResumeOrFresh => move_it(&format!("{} holds {n} rows with other columns", csv.display())),
+            _ => bail!("{}", fresh_hint(&format!("{n} rows with other columns than this experiment's (another experiment, or another version of refract)"))),
+        },
+        Found::Rows { rows, fingerprints, torn } => {
+            let ours = fingerprints.len() == 1 && fingerprints.contains_key(&e.fingerprint);
+            match how {
+                OnRecord::Fresh => move_it(&format!("{} held {}", csv.display(), describe(&fingerprints))),
+                _ if !ours && how == OnRecord::ResumeOrFresh => {
+                    move_it(&format!("{} held {}, not of {}", csv.display(), describe(&fingerprints), e.fingerprint))
+                }
+                _ if !ours => {
+                    let version = if e.quick { "this experiment file's --quick version" } else { "this experiment file (full quality, not --quick)" };
+                    bail!("{}", fresh_hint(&format!("{}, not of {} ({version})", describe(&fingerprints), e.fingerprint)))
+                }
+                OnRecord::Resume | OnRecord::ResumeOrFresh => {
+                    let (kept, notes) = super::record::check_rows(&csv, rows, expand(e).len())?;
+                    for n in notes {
+                        eprintln!("note: {n}");
+                    }
+                    if let Some(line) = torn {
+                        eprintln!("note: {}:{line}: the last line was cut off mid-write (no newline); that run runs again", csv.display());
+                    }
+                    Ok(kept)
+                }
+                OnRecord::Refuse => {
+                    let total = expand(e).len();
+                    let have = rows.iter().filter_map(|(_, r)| r[0].parse::<usize>().ok()).filter(|&id| id < total).collect::<HashSet<_>>().len();
+                    bail!(
+                        "{}: already holds {have} of the {total} runs of this experiment; run again with --resume to run only the missing ones, or with --fresh to move the record aside (to runs.csv.N) and run them all",
+                        csv.display()
+                    )
+                }
+            }
+        }
+    }
+}
+
+/// The reference run's frame (the fixed parameters with the reference's
+/// overrides), written as reference.png, or the reference run's error.
+fn reference_frame(e: &Experiment, dir: &Path, meshes: &MeshCache) -> Result<(Option<Frame>, Option<String>)> {
+    let Some(p) = e.reference_params() else { return Ok((None, None)) };
+    let o = run_one(e.mode, &p, meshes);
+    match &o.frame {
+        Some(f) => {
+            write_rgb8(&dir.join("reference.png"), f.width, f.height, &f.display)?;
+            Ok((o.frame, None))
+        }
+        None => {
+            let err = o.cells.iter().find(|(k, _)| *k == "error").map_or_else(|| "no image".to_string(), |(_, v)| v.clone());
+            Ok((None, Some(err)))
+        }
+    }
 }
 
 impl Sweep<'_> {
@@ -261,6 +362,11 @@ impl Sweep<'_> {
         cells.insert("nan_count", metrics::non_finite(f).to_string());
         cells.insert("fireflies", metrics::fireflies(f).to_string());
         cells.insert("highlight_px", metrics::highlight_pixels(f).to_string());
+        if self.reference_error.is_some() {
+            for m in ["rmse", "psnr", "rel_rmse"] {
+                cells.insert(m, NO_REFERENCE.into());
+            }
+        }
         if let Some(rf) = &self.reference {
             if let Some((rmse, psnr)) = metrics::rmse_psnr(f, rf) {
                 cells.insert("rmse", crate::timing::cell(rmse));
@@ -313,16 +419,20 @@ impl Sweep<'_> {
 
     /// Sorts the rows by run id, draws the plots, and sums up.
     /// `wanted`: how many runs this sweep (or shard) holds when complete.
-    fn finish(&self, csv_path: &Path, shard: Option<(usize, usize)>, wanted: usize) -> Result<(PathBuf, String)> {
+    fn finish(&self, csv_path: &Path, shard: Option<(usize, usize)>, wanted: usize) -> Result<Outcome> {
         let mut rows = read_rows(csv_path, &self.header)?;
         rows.sort_by_key(|r| r[0].parse::<usize>().unwrap_or(usize::MAX));
         rows.dedup_by(|a, b| a[0] == b[0]);
         write_rows(csv_path, &self.header, &rows)?;
         let complete = rows.len() >= wanted;
         if complete || shard.is_some() {
-            super::charts::draw_all(self.e, &self.dir, &self.header, &rows)?;
+            let why = if self.reference_error.is_some() { " (the reference run failed)" } else { "" };
+            for (file, column) in super::charts::draw_all(self.e, &self.dir, &self.header, &rows)? {
+                eprintln!("note: plot {file} not drawn: no run has a value of {column}{why}");
+            }
         }
-        let failed = rows.iter().filter(|r| r[self.header.iter().position(|h| h == "failed").unwrap_or(0)] == "1").count();
+        let col = |name: &str| self.header.iter().position(|h| h == name).unwrap_or(0);
+        let failed: Vec<&Vec<String>> = rows.iter().filter(|r| r[col("failed")] == "1").collect();
         let (what, again) = match shard {
             Some((i, n)) => (format!(" of shard {i}/{n}"), "; run this shard again with --resume to finish it"),
             None => (String::new(), "; run again with --resume to finish"),
@@ -333,10 +443,18 @@ impl Sweep<'_> {
             rows.len(),
             wanted,
             csv_path.display(),
-            failed,
+            failed.len(),
             if complete { "" } else { again }
         );
-        Ok((self.dir.clone(), summary))
+        let mut why = Vec::new();
+        if let Some(r) = failed.first() {
+            let case = if r[col("case")].is_empty() { String::new() } else { format!(" ({})", r[col("case")]) };
+            why.push(format!("the first failed run, {}{case}: {}", r[0], r[col("error")]));
+        }
+        if let Some(err) = &self.reference_error {
+            why.push(format!("the reference run failed: {err} (rmse, psnr and rel_rmse are marked `{NO_REFERENCE}`)"));
+        }
+        Ok(Outcome { dir: self.dir.clone(), summary, failure: (!why.is_empty()).then(|| why.join("; ")) })
     }
 }
 
@@ -369,15 +487,35 @@ fn load_frame(path: &Path) -> Option<Frame> {
 /// that two shards both hold, and, with `experiment` given, runs that no
 /// shard holds (naming them, and how to run them) unless `resume`, which
 /// runs them here.
-pub fn merge(dirs: &[PathBuf], out: &Path, experiment: Option<&Experiment>, resume: bool) -> Result<String> {
+pub fn merge(dirs: &[PathBuf], out: &Path, experiment: Option<&Experiment>, o: &MergeOptions) -> Result<String> {
     let mut header: Option<Vec<String>> = None;
+    // Each row with its shard and its line there.
     let mut rows: Vec<(Vec<String>, usize)> = Vec::new();
+    let mut lines: Vec<u64> = Vec::new();
     for (k, d) in dirs.iter().enumerate() {
         if dirs[..k].contains(d) {
             bail!("{} is given twice", d.display());
         }
+        // A shard still being written is not merged.
+        if let Some(holder) = FolderLock::holder(d) {
+            bail!(
+                "{}: this shard is still being written (its lock is held by {holder}); merge when it has finished, or if that sweep is gone, delete {}",
+                d.display(),
+                d.join(".lock").display()
+            );
+        }
         let p = d.join("runs.csv");
         let text = crate::data::read_input_text(&p).with_context(|| format!("cannot read {}", p.display()))?;
+        // A last line without its newline was cut off mid-write: its last
+        // cell may be a shorter, wrong number (0.757080 read as 0.757).
+        if !text.is_empty() && !text.ends_with('\n') {
+            bail!(
+                "{}:{}: the last line does not end in a newline (the shard was cut off while writing it); finish the shard with `refract sweep FILE --resume --shard I/N --out {}` first",
+                p.display(),
+                text.matches('\n').count() + 1,
+                d.display()
+            );
+        }
         let mut r = csv::Reader::from_reader(text.as_bytes());
         let h: Vec<String> = r.headers().with_context(|| format!("{}: unreadable header", p.display()))?.iter().map(str::to_string).collect();
         if h.first().map(String::as_str) != Some("run_id") {
@@ -402,6 +540,7 @@ pub fn merge(dirs: &[PathBuf], out: &Path, experiment: Option<&Experiment>, resu
                 bail!("{}:{}: `{}` is not a run id", p.display(), x.position().map_or(0, |at| at.line()), &x[0]);
             }
             rows.push((x.iter().map(str::to_string).collect(), k));
+            lines.push(x.position().map_or(0, |at| at.line()));
         }
     }
     let header = header.ok_or_else(|| anyhow::anyhow!("no folders to merge"))?;
@@ -420,16 +559,22 @@ pub fn merge(dirs: &[PathBuf], out: &Path, experiment: Option<&Experiment>, resu
             );
         }
     }
-    rows.sort_by_key(|(r, _)| r[0].parse::<usize>().unwrap_or(usize::MAX));
-    if let Some(w) = rows.windows(2).find(|w| w[0].0[0] == w[1].0[0]) {
-        bail!("run {} is in both {} and {}; each run belongs to one shard", w[0].0[0], dirs[w[0].1].display(), dirs[w[1].1].display());
+    let mut order: Vec<usize> = (0..rows.len()).collect();
+    order.sort_by_key(|&i| (rows[i].0[0].parse::<usize>().unwrap_or(usize::MAX), i));
+    if let Some(w) = order.windows(2).find(|w| rows[w[0]].0[0] == rows[w[1]].0[0]) {
+        let ((a, ka), (b, kb)) = (&rows[w[0]], &rows[w[1]]);
+        if ka == kb {
+            bail!("{}: run {} is twice (lines {} and {}); each run is one row", dirs[*ka].join("runs.csv").display(), a[0], lines[w[0]], lines[w[1]]);
+        }
+        bail!("run {} is in both {} and {}; each run belongs to one shard", b[0], dirs[*ka].display(), dirs[*kb].display());
     }
+    let rows: Vec<(Vec<String>, usize)> = order.into_iter().map(|i| rows[i].clone()).collect();
     let mut missing = Vec::new();
     if let Some(e) = experiment {
         let have: HashSet<usize> = rows.iter().filter_map(|(r, _)| r[0].parse().ok()).collect();
         let total = expand(e).len();
         missing = (0..total).filter(|id| !have.contains(id)).map(|id| id.to_string()).collect();
-        if !missing.is_empty() && !resume {
+        if !missing.is_empty() && !o.resume {
             bail!(
                 "runs {} are in no shard ({} of {}); run them into a shard's folder with `refract sweep FILE --resume --out DIR`, or merge with --resume to run them here, then merge again",
                 missing.join(", "),
@@ -440,7 +585,24 @@ pub fn merge(dirs: &[PathBuf], out: &Path, experiment: Option<&Experiment>, resu
     }
     crate::image_io::create_folder(out)?;
     {
-        let _lock = FolderLock::take(out)?;
+        let _lock = take_lock(out, o.break_lock)?;
+        // A record already in `out` is replaced only by one that holds
+        // every row of it, unchanged; else it is moved aside (--fresh).
+        if let super::record::Found::Rows { rows: old, .. } = super::record::inspect(out, &header)? {
+            let lost = old.iter().find(|(_, r)| !rows.iter().any(|(m, _)| m == r));
+            match lost {
+                None => {}
+                Some(_) if o.fresh => {
+                    let to = super::record::move_aside(out)?;
+                    eprintln!("note: moved the record in {} aside to {}", out.display(), to.display());
+                }
+                Some((line, r)) => bail!(
+                    "{}:{line}: holds run {} as the merge does not (another run, or another version of the experiment); merge into another --out, or with --fresh to move that record aside (to runs.csv.N)",
+                    out.join("runs.csv").display(),
+                    r[0]
+                ),
+            }
+        }
         // The run images and the reference image travel with their rows.
         for (r, k) in &rows {
             let from = dirs[*k].join("images").join(format!("{}.png", r[0]));
@@ -455,17 +617,34 @@ pub fn merge(dirs: &[PathBuf], out: &Path, experiment: Option<&Experiment>, resu
         let rows: Vec<Vec<String>> = rows.iter().map(|(r, _)| r.clone()).collect();
         write_rows(&out.join("runs.csv"), &header, &rows)?;
         if let (Some(e), true) = (experiment, missing.is_empty()) {
-            super::charts::draw_all(e, out, &header, &rows)?;
+            for (file, column) in super::charts::draw_all(e, out, &header, &rows)? {
+                eprintln!("note: plot {file} not drawn: no run has a value of {column}");
+            }
         }
     }
     let merged = format!("merged {} rows from {} folders into {}", rows.len(), dirs.len(), out.join("runs.csv").display());
     match experiment {
         Some(e) if !missing.is_empty() => {
-            let (_, summary) = run(e, &SweepOptions { resume: true, jobs: 1, out: Some(out.to_path_buf()), shard: None, max_runs: None })?;
-            Ok(format!("{merged}; ran the {} missing here: {summary}", missing.len()))
+            let o = run(e, &SweepOptions { on_record: OnRecord::Resume, jobs: 1, out: Some(out.to_path_buf()), ..Default::default() })?;
+            let line = format!("{merged}; ran the {} missing here: {}", missing.len(), o.summary);
+            match o.failure {
+                Some(why) => bail!("{line}; {why}"),
+                None => Ok(line),
+            }
         }
         _ => Ok(merged),
     }
+}
+
+/// How `merge` treats the folder it writes.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct MergeOptions {
+    /// Run here the runs no shard holds.
+    pub resume: bool,
+    /// Move a record in the output folder aside instead of refusing.
+    pub fresh: bool,
+    /// Remove the output folder's lock whoever holds it.
+    pub break_lock: bool,
 }
 
 /// Copies a file to a temporary sibling of `to`, then renames it there.

@@ -125,6 +125,11 @@ pub enum MeshErrorKind {
     IndexOutOfRange { face: usize, index: String, count: usize },
     #[error("{0}")]
     Invalid(String),
+    /// A mesh with no triangle to render (no faces, or only points,
+    /// lines and zero-area faces): refused, as an image of it would be
+    /// black.
+    #[error("no faces to render ({faces} in the file: {small} with fewer than 3 vertices, {degenerate} triangles of zero area)")]
+    NoFaces { faces: usize, small: usize, degenerate: usize },
     /// Tokens after the last declared face.
     #[error("extra data `{0}` after the last declared face (the counts in the header do not match the body)")]
     TrailingData(String),

@@ -32,9 +32,19 @@ impl MeshSource {
         Ok(MeshSource::File(PathBuf::from(s)))
     }
 
+    /// The mesh, refused if it has no triangle to render (the OBJ reader
+    /// and the prism's `--obj` refuse the same).
     pub fn load(&self) -> anyhow::Result<Mesh> {
         Ok(match self {
-            MeshSource::File(p) => read_off(p)?,
+            MeshSource::File(p) => {
+                let m = read_off(p)?;
+                if m.triangles.is_empty() {
+                    let s = &m.stats;
+                    let kind = super::MeshErrorKind::NoFaces { faces: s.faces, small: s.skipped_small, degenerate: s.skipped_degenerate };
+                    return Err(super::MeshError { path: p.display().to_string(), line: 0, kind }.into());
+                }
+                m
+            }
             MeshSource::Icosphere(n) => generate::icosphere(*n),
             MeshSource::Torus(n) => generate::torus(*n, n / 2).to_mesh(),
         })
@@ -64,5 +74,15 @@ mod tests {
         assert!(MeshSource::parse("torus:2").is_err() && MeshSource::parse(" ").is_err());
         assert_eq!(MeshSource::Icosphere(2).load().unwrap().triangles.len(), 320);
         assert_eq!(MeshSource::parse("icosphere:4").unwrap().to_string(), "icosphere:4");
+    }
+
+    #[test]
+    fn a_mesh_with_no_faces_is_refused() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("flat.off");
+        // Three vertices, a line and a face of zero area.
+        std::fs::write(&p, "OFF\n3 2 0\n0 0 0\n1 0 0\n2 0 0\n2 0 1\n3 0 1 2\n").unwrap();
+        let err = MeshSource::File(p.clone()).load().unwrap_err().to_string();
+        assert_eq!(err, format!("{}: no faces to render (2 in the file: 1 with fewer than 3 vertices, 1 triangles of zero area)", p.display()));
     }
 }

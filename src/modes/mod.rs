@@ -69,6 +69,12 @@ impl Mode {
 
     /// Checks one parameter (on the mode's defaults); a mesh file it names
     /// must exist.
+    /// The parameter's own key for a key or one of its aliases
+    /// (`light` -> `light_pos`), if the mode has it.
+    pub fn canonical(self, key: &str) -> Option<&'static str> {
+        with_mode!(self, M => params::find(M::params(), key).map(|p| p.key))
+    }
+
     pub fn check(self, key: &str, v: &Value) -> Result<(), String> {
         with_mode!(self, M => {
             let Some(_) = params::find(M::params(), key) else {
