@@ -156,7 +156,7 @@ pub fn render_world(cfg: &SpectralConfig, scene: &crate::world::World, progress:
     // built from them) and the image (XYZ in f64, then 8-bit sRGB) must fit
     // in memory.
     // The buffer map keeps no photons, only its texels (24 bytes each, in
-    // up to one copy per thread: `sum_copies`).
+    // up to one copy per thread: `sum_copies`, and their class sums).
     let threads = if cfg.threads == 0 { std::thread::available_parallelism().map_or(1, |n| n.get()) } else { cfg.threads };
     let photon_bytes = match cfg.map {
         MapKind::Buffer | MapKind::Film => {
@@ -167,7 +167,12 @@ pub fn render_world(cfg: &SpectralConfig, scene: &crate::world::World, progress:
                 .filter_map(|slot| scene.faces[scene.slot_face(slot)].frame.map(|fr| (fr, texel * scene.slot_scale(slot))))
                 .map(|((_, eu, ev), texel)| ((eu.length() / texel).ceil().clamp(1.0, 4096.0) * (ev.length() / texel).ceil().clamp(1.0, 4096.0)) as u64)
                 .sum();
-            texels * 24 * crate::photon::emit::sum_copies(texels, threads) as u64
+            // Where an eye path may reach a matte surface at one wavelength
+            // the texels also sum their flux by spectral class (`bands`: 8
+            // bytes each, in one copy), 13 times the XYZ sums.
+            let spectral = scene.media.iter().any(|m| m.is_dispersive()) && scene.camera_may_see_specular();
+            let classes = if spectral { texels.saturating_mul(8 * crate::photon::bands::CLASSES as u64) } else { 0 };
+            texels.saturating_mul(24 * crate::photon::emit::sum_copies(texels, threads) as u64).saturating_add(classes)
         }
         MapKind::Kdtree => cfg.photons.saturating_mul(1 + scene.bounces as u64).saturating_mul(2 * std::mem::size_of::<crate::photon::map::Photon>() as u64),
     };
