@@ -43,3 +43,5 @@ mod docs;
 // A matte scene through a dispersive wedge against the sum of its
 // monochromatic renders.
 mod wedge;
+// Paths in scene and experiment files are from the file's folder.
+mod file_paths;

@@ -9,7 +9,7 @@
 //! [params]                         # the mode's parameters (as in experiments)
 //! scene = "amici-screen"
 //! photons = 4000000
-//! obj = "off/prism60.obj"          # meshes are referenced by path
+//! obj = "off/prism60.obj"          # paths are from this file's folder, then those above it
 //! [quick]                          # overrides for --quick
 //! photons = 400000
 //! [close_up]                       # another view pasted on the image (`close_up`)
@@ -50,6 +50,8 @@ impl SceneFile {
 
     pub fn parse(text: &str, file: &str, quick: bool) -> Result<SceneFile> {
         let root = parse_toml(text, file)?;
+        // Paths in the file are resolved from its folder.
+        let base = Path::new(file).parent().unwrap_or(Path::new(""));
         let err = |section: &str, key: &str, msg: String| anyhow!("{file}:{}: `{key}`: {msg}", line_of(text, section, 0, key));
         for k in root.keys() {
             if !["id", "report", "caption", "mode", "params", "quick", "close_up", "label"].contains(&k.as_str()) {
@@ -78,9 +80,9 @@ impl SceneFile {
                 None => {}
                 Some(Value::Table(t)) => {
                     for (k, v) in t {
-                        mode.check(k, v).map_err(|m| err(section, k, m))?;
+                        let v = mode.check(k, v, base).map_err(|m| err(section, k, m))?;
                         params.retain(|(p, _)| p != k);
-                        params.push((k.clone(), v.clone()));
+                        params.push((k.clone(), v));
                         from.retain(|(p, _)| p != k);
                         from.push((k.clone(), section));
                     }
@@ -96,9 +98,9 @@ impl SceneFile {
             params,
             close_up: match root.get("close_up") {
                 Some(v) => {
-                    let close = super::close_up::parse(v).map_err(|m| anyhow!("{file}:{}: `close_up`: {m}", line_of(text, "", 0, "close_up")))?;
-                    for (k, v) in &close.params {
-                        mode.check(k, v).map_err(|m| err("close_up.params", k, m))?;
+                    let mut close = super::close_up::parse(v).map_err(|m| anyhow!("{file}:{}: `close_up`: {m}", line_of(text, "", 0, "close_up")))?;
+                    for (k, v) in &mut close.params {
+                        *v = mode.check(k, v, base).map_err(|m| err("close_up.params", k, m))?;
                     }
                     Some(close)
                 }

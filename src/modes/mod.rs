@@ -51,6 +51,46 @@ macro_rules! with_mode {
     };
 }
 
+/// A file named by a scene or experiment file in folder `base`: a relative
+/// path is looked for in that folder, then in each folder above it in turn
+/// (so the shipped files' `off/cube.off` names the repository's `off/`
+/// wherever refract runs); the path found is written from `base` as given
+/// (`scenes/../off/cube.off` as `off/cube.off`). An absolute path is
+/// taken as it is. Not found: an error naming the path and the folder.
+pub fn resolve_from(base: &Path, path: &Path) -> Result<std::path::PathBuf, String> {
+    if path.is_absolute() {
+        return if path.is_file() { Ok(path.to_path_buf()) } else { Err(format!("{}: no such file", path.display())) };
+    }
+    let mut up = base.to_path_buf();
+    // As many folders up as `base` has above it (an absolute form counts them).
+    let depth = std::path::absolute(base).map_or(0, |a| a.components().count());
+    for _ in 0..depth.max(1) {
+        let candidate = tidy(&up.join(path));
+        if candidate.is_file() {
+            return Ok(candidate);
+        }
+        up.push("..");
+    }
+    let folder = if base.as_os_str().is_empty() { Path::new(".") } else { base };
+    Err(format!("{}: no such file in {} or any folder above it (paths in a file are from its own folder)", path.display(), folder.display()))
+}
+
+/// `a/b/../c` as `a/c` and `./a` as `a` (lexically; a leading `..` stays).
+fn tidy(p: &Path) -> std::path::PathBuf {
+    use std::path::Component;
+    let mut out: Vec<Component> = Vec::new();
+    for c in p.components() {
+        match c {
+            Component::CurDir => {}
+            Component::ParentDir if matches!(out.last(), Some(Component::Normal(_))) => {
+                out.pop();
+            }
+            c => out.push(c),
+        }
+    }
+    out.iter().collect()
+}
+
 /// The configuration `given` describes, from the mode's defaults, checked.
 pub fn config<M: ModeKind>(given: &[(String, Value)]) -> Result<M::Config> {
     let mut cfg = M::defaults();
@@ -67,9 +107,10 @@ impl Mode {
         with_mode!(self, M => params::find(M::params(), key).is_some())
     }
 
-    /// Checks one parameter (on the mode's defaults); a mesh file it names
-    /// must exist.
-    pub fn check(self, key: &str, v: &Value) -> Result<(), String> {
+    /// Checks one parameter of a scene or experiment file in folder `base`
+    /// (on the mode's defaults) and gives it back with a mesh path it names
+    /// resolved from that folder (`resolve_from`); the mesh must exist.
+    pub fn check(self, key: &str, v: &Value, base: &Path) -> Result<Value, String> {
         with_mode!(self, M => {
             let Some(_) = params::find(M::params(), key) else {
                 let keys: Vec<&str> = M::params().iter().map(|p| p.key).collect();
@@ -78,8 +119,8 @@ impl Mode {
             let mut cfg = M::defaults();
             params::apply_toml(M::params(), &mut cfg, key, v)?;
             match M::mesh_file(&cfg, key) {
-                Some(p) if !p.is_file() => Err(format!("{}: no such file (paths are from the folder refract runs in)", p.display())),
-                _ => Ok(()),
+                Some(p) => resolve_from(base, &p).map(|found| Value::String(found.display().to_string())),
+                None => Ok(v.clone()),
             }
         })
     }

@@ -45,3 +45,31 @@ pub fn assert_clean_failure(o: &Output, needle: &str) {
 pub fn ppm(path: &Path) -> (usize, usize, Vec<u8>) {
     refract::image_io::read_ppm(path).unwrap()
 }
+
+/// Every file under `dir` with its bytes, sorted: two snapshots are equal
+/// when a run changed, added and removed nothing.
+pub fn snapshot(dir: &Path) -> Vec<(PathBuf, Vec<u8>)> {
+    let mut out = Vec::new();
+    let mut stack = vec![dir.to_path_buf()];
+    while let Some(d) = stack.pop() {
+        for e in std::fs::read_dir(&d).unwrap().flatten() {
+            let p = e.path();
+            if p.is_dir() {
+                stack.push(p);
+            } else {
+                out.push((p.strip_prefix(dir).unwrap().to_path_buf(), std::fs::read(&p).unwrap_or_default()));
+            }
+        }
+    }
+    out.sort();
+    out
+}
+
+/// Asserts a failed run whose stderr's first line is exactly `first`, with
+/// exit code `code`.
+pub fn assert_fails_with(o: &Output, code: i32, first: &str) {
+    let err = stderr(o);
+    assert!(!err.contains("panicked"), "panic: {err}");
+    assert_eq!(o.status.code(), Some(code), "exit code; stderr: {err}");
+    assert_eq!(err.lines().next().unwrap_or(""), first, "first line of stderr: {err}");
+}
