@@ -45,3 +45,5 @@ mod docs;
 mod wedge;
 // Paths in scene and experiment files are from the file's folder.
 mod file_paths;
+// Flags, keys and axes that cannot change the image are refused.
+mod ignored_flags;

@@ -201,7 +201,7 @@ pub struct SweepArgs {
     /// Output folder [default: results/NAME]
     #[arg(long)]
     pub out: Option<PathBuf>,
-    /// Only runs whose id modulo N is I (0 <= I < N), for job arrays; join with `sweep merge`
+    /// Only shard I of N (0 <= I < N): the grid's chains of runs along its first sweep axis, balanced by estimated cost over N shards as `sweep plan` does; at most as many shards as chains. Join with `sweep merge`
     #[arg(long, value_name = "I/N", value_parser = parse_shard)]
     pub shard: Option<(usize, usize)>,
     /// Stop after this many runs (for testing interruption)
@@ -376,6 +376,9 @@ pub fn run(cli: Cli) -> Result<()> {
         }
         Command::Render { file, quick, out, set } => {
             let mut scene = crate::experiment::scene_file::SceneFile::load(&file, quick)?;
+            if quick && scene.params == crate::experiment::scene_file::SceneFile::load(&file, false)?.params {
+                bail!("--quick: {} has no [quick] settings, so the render would be the full one; add a [quick] table or leave --quick out", file.display());
+            }
             scene.set(&set)?;
             let out = match out {
                 Some(o) => o,
@@ -404,8 +407,13 @@ pub fn run(cli: Cli) -> Result<()> {
 }
 
 fn run_interior(args: InteriorArgs) -> Result<()> {
-    // What the flags fix is checked before any question is asked.
-    args.params.check_used(&args.params.config()).map_err(anyhow::Error::msg)?;
+    // What the flags fix is checked before any question is asked; the
+    // trace count, asked first, is taken as above 0 until it is answered.
+    let mut known = args.params.config();
+    if !args.flag_mode() {
+        known.max_trace = known.max_trace.max(1);
+    }
+    args.params.check_used(&known).map_err(anyhow::Error::msg)?;
     crate::params::check_threads(args.params.config().threads).map_err(anyhow::Error::msg)?;
     if let Some(path) = &args.timing_csv {
         modes::interior::check_timing_csv(path).context("--timing-csv")?;
@@ -418,7 +426,9 @@ fn run_interior(args: InteriorArgs) -> Result<()> {
         let interactive = stdin.is_terminal();
         let mut input = stdin.lock();
         let mut out = std::io::stdout();
-        crate::params::prompts::ask_all(&mut crate::params::prompts::Prompter::new(&mut input, &mut out, interactive), args.params.config())?
+        let cfg = crate::params::prompts::ask_all(&mut crate::params::prompts::Prompter::new(&mut input, &mut out, interactive), args.params.config())?;
+        args.params.check_used(&cfg).map_err(anyhow::Error::msg)?;
+        cfg
     };
     modes::interior::run_to_files(&cfg, args.timing_csv.as_deref(), &mut |line| eprintln!("{line}"))
 }
@@ -493,6 +503,18 @@ fn run_sweep(args: SweepArgs) -> Result<()> {
     let e = Experiment::load(&file, args.quick)?;
     if args.jobs == 0 || args.jobs > 256 {
         bail!("--jobs: {} is not between 1 and 256", args.jobs);
+    }
+    if args.quick && e.same_runs(&Experiment::load(&file, false)?) {
+        bail!("--quick: {} has no [quick] settings, so the sweep would be the full one; add a [quick] table or leave --quick out", file.display());
+    }
+    if let Some((i, n)) = args.shard {
+        let runs = crate::experiment::grid::expand(&e);
+        if !crate::experiment::plan::assign(&runs, n).contains(&i) {
+            let chains = crate::experiment::plan::chain_count(&runs);
+            bail!(
+                "--shard {i}/{n}: shard {i} would run nothing: the grid holds {chains} chain(s) of runs (the runs along its first sweep axis stay in one shard); use at most {chains} shard(s)"
+            );
+        }
     }
     let opts = sweep::SweepOptions { resume: args.resume, jobs: args.jobs, out: args.out, shard: args.shard, max_runs: args.max_runs };
     let (_, summary) = sweep::run(&e, &opts)?;

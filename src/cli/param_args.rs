@@ -86,7 +86,7 @@ impl<S: ParamSet> Given<S> {
     /// Refuses a flag that `c` (the run these flags describe) would ignore,
     /// naming it and why.
     pub fn check_used(&self, c: &S::Config) -> Result<(), String> {
-        match params::first_ignored(S::params().into_iter().filter(|p| self.has(p.key)), c) {
+        match params::first_ignored_change(S::params().into_iter().filter(|p| self.has(p.key)), c, &S::defaults()) {
             Some((p, why)) => Err(format!("--{}: {why}", p.flag())),
             None => Ok(()),
         }

@@ -143,7 +143,10 @@ impl Experiment {
         // cross keys that apply to some of their cases only (`split` under
         // the hero wavelength in eye-split.toml).
         let grid = super::grid::expand(&e);
-        for key in e.param_names() {
+        // A fixed key that restates its default is let be (see
+        // `params::first_ignored_change`); an axis never is.
+        let restated = |key: &str| e.fixed.iter().any(|(k, v)| k == key && e.mode.restates_default(k, v)) && !e.sweep.iter().any(|(k, _)| k == key);
+        for key in e.param_names().into_iter().filter(|k| !restated(k)) {
             let mut why = None;
             let used = grid.iter().filter(|r| r.params.iter().any(|(k, _)| *k == key)).any(|r| match r.mode.ignored(&r.params, &key) {
                 Some(w) => {

@@ -131,19 +131,35 @@ impl Mode {
         with_mode!(self, M => params::find(M::params(), key).map(|p| p.kind.parse_text(text)))
     }
 
-    /// The first of `keys` that the run `given` describes would ignore, and
-    /// why; an error if the configuration itself is refused.
+    /// Whether `v` is `key`'s default (a key that is not the mode's, or a
+    /// bad value, is not).
+    pub fn restates_default(self, key: &str, v: &Value) -> bool {
+        with_mode!(self, M => params::find(M::params(), key).is_some_and(|p| {
+            let mut cfg = M::defaults();
+            p.apply_toml(&mut cfg, v).is_ok() && (p.get)(&cfg) == (p.get)(&M::defaults())
+        }))
+    }
+
+    /// The first of `keys` that the run `given` describes would ignore (a
+    /// key set to its default is let be: `params::first_ignored_change`),
+    /// and why; an error if the configuration itself is refused.
     pub fn first_ignored<'k>(self, given: &[(String, Value)], keys: impl IntoIterator<Item = &'k str>) -> Result<Option<(String, String)>> {
         with_mode!(self, M => {
             let cfg = config::<M>(given)?;
-            Ok(params::first_ignored(keys.into_iter().filter_map(|k| params::find(M::params(), k)), &cfg).map(|(p, why)| (p.key.to_string(), why)))
+            let set = keys.into_iter().filter_map(|k| params::find(M::params(), k));
+            Ok(params::first_ignored_change(set, &cfg, &M::defaults()).map(|(p, why)| (p.key.to_string(), why)))
         })
     }
 
     /// Why a run with these parameters would ignore `key` (`None`: it uses
     /// it, or its configuration is refused anyway, which the run reports).
+    /// A key set to its default counts here too (an axis's default value
+    /// is one run of the axis).
     pub fn ignored(self, given: &[(String, Value)], key: &str) -> Option<String> {
-        self.first_ignored(given, [key]).ok().flatten().map(|(_, why)| why)
+        with_mode!(self, M => {
+            let cfg = config::<M>(given).ok()?;
+            params::first_ignored(params::find(M::params(), key), &cfg).map(|(_, why)| why)
+        })
     }
 
     /// The image formats the mode writes.

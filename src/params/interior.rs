@@ -20,6 +20,13 @@ fn f64s(v: glam::Vec3) -> Value {
     Value::Triple(v.as_dvec3().to_array())
 }
 
+/// Why opacity and its compositing change nothing at trace count 0: the
+/// first hit is drawn opaque (`interior::trace`, the report's
+/// `if (cc == max_ray_trace_count) tmp.a = 100`).
+fn trace_zero(c: &InteriorConfig, what: &str) -> Option<String> {
+    (c.max_trace == 0).then(|| format!("at trace count 0 the first hit is drawn opaque, so {what} changes nothing; it needs a trace count above 0"))
+}
+
 /// The report's prompts (asked in this order, after the trace count).
 pub const PROMPTS: &str = "The report's prompts";
 const PHONG: &str = "Extended Phong model";
@@ -50,7 +57,7 @@ pub static PARAMS: &[Param<InteriorConfig>] = &[
         auto: "",
         get: |c| Some(Value::Real(c.opacity as f64)),
         set: |c, v| c.opacity = v.real() as f32,
-        ignored: never,
+        ignored: |c| trace_zero(c, "the opacity"),
     },
     Param {
         key: "object_colour",
@@ -210,7 +217,7 @@ pub static PARAMS: &[Param<InteriorConfig>] = &[
         auto: "",
         get: |c| Some(pick(c.specular_opacity)),
         set: |c, v| c.specular_opacity = v.choice(),
-        ignored: never,
+        ignored: |c| trace_zero(c, "how specular light is composited").or_else(|| (c.opacity >= 100.0).then(|| "an opaque object (--opacity 100) has no layers to composite".to_string())),
     },
     Param {
         key: "size",

@@ -209,6 +209,14 @@ pub fn first_ignored<C>(set: impl IntoIterator<Item = &'static Param<C>>, c: &C)
     set.into_iter().find_map(|p| (p.ignored)(c).map(|why| (p, why)))
 }
 
+/// As `first_ignored`, but a parameter set to its default is let be: the
+/// run is then exactly what was written (files restate the report's values
+/// for the record, as `opacity = 25` at trace count 0), while any other
+/// value would be expected to change the image and is refused.
+pub fn first_ignored_change<C>(set: impl IntoIterator<Item = &'static Param<C>>, c: &C, defaults: &C) -> Option<(&'static Param<C>, String)> {
+    first_ignored(set.into_iter().filter(|p| (p.get)(c) != (p.get)(defaults)), c)
+}
+
 impl<C> Param<C> {
     pub fn flag(&self) -> String {
         self.key.replace('_', "-")
