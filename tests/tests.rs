@@ -47,3 +47,5 @@ mod wedge;
 mod file_paths;
 // Flags, keys and axes that cannot change the image are refused.
 mod ignored_flags;
+// Every shipped scene kind at its defaults is neither black nor white.
+mod default_scenes;
