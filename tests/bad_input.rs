@@ -66,7 +66,7 @@ fn impossible_parameters_name_the_flag() {
         assert!(err.contains(needle) && !err.contains("panicked"), "{args:?}: {err}");
     }
     let o = run(&["interior", "--ior", "1.5"], "", dir.path());
-    assert_clean_failure(&o, "--off FILE is required");
+    assert_clean_failure(&o, "--off is required");
     let o = run(&["interior", "--off", "nowhere.off"], "", dir.path());
     assert_clean_failure(&o, "nowhere.off: cannot read the file");
     // A seed with one sample a pixel would change nothing: refused before

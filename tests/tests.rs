@@ -49,3 +49,5 @@ mod file_paths;
 mod ignored_flags;
 // Every shipped scene kind at its defaults is neither black nor white.
 mod default_scenes;
+// The help against what the program does.
+mod help_text;

@@ -52,8 +52,7 @@ pub enum Command {
         /// Its [quick] settings
         #[arg(long)]
         quick: bool,
-        /// Output image (.png, .ppm; prism scenes also .pfm)
-        #[arg(long)]
+        #[arg(long, help = format!("{} (.pfm: prism scenes only) [default: results/<id>.png]", out_help(<modes::prism::Prism as modes::ModeKind>::FORMATS, "")))]
         out: Option<PathBuf>,
         /// Override a parameter of the scene file, e.g. --set photons=100000 --set size=320,120 (repeatable)
         #[arg(long, value_name = "KEY=VALUE")]
@@ -146,8 +145,7 @@ pub struct PrismArgs {
     pub probe: Option<PrismCommand>,
     #[command(flatten)]
     pub params: Given<param_args::Prism>,
-    /// Output image: .png, .ppm (display) or .pfm (linear sRGB)
-    #[arg(long, default_value = "results/prism.png", help_heading = "Output")]
+    #[arg(long, default_value = "results/prism.png", help_heading = "Output", help = out_help(<modes::prism::Prism as modes::ModeKind>::FORMATS, ""))]
     pub out: PathBuf,
     /// Append one timing row to this CSV
     #[arg(long, value_name = "FILE", help_heading = "Output")]
@@ -171,6 +169,22 @@ pub enum PrismCommand {
         #[arg(long, value_delimiter = ',', value_parser = parse_visible_nm, default_value = "486.1327,587.5618,656.2725")]
         wavelengths: Vec<f64>,
     },
+}
+
+/// The help of an output flag, from the formats the mode writes (the
+/// extensions `image_io::check_output` accepts; "" = no default to show).
+fn out_help(formats: &[crate::image_io::ImageFormat], default: &str) -> String {
+    use crate::image_io::ImageFormat;
+    let list: Vec<String> = formats
+        .iter()
+        .map(|f| match f {
+            ImageFormat::Png => ".png".to_string(),
+            ImageFormat::Ppm => ".ppm (binary P6)".into(),
+            ImageFormat::Pfm => ".pfm (linear sRGB floats)".into(),
+        })
+        .collect();
+    let default = if default.is_empty() { String::new() } else { format!(" [default: {default}]") };
+    format!("Output image, by its extension: {}; any other is refused{default}", list.join(", "))
 }
 
 fn parse_visible_nm(s: &str) -> Result<f64, String> {
@@ -330,8 +344,7 @@ fn parse_wavelength(s: &str) -> Result<f64, String> {
 pub struct InteriorArgs {
     #[command(flatten)]
     pub params: Given<param_args::Interior>,
-    /// Output image: .png, anything else is written as binary PPM (P6) [default: results/interior.png]
-    #[arg(long, help_heading = crate::params::interior::PROMPTS)]
+    #[arg(long, help_heading = crate::params::interior::PROMPTS, help = out_help(<modes::interior::Interior as modes::ModeKind>::FORMATS, "results/interior.png"))]
     pub out: Option<PathBuf>,
     /// Append one timing row (mode, mesh, triangles, ..., rays_per_s) to this CSV
     #[arg(long, value_name = "FILE", help_heading = "Output")]
@@ -348,7 +361,9 @@ impl InteriorArgs {
     /// Flag mode: the report's fields from flags or their defaults.
     fn flag_config(&self) -> Result<<modes::interior::Interior as modes::ModeKind>::Config> {
         if !self.params.has("off") {
-            bail!("--off FILE is required when any of the report's flags (--trace, --opacity, --color, --out, --coff, --scale, --rot, --ior) is given");
+            let prompts = crate::params::interior::PARAMS.iter().filter(|p| p.section == crate::params::interior::PROMPTS && p.key != "off");
+            let flags: Vec<String> = prompts.map(|p| format!("--{}", p.flag())).chain(["--out".to_string()]).collect();
+            bail!("--off is required when any of the report's flags ({}) is given", flags.join(", "));
         }
         let mut c = self.params.config();
         match &self.out {

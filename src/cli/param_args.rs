@@ -16,6 +16,11 @@ pub trait ParamSet: 'static {
     type Config: 'static;
     fn params() -> Vec<&'static Param<Self::Config>>;
     fn defaults() -> Self::Config;
+    /// Flags that must be given (when the mode's rule says so) rather than
+    /// defaulted: their help says so, and shows no default.
+    fn required() -> &'static [&'static str] {
+        &[]
+    }
 }
 
 /// Every parameter of a spectral run.
@@ -55,6 +60,9 @@ impl ParamSet for Interior {
     }
     fn defaults() -> Self::Config {
         modes::interior::Interior::defaults()
+    }
+    fn required() -> &'static [&'static str] {
+        &["off"]
     }
 }
 
@@ -98,7 +106,7 @@ impl<S: ParamSet> Given<S> {
 }
 
 /// One row as a clap argument.
-fn arg<C>(p: &'static Param<C>, defaults: &C) -> Arg {
+fn arg<C>(p: &'static Param<C>, defaults: &C, required: bool) -> Arg {
     let mut help = p.help.to_string();
     if !p.unit.is_empty() {
         help.push_str(&format!(" [unit: {}]", p.unit));
@@ -121,6 +129,7 @@ fn arg<C>(p: &'static Param<C>, defaults: &C) -> Arg {
         _ => a.value_parser(move |s: &str| kind.parse_text(s)).value_name(kind.value_name()).allow_hyphen_values(true),
     };
     match ((p.get)(defaults), p.default_text(defaults)) {
+        _ if required => help.push_str(" [required with any of the report's flags; otherwise asked]"),
         (Some(Value::Flag(_)), _) | (_, None) => {}
         (Some(_), Some(d)) => a = a.default_value(d),
         (None, Some(auto)) => help.push_str(&format!(" [default: {auto}]")),
@@ -155,7 +164,7 @@ impl<S: ParamSet> clap::FromArgMatches for Given<S> {
 impl<S: ParamSet> clap::Args for Given<S> {
     fn augment_args(cmd: Command) -> Command {
         let defaults = S::defaults();
-        S::params().into_iter().fold(cmd, |cmd, p| cmd.arg(arg(p, &defaults)))
+        S::params().into_iter().fold(cmd, |cmd, p| cmd.arg(arg(p, &defaults, S::required().contains(&p.key))))
     }
 
     fn augment_args_for_update(cmd: Command) -> Command {

@@ -17,7 +17,18 @@ fn f32s(v: &Value) -> glam::Vec3 {
 }
 
 fn f64s(v: glam::Vec3) -> Value {
-    Value::Triple(v.as_dvec3().to_array())
+    Value::Triple(v.to_array().map(wide))
+}
+
+/// An `f32` field as the real its shortest text names (1.4, not the
+/// 1.399999976158142 that `as f64` gives): help prints defaults as the
+/// table writes them, and the value sets back to the same `f32`.
+fn wide(x: f32) -> f64 {
+    x.to_string().parse().unwrap_or(x as f64)
+}
+
+fn real(x: f32) -> Value {
+    Value::Real(wide(x))
 }
 
 /// Why opacity and its compositing change nothing at trace count 0: the
@@ -55,7 +66,7 @@ pub static PARAMS: &[Param<InteriorConfig>] = &[
         unit: "percent",
         kind: Kind::closed(0.0, 100.0),
         auto: "",
-        get: |c| Some(Value::Real(c.opacity as f64)),
+        get: |c| Some(real(c.opacity)),
         set: |c, v| c.opacity = v.real() as f32,
         ignored: |c| trace_zero(c, "the opacity"),
     },
@@ -107,7 +118,7 @@ pub static PARAMS: &[Param<InteriorConfig>] = &[
         unit: "times",
         kind: Kind::above(0.0, 1e6),
         auto: "",
-        get: |c| Some(Value::Real(c.scale as f64)),
+        get: |c| Some(real(c.scale)),
         set: |c, v| c.scale = v.real() as f32,
         ignored: never,
     },
@@ -131,7 +142,7 @@ pub static PARAMS: &[Param<InteriorConfig>] = &[
         unit: "",
         kind: Kind::above(0.0, 100.0),
         auto: "",
-        get: |c| Some(Value::Real(c.ior as f64)),
+        get: |c| Some(real(c.ior)),
         set: |c, v| c.ior = v.real() as f32,
         ignored: never,
     },
@@ -143,7 +154,7 @@ pub static PARAMS: &[Param<InteriorConfig>] = &[
         unit: "",
         kind: Kind::closed(0.0, 1e4),
         auto: "",
-        get: |c| Some(Value::Real(c.shininess as f64)),
+        get: |c| Some(real(c.shininess)),
         set: |c, v| c.shininess = v.real() as f32,
         ignored: never,
     },
@@ -155,7 +166,7 @@ pub static PARAMS: &[Param<InteriorConfig>] = &[
         unit: "per unit^2",
         kind: Kind::NON_NEGATIVE,
         auto: "1 around the mesh alone, 0.1 in the Cornell boxes (larger: their walls stand 1.6 to 2.5 from the light)",
-        get: |c| c.atten.map(|a| Value::Real(a as f64)),
+        get: |c| c.atten.map(real),
         set: |c, v| c.atten = Some(v.real() as f32),
         ignored: never,
     },
@@ -179,7 +190,7 @@ pub static PARAMS: &[Param<InteriorConfig>] = &[
         unit: "",
         kind: Kind::NON_NEGATIVE,
         auto: "",
-        get: |c| Some(Value::Real(c.ka as f64)),
+        get: |c| Some(real(c.ka)),
         set: |c, v| c.ka = v.real() as f32,
         ignored: never,
     },
@@ -191,7 +202,7 @@ pub static PARAMS: &[Param<InteriorConfig>] = &[
         unit: "",
         kind: Kind::NON_NEGATIVE,
         auto: "",
-        get: |c| Some(Value::Real(c.kd as f64)),
+        get: |c| Some(real(c.kd)),
         set: |c, v| c.kd = v.real() as f32,
         ignored: never,
     },
@@ -203,7 +214,7 @@ pub static PARAMS: &[Param<InteriorConfig>] = &[
         unit: "",
         kind: Kind::NON_NEGATIVE,
         auto: "",
-        get: |c| Some(Value::Real(c.ks as f64)),
+        get: |c| Some(real(c.ks)),
         set: |c, v| c.ks = v.real() as f32,
         ignored: never,
     },
@@ -251,7 +262,7 @@ pub static PARAMS: &[Param<InteriorConfig>] = &[
         unit: "times",
         kind: Kind::above(0.0, 1e6),
         auto: "",
-        get: |c| Some(Value::Real(c.exposure as f64)),
+        get: |c| Some(real(c.exposure)),
         set: |c, v| c.exposure = v.real() as f32,
         ignored: never,
     },
@@ -287,7 +298,7 @@ pub static PARAMS: &[Param<InteriorConfig>] = &[
         unit: "scene units",
         kind: Kind::closed(0.0, 1.0),
         auto: "",
-        get: |c| Some(Value::Real(c.offset as f64)),
+        get: |c| Some(real(c.offset)),
         set: |c, v| c.offset = v.real() as f32,
         ignored: never,
     },
