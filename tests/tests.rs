@@ -51,3 +51,5 @@ mod ignored_flags;
 mod default_scenes;
 // The help against what the program does.
 mod help_text;
+// One vocabulary: names, hints, one error style.
+mod names;

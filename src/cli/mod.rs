@@ -9,6 +9,7 @@ use crate::modes::glass::IorKind;
 use anyhow::{bail, Context, Result};
 use clap::{Args, Parser, Subcommand};
 use param_args::Given;
+use std::ffi::OsString;
 use std::path::PathBuf;
 
 #[derive(Parser, Debug)]
@@ -372,6 +373,105 @@ impl InteriorArgs {
         }
         Ok(c)
     }
+}
+
+/// The command line with the modes' old flag spellings (each row's
+/// `aliases`, as `--color` for `--object-colour`) written as today's, and a
+/// note for each: clap knows only today's names, so a typo hint never
+/// points at an old one, and the old ones keep working.
+pub fn modern_args(args: Vec<OsString>) -> (Vec<OsString>, Vec<String>) {
+    fn old<C>(table: &'static [crate::params::Param<C>], name: &str) -> Option<String> {
+        let n = name.replace('-', "_");
+        table.iter().find(|p| p.aliases.contains(&n.as_str())).map(|p| p.flag())
+    }
+    let mode = args.get(1).and_then(|a| a.to_str()).unwrap_or_default().to_string();
+    let mut notes = Vec::new();
+    let mut out = Vec::with_capacity(args.len());
+    let mut rest = false;
+    for a in args {
+        let text = a.to_str().filter(|t| !rest && t.starts_with("--") && t.len() > 2);
+        let Some(t) = text else {
+            rest |= a == "--";
+            out.push(a);
+            continue;
+        };
+        let (name, value) = match t[2..].split_once('=') {
+            Some((n, v)) => (n, Some(v)),
+            None => (&t[2..], None),
+        };
+        let new = match mode.as_str() {
+            "interior" => old(crate::params::interior::PARAMS, name),
+            "prism" => old(crate::params::prism::PARAMS, name),
+            _ => None,
+        };
+        match new {
+            Some(flag) => {
+                notes.push(format!("--{name} is the old spelling of --{flag}"));
+                out.push(OsString::from(match value {
+                    Some(v) => format!("--{flag}={v}"),
+                    None => format!("--{flag}"),
+                }));
+            }
+            None => out.push(a),
+        }
+    }
+    (out, notes)
+}
+
+/// A command line clap refused, as every error is: one line, `refract:
+/// error: ...`, with clap's reason, its hint (or the nearest option when it
+/// has none) and the possible values; help and version are printed as
+/// they are. Returns the exit status: 0 for help and version, else 1.
+pub fn parse_failure(e: clap::Error, args: &[OsString]) -> u8 {
+    use clap::error::{ContextKind, ContextValue, ErrorKind};
+    use clap::CommandFactory;
+    match e.kind() {
+        ErrorKind::DisplayHelp | ErrorKind::DisplayVersion => {
+            let _ = e.print();
+            return 0;
+        }
+        ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
+            let _ = e.print();
+            return 1;
+        }
+        _ => {}
+    }
+    // The subcommand the error is about, for its options.
+    let mut cmd = Cli::command();
+    let mut path = vec!["refract".to_string()];
+    for a in args.iter().skip(1).filter_map(|a| a.to_str()) {
+        match cmd.find_subcommand(a) {
+            Some(sub) => {
+                path.push(a.to_string());
+                cmd = sub.clone();
+            }
+            None if a.starts_with('-') => continue,
+            None => break,
+        }
+    }
+    let text = e.render().to_string();
+    let mut parts: Vec<String> = Vec::new();
+    for line in text.lines().map(str::trim).take_while(|l| !l.starts_with("Usage:") && !l.starts_with("For more information")) {
+        let line = line.trim_start_matches("error: ").trim_start_matches("tip: ");
+        match parts.last_mut() {
+            _ if line.is_empty() => {}
+            Some(last) if line.starts_with('[') => {
+                last.push(' ');
+                last.push_str(line);
+            }
+            _ => parts.push(line.to_string()),
+        }
+    }
+    if e.kind() == ErrorKind::UnknownArgument && e.get(ContextKind::SuggestedArg).is_none() {
+        if let Some(ContextValue::String(typed)) = e.get(ContextKind::InvalidArg) {
+            let longs: Vec<String> = cmd.get_arguments().filter_map(|a| a.get_long()).map(|l| format!("--{l}")).collect();
+            if let Some(near) = crate::names::nearest(typed, longs.iter().map(String::as_str)) {
+                parts.push(format!("a similar argument exists: '{near}'"));
+            }
+        }
+    }
+    eprintln!("refract: error: {} (see `{} --help`)", parts.join("; "), path.join(" "));
+    1
 }
 
 /// Runs the parsed command line.

@@ -178,11 +178,7 @@ impl SceneFile {
         for o in overrides {
             let (k, v) = o.split_once('=').ok_or_else(|| anyhow!("--set: `{o}` is not KEY=VALUE"))?;
             let k = k.trim().replace('-', "_");
-            let value = self
-                .mode
-                .parse_text(&k, v)
-                .ok_or_else(|| anyhow!("--set: `{k}` is not a {} parameter", self.mode.name()))?
-                .map_err(|e| anyhow!("--set {k}: {e}"))?;
+            let value = self.mode.parse_text(&k, v).map_err(|e| anyhow!("--set {e}"))?;
             self.params.retain(|(p, _)| *p != k);
             self.params.push((k, value.to_toml()));
         }

@@ -113,8 +113,7 @@ impl Mode {
     pub fn check(self, key: &str, v: &Value, base: &Path) -> Result<Value, String> {
         with_mode!(self, M => {
             let Some(_) = params::find(M::params(), key) else {
-                let keys: Vec<&str> = M::params().iter().map(|p| p.key).collect();
-                return Err(format!("unknown {} parameter; expected one of {}", self.name(), keys.join(", ")));
+                return Err(params::unknown_key(M::params(), key, self.name()));
             };
             let mut cfg = M::defaults();
             params::apply_toml(M::params(), &mut cfg, key, v)?;
@@ -126,9 +125,12 @@ impl Mode {
     }
 
     /// A value typed as text (`--set KEY=VALUE`), read by the key's row;
-    /// `None` when the mode has no such key.
-    pub fn parse_text(self, key: &str, text: &str) -> Option<Result<params::Value, String>> {
-        with_mode!(self, M => params::find(M::params(), key).map(|p| p.kind.parse_text(text)))
+    /// an unknown key names the nearest and every key.
+    pub fn parse_text(self, key: &str, text: &str) -> Result<params::Value, String> {
+        with_mode!(self, M => match params::find(M::params(), key) {
+            Some(p) => p.kind.parse_text(text).map_err(|e| format!("{key}: {e}")),
+            None => Err(format!("`{key}`: {}", params::unknown_key(M::params(), key, self.name()))),
+        })
     }
 
     /// Whether `v` is `key`'s default (a key that is not the mode's, or a

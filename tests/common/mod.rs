@@ -25,20 +25,17 @@ pub fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
 }
 
-/// Asserts a failed run, no panic, `needle` in the first line of stderr. A
-/// domain error (exit 1) is that one line; a bad command line (exit 2) is
-/// clap's message, which ends with the `--help` hint.
+/// Asserts a failed run, no panic, `needle` in stderr's one line (every
+/// error, a bad command line's too, is one line and exit status 1).
 pub fn assert_clean_failure(o: &Output, needle: &str) {
     let err = stderr(o);
     assert!(!o.status.success(), "expected failure, got success; stderr: {err}");
     assert!(!err.contains("panicked"), "panic: {err}");
     let first = err.lines().next().unwrap_or("");
     assert!(first.contains(needle), "expected `{needle}` in the first line of: {err}");
-    match o.status.code() {
-        Some(1) => assert_eq!(err.trim_end().lines().count(), 1, "error should be one line: {err}"),
-        Some(2) => assert!(err.trim_end().ends_with("For more information, try '--help'."), "clap's hint is kept: {err}"),
-        c => panic!("exit code {c:?}: {err}"),
-    }
+    assert!(first.starts_with("refract: error: "), "one style: {err}");
+    assert_eq!(o.status.code(), Some(1), "exit status: {err}");
+    assert_eq!(err.trim_end().lines().count(), 1, "error should be one line: {err}");
 }
 
 /// A P6 image read back: (width, height, bytes).
