@@ -53,3 +53,5 @@ mod default_scenes;
 mod help_text;
 // One vocabulary: names, hints, one error style.
 mod names;
+// The README's commands, from a fresh clone (ignored: CI runs it).
+mod readme;
