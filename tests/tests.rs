@@ -55,3 +55,5 @@ mod help_text;
 mod names;
 // The README's commands, from a fresh clone (ignored: CI runs it).
 mod readme;
+// Progress lines, rates and the summary line.
+mod progress;

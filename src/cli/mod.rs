@@ -504,8 +504,10 @@ pub fn run(cli: Cli) -> Result<()> {
             };
             crate::image_io::check_output(&out, scene.mode.formats()).map_err(|e| anyhow::anyhow!("--out: {e}"))?;
             crate::image_io::remove_stale_temps(out.parent().unwrap_or(std::path::Path::new("")));
-            let secs = scene.render(&out, &crate::terminal::Bars::new())?;
-            eprintln!("wrote {} ({secs:.2} s)", out.display());
+            let bars = crate::terminal::Bars::new();
+            let (_, summary) = scene.render_summarised(&out, &bars)?;
+            bars.done();
+            eprintln!("wrote {} ({summary})", out.display());
             Ok(())
         }
         Command::Sweep(args) => run_sweep(args),
@@ -583,7 +585,8 @@ fn run_prism(args: PrismArgs) -> Result<()> {
         modes::prism::quick(&mut cfg, |k| args.params.has(k));
     }
     args.params.check_used(&cfg).map_err(anyhow::Error::msg)?;
-    modes::prism::run_to_files(&cfg, args.timing_csv.as_deref(), &crate::terminal::Bars::new(), &mut |line| eprintln!("{line}"))
+    let bars = crate::terminal::Bars::new();
+    modes::prism::run_to_files(&cfg, args.timing_csv.as_deref(), &bars, &mut |line| bars.println(&line))
 }
 
 fn run_sweep(args: SweepArgs) -> Result<()> {

@@ -127,13 +127,24 @@ impl SceneFile {
     /// Renders to `out`; returns the render time in seconds (light pass,
     /// map build and eye pass; for the interior mode, build and render).
     pub fn render(&self, out: &Path, progress: &dyn Progress) -> Result<f64> {
-        let mut secs = self.render_image(out, progress)?;
+        self.render_summarised(out, progress).map(|(secs, _)| secs)
+    }
+
+    /// As `render`, with the main image's summary line (size, what was
+    /// traced, exposure, each stage's time; `Record::summary`).
+    pub fn render_summarised(&self, out: &Path, progress: &dyn Progress) -> Result<(f64, String)> {
+        let start = std::time::Instant::now();
+        let run = self.mode.render_to(&self.params, out, progress)?;
+        let mut secs = run.record.render_time();
+        let mut summary = run.record.summary(run.exposure, start.elapsed().as_secs_f64());
+        drop(run);
         if self.close_up.is_none() && self.labels.is_empty() {
-            return Ok(secs);
+            return Ok((secs, summary));
         }
+        summary.push_str(", with its close-up and labels");
         if !out.extension().is_some_and(|e| e.eq_ignore_ascii_case("png")) {
             eprintln!("note: the scene file's close-up and labels are drawn on PNG images only; {} has none", out.display());
-            return Ok(secs);
+            return Ok((secs, summary));
         }
         let img = image::open(out).map_err(|e| anyhow!("{}: cannot read back to annotate: {e}", out.display()))?.to_rgb8();
         let (w, h) = (img.width() as usize, img.height() as usize);
@@ -165,7 +176,7 @@ impl SceneFile {
         }
         super::labels::draw(&mut buf, w, h, &self.labels).map_err(|e| anyhow!("{}: labels: {e}", self.id))?;
         crate::image_io::write_rgb8(out, w, h, &buf)?;
-        Ok(secs)
+        Ok((secs, summary))
     }
 
     fn render_image(&self, out: &Path, progress: &dyn Progress) -> Result<f64> {
