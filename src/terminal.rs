@@ -71,7 +71,12 @@ impl Bars {
         let style = ProgressStyle::with_template("{prefix} [{bar:30}] {percent:>3}% {msg}").unwrap_or_else(|_| ProgressStyle::default_bar());
         let target = if terminal { ProgressDrawTarget::stderr() } else { ProgressDrawTarget::hidden() };
         let bar = ProgressBar::with_draw_target(Some(0), target).with_style(style);
-        Bars { bar, plain: !terminal, every: plain_every(), state: Mutex::new(State { stage: None, times: Vec::new(), last_plain: Instant::now(), context: String::new() }) }
+        Bars {
+            bar,
+            plain: !terminal,
+            every: plain_every(),
+            state: Mutex::new(State { stage: None, times: Vec::new(), last_plain: Instant::now(), context: String::new() }),
+        }
     }
 
     fn state(&self) -> std::sync::MutexGuard<'_, State> {
@@ -107,10 +112,9 @@ impl Bars {
         self.bar.finish_and_clear();
     }
 
+    /// The bar's prefix: the context and the stage.
     fn describe(s: &State, st: &Stage) -> String {
-        let secs = st.since.elapsed().as_secs_f64();
-        let r = if secs > 0.0 { format!(", {}", rate(st.done as f64 / secs, unit(st.name))) } else { String::new() };
-        format!("{}{}{r}", if s.context.is_empty() { String::new() } else { format!("{}: ", s.context) }, st.name)
+        format!("{}{}", if s.context.is_empty() { String::new() } else { format!("{}: ", s.context) }, st.name)
     }
 }
 
@@ -143,7 +147,8 @@ impl Progress for Bars {
         let Some(st) = s.stage.as_mut().filter(|st| st.name == stage) else { return };
         st.done += n;
         let secs = st.since.elapsed().as_secs_f64();
-        let msg = if secs > 0.0 { rate(st.done as f64 / secs, unit(stage)) } else { String::new() };
+        // A rate once the stage has run long enough to have one.
+        let msg = if secs >= 0.2 { rate(st.done as f64 / secs, unit(stage)) } else { String::new() };
         let pct = 100 * st.done / st.total.max(1);
         if self.plain && s.last_plain.elapsed() >= self.every {
             s.last_plain = Instant::now();

@@ -160,7 +160,27 @@ fn space_separated_answers_replay_to_the_flags_bytes() {
     let answers = format!("2 40\n\n10 200 30\n  tokens.ppm   {}\n0 1.2\n\n15 -20 5 1.6\n", cube.display());
     let o = run(&["interior", "--size", "40,30"], &answers, d);
     assert!(o.status.success(), "{}", stderr(&o));
-    let flags = ["interior", "--size", "40,30", "--trace", "2", "--opacity", "40", "--object-colour", "10,200,30", "--out", "flags.ppm", "--off", cube.to_str().unwrap(), "--scale", "1.2", "--rot", "15,-20,5", "--ior", "1.6"];
+    let flags = [
+        "interior",
+        "--size",
+        "40,30",
+        "--trace",
+        "2",
+        "--opacity",
+        "40",
+        "--object-colour",
+        "10,200,30",
+        "--out",
+        "flags.ppm",
+        "--off",
+        cube.to_str().unwrap(),
+        "--scale",
+        "1.2",
+        "--rot",
+        "15,-20,5",
+        "--ior",
+        "1.6",
+    ];
     let o = run(&flags, "", d);
     assert!(o.status.success(), "{}", stderr(&o));
     assert_eq!(std::fs::read(d.join("tokens.ppm")).unwrap(), std::fs::read(d.join("flags.ppm")).unwrap());

@@ -40,9 +40,18 @@ fn interior_scene_kinds_are_visible_at_their_defaults() {
 #[test]
 fn prism_scene_kinds_are_visible_at_their_defaults() {
     let rooms = ["cornell-pointlight", "cornell-mirror-tube", "cornell-laser"];
-    for scene in
-        ["amici-screen", "amici-bench", "single-prism", "sphere-arealight", "sphere-metal", "spheres-final", "cornell-pointlight", "cornell-mirror-tube", "cornell-laser", "dark-side"]
-    {
+    for scene in [
+        "amici-screen",
+        "amici-bench",
+        "single-prism",
+        "sphere-arealight",
+        "sphere-metal",
+        "spheres-final",
+        "cornell-pointlight",
+        "cornell-mirror-tube",
+        "cornell-laser",
+        "dark-side",
+    ] {
         check(scene, &["prism", "--scene", scene, "--quick", "--size", "64,48"], rooms.contains(&scene));
     }
     // The lamp has no photons to cut; one sample a pixel (--quick) misses

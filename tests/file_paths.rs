@@ -29,7 +29,11 @@ fn a_users_scene_finds_its_mesh_beside_it() {
     std::fs::write(mine.join("bad.toml"), scene.replace("box.off", "nope.off")).unwrap();
     let before = snapshot(dir.path());
     let o = run(&["render", "mine/bad.toml", "--out", "y.png"], "", dir.path());
-    assert_fails_with(&o, 1, "refract: error: mine/bad.toml:4: `off`: nope.off: no such file in mine or any folder above it (paths in a file are from its own folder)");
+    assert_fails_with(
+        &o,
+        1,
+        "refract: error: mine/bad.toml:4: `off`: nope.off: no such file in mine or any folder above it (paths in a file are from its own folder)",
+    );
     assert_eq!(snapshot(dir.path()), before, "no file changed");
 }
 

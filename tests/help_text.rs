@@ -73,10 +73,14 @@ fn out_extensions_as_printed_work_and_no_other() {
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
     let cube = repo("off/cube.off");
-    for (cmd, base) in [("interior", vec!["--off", cube.to_str().unwrap(), "--size", "8,8"]), ("prism", vec!["--scene", "single-prism", "--size", "16,12", "--photons", "2000"])] {
+    for (cmd, base) in [
+        ("interior", vec!["--off", cube.to_str().unwrap(), "--size", "8,8"]),
+        ("prism", vec!["--scene", "single-prism", "--size", "16,12", "--photons", "2000"]),
+    ] {
         let h = help(cmd);
         let line = h.lines().skip_while(|l| !l.trim_start().starts_with("--out ")).nth(1).unwrap().to_string();
-        let exts: Vec<String> = line.split(|c: char| c.is_whitespace() || c == ',' || c == ';').filter(|w| w.starts_with('.') && w.len() > 1).map(str::to_string).collect();
+        let exts: Vec<String> =
+            line.split(|c: char| c.is_whitespace() || c == ',' || c == ';').filter(|w| w.starts_with('.') && w.len() > 1).map(str::to_string).collect();
         assert!(exts.len() >= 2, "{cmd}: {line}");
         for e in &exts {
             let out = format!("x{e}");
@@ -104,7 +108,11 @@ fn what_the_help_says_is_required_is() {
     assert!(h.contains("[required with any of the report's flags; otherwise asked]") && !h.contains("[default: off/cube.off]"), "{h}");
     let dir = tempfile::tempdir().unwrap();
     let o = run(&["interior", "--ior", "1.5"], "", dir.path());
-    assert_fails_with(&o, 1, "refract: error: --off is required when any of the report's flags (--trace, --opacity, --object-colour, --coff, --scale, --rot, --ior, --out) is given");
+    assert_fails_with(
+        &o,
+        1,
+        "refract: error: --off is required when any of the report's flags (--trace, --opacity, --object-colour, --coff, --scale, --rot, --ior, --out) is given",
+    );
     assert!(snapshot(dir.path()).is_empty());
     let s = help("sweep");
     assert!(s.contains("chains of runs along its first sweep axis") && !s.contains("modulo"), "{s}");

@@ -34,7 +34,11 @@ fn opacity_at_trace_zero_is_refused_everywhere() {
     let lab = repo("scenes/lab-ior1.4.toml");
     refused(&["render", lab.to_str().unwrap(), "--set", "opacity=90", "--out", "y.png"], "", d, &format!("refract: error: --set opacity: {OPACITY}"));
     // An experiment axis over opacity at trace 0: three identical lines.
-    std::fs::write(d.join("e.toml"), format!("name = \"e\"\nmode = \"interior\"\n[fixed]\noff = \"{cube}\"\nsize = [8, 8]\n[sweep]\nior = [1.2, 1.5]\nopacity = [10, 25, 90]\n")).unwrap();
+    std::fs::write(
+        d.join("e.toml"),
+        format!("name = \"e\"\nmode = \"interior\"\n[fixed]\noff = \"{cube}\"\nsize = [8, 8]\n[sweep]\nior = [1.2, 1.5]\nopacity = [10, 25, 90]\n"),
+    )
+    .unwrap();
     refused(&["sweep", "e.toml", "--out", "o"], "", d, &format!("refract: error: e.toml:8: `opacity`: no run of the experiment uses it: {OPACITY}"));
 
     // Used above trace 0; the default restated at trace 0 is let be.
@@ -54,9 +58,23 @@ fn quick_without_quick_settings_and_an_empty_shard_are_refused() {
     let d = dir.path();
     let cube = repo("off/cube.off");
     std::fs::write(d.join("s.toml"), format!("id = \"s\"\nmode = \"interior\"\n[params]\noff = \"{}\"\nsize = [8, 8]\n", cube.display())).unwrap();
-    refused(&["render", "s.toml", "--quick", "--out", "y.png"], "", d, "refract: error: --quick: s.toml has no [quick] settings, so the render would be the full one; add a [quick] table or leave --quick out");
-    std::fs::write(d.join("f.toml"), format!("name = \"f\"\nmode = \"interior\"\n[fixed]\noff = \"{}\"\nsize = [8, 8]\n[sweep]\nior = [1.2, 1.5]\n", cube.display())).unwrap();
-    refused(&["sweep", "f.toml", "--quick", "--out", "o"], "", d, "refract: error: --quick: f.toml has no [quick] settings, so the sweep would be the full one; add a [quick] table or leave --quick out");
+    refused(
+        &["render", "s.toml", "--quick", "--out", "y.png"],
+        "",
+        d,
+        "refract: error: --quick: s.toml has no [quick] settings, so the render would be the full one; add a [quick] table or leave --quick out",
+    );
+    std::fs::write(
+        d.join("f.toml"),
+        format!("name = \"f\"\nmode = \"interior\"\n[fixed]\noff = \"{}\"\nsize = [8, 8]\n[sweep]\nior = [1.2, 1.5]\n", cube.display()),
+    )
+    .unwrap();
+    refused(
+        &["sweep", "f.toml", "--quick", "--out", "o"],
+        "",
+        d,
+        "refract: error: --quick: f.toml has no [quick] settings, so the sweep would be the full one; add a [quick] table or leave --quick out",
+    );
     refused(
         &["sweep", "f.toml", "--shard", "1/2", "--out", "o"],
         "",

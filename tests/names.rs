@@ -31,7 +31,13 @@ fn glass_names_match_alike_in_every_command() {
     assert_fails_with(&run(&["glass", "nbk8"], "", d), 1, &format!("refract: error: unknown glass `nbk8` (did you mean `N-BK7`?); valid: {valid}"));
     let mut args = tiny.to_vec();
     args.extend(["--glass", "nbk8", "--out", "x.png"]);
-    assert_fails_with(&run(&args, "", d), 1, &format!("refract: error: invalid value 'nbk8' for '--glass <NAME>': `nbk8` is not one of {valid} (did you mean `N-BK7`?) (see `refract prism --help`)"));
+    assert_fails_with(
+        &run(&args, "", d),
+        1,
+        &format!(
+            "refract: error: invalid value 'nbk8' for '--glass <NAME>': `nbk8` is not one of {valid} (did you mean `N-BK7`?) (see `refract prism --help`)"
+        ),
+    );
     assert_eq!(snapshot(d), before);
 }
 
@@ -40,8 +46,16 @@ fn hints_point_at_todays_spellings_and_old_ones_say_so() {
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
     let before = snapshot(d);
-    assert_fails_with(&run(&["interior", "--colour", "1,2,3"], "", d), 1, "refract: error: unexpected argument '--colour' found; a similar argument exists: '--object-colour' (see `refract interior --help`)");
-    assert_fails_with(&run(&["prism", "--colour", "cie"], "", d), 1, "refract: error: unexpected argument '--colour' found; a similar argument exists: '--colour-map' (see `refract prism --help`)");
+    assert_fails_with(
+        &run(&["interior", "--colour", "1,2,3"], "", d),
+        1,
+        "refract: error: unexpected argument '--colour' found; a similar argument exists: '--object-colour' (see `refract interior --help`)",
+    );
+    assert_fails_with(
+        &run(&["prism", "--colour", "cie"], "", d),
+        1,
+        "refract: error: unexpected argument '--colour' found; a similar argument exists: '--colour-map' (see `refract prism --help`)",
+    );
     assert_fails_with(&run(&["sweep", "plan", "x.toml", "--engine", "paralel"], "", d), 1, "refract: error: invalid value 'paralel' for '--engine <ENGINE>': `paralel` is not one of parallel, slurm (did you mean `parallel`?) (see `refract sweep plan --help`)");
     assert_eq!(snapshot(d), before);
     let cube = repo("off/cube.off");
@@ -63,7 +77,11 @@ fn set_and_scene_keys_name_the_nearest_and_every_key() {
     );
     std::fs::write(d.join("k.toml"), "id = \"s\"\nmode = \"interior\"\n[params]\nofset = 0.1\n").unwrap();
     let before_k = snapshot(d);
-    assert_fails_with(&run(&["render", "k.toml"], "", d), 1, &format!("refract: error: k.toml:4: `ofset`: unknown interior parameter (did you mean `offset`?); expected one of {INTERIOR_KEYS}"));
+    assert_fails_with(
+        &run(&["render", "k.toml"], "", d),
+        1,
+        &format!("refract: error: k.toml:4: `ofset`: unknown interior parameter (did you mean `offset`?); expected one of {INTERIOR_KEYS}"),
+    );
     assert_eq!(snapshot(d), before_k);
     assert!(before.is_empty());
 }

@@ -239,7 +239,10 @@ impl<'a> FileParser<'a> {
 
     /// A section's parameters, each checked against the mode's table.
     fn checked(&self, mode: Mode, section: &str) -> Result<Vec<(String, Value)>> {
-        self.merged(section)?.into_iter().map(|(k, v)| mode.check(&k, &v, self.base()).map(|v| (k.clone(), v)).map_err(|m| self.err(section, 0, &k, m))).collect()
+        self.merged(section)?
+            .into_iter()
+            .map(|(k, v)| mode.check(&k, &v, self.base()).map(|v| (k.clone(), v)).map_err(|m| self.err(section, 0, &k, m)))
+            .collect()
     }
 
     fn string(&self, key: &str) -> Result<String> {

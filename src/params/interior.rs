@@ -228,7 +228,10 @@ pub static PARAMS: &[Param<InteriorConfig>] = &[
         auto: "",
         get: |c| Some(pick(c.specular_opacity)),
         set: |c, v| c.specular_opacity = v.choice(),
-        ignored: |c| trace_zero(c, "how specular light is composited").or_else(|| (c.opacity >= 100.0).then(|| "an opaque object (--opacity 100) has no layers to composite".to_string())),
+        ignored: |c| {
+            trace_zero(c, "how specular light is composited")
+                .or_else(|| (c.opacity >= 100.0).then(|| "an opaque object (--opacity 100) has no layers to composite".to_string()))
+        },
     },
     Param {
         key: "size",
