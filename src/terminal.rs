@@ -18,18 +18,7 @@ fn plain_every() -> Duration {
     Duration::from_secs_f64(secs.unwrap_or(5.0).min(86_400.0))
 }
 
-/// A rate as people read it: `5.3 M photons/s`, `812 rows/s`,
-/// `42.0 k rays/s` (three significant digits at most).
-pub fn rate(per_s: f64, unit: &str) -> String {
-    let (v, prefix) = match per_s.abs() {
-        x if x >= 1e9 => (per_s / 1e9, "G "),
-        x if x >= 1e6 => (per_s / 1e6, "M "),
-        x if x >= 1e4 => (per_s / 1e3, "k "),
-        _ => (per_s, ""),
-    };
-    let digits = if v.abs() >= 100.0 || prefix.is_empty() && v.abs() >= 10.0 { 0 } else { 1 };
-    format!("{v:.digits$} {prefix}{unit}/s")
-}
+pub use crate::timing::rate;
 
 /// The unit a stage counts.
 fn unit(stage: &str) -> &'static str {
@@ -150,10 +139,12 @@ impl Progress for Bars {
         // A rate once the stage has run long enough to have one.
         let msg = if secs >= 0.2 { rate(st.done as f64 / secs, unit(stage)) } else { String::new() };
         let pct = 100 * st.done / st.total.max(1);
+        let done = st.done;
         if self.plain && s.last_plain.elapsed() >= self.every {
             s.last_plain = Instant::now();
             let ctx = if s.context.is_empty() { String::new() } else { format!("{}: ", s.context) };
-            eprintln!("{ctx}{stage} {pct}% ({msg}), {secs:.1} s");
+            let r = if secs > 0.0 { format!(" ({})", rate(done as f64 / secs, unit(stage))) } else { String::new() };
+            eprintln!("{ctx}{stage} {pct}%{r}, {secs:.1} s");
         } else if !self.plain {
             self.bar.set_message(msg);
         }
@@ -181,17 +172,6 @@ pub fn counter(len: u64, prefix: &str, unit: &str) -> ProgressBar {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn rates_read_as_people_write_them() {
-        assert_eq!(rate(5.3e6, "photons"), "5.3 M photons/s");
-        assert_eq!(rate(64.9494, "rows"), "65 rows/s");
-        assert_eq!(rate(3.27, "rows"), "3.3 rows/s");
-        assert_eq!(rate(812.0, "rows"), "812 rows/s");
-        assert_eq!(rate(42_000.0, "rays"), "42.0 k rays/s");
-        assert_eq!(rate(123.4e6, "rays"), "123 M rays/s");
-        assert_eq!(rate(2.5e9, "photons"), "2.5 G photons/s");
-    }
 
     #[test]
     fn stages_are_timed_and_summed_over_repeats() {

@@ -158,7 +158,7 @@ impl Record {
         }
         let shown = if (0.01..1000.0).contains(&exposure.abs()) { format!("{}", (exposure * 1000.0).round() / 1000.0) } else { format!("{exposure:.3e}") };
         what.push(format!("exposure {shown}"));
-        let rate = |n: u64, s: f64, unit: &str| if s > 0.0 && n > 0 { format!(" ({})", crate::terminal::rate(n as f64 / s, unit)) } else { String::new() };
+        let rate = |n: u64, s: f64, unit: &str| if s > 0.0 && n > 0 { format!(" ({})", crate::timing::rate(n as f64 / s, unit)) } else { String::new() };
         let mut stages: Vec<(&str, f64, String)> = Vec::new();
         if let Some(l) = self.load_s {
             stages.push(("read", l, String::new()));
