@@ -121,3 +121,32 @@ mod tests {
         }
     }
 }
+
+/// A rate as people read it: `5.3 M photons/s`, `812 rows/s`,
+/// `42.0 k rays/s` (three significant digits at most).
+pub fn rate(per_s: f64, unit: &str) -> String {
+    let (v, prefix) = match per_s.abs() {
+        x if x >= 1e9 => (per_s / 1e9, "G "),
+        x if x >= 1e6 => (per_s / 1e6, "M "),
+        x if x >= 1e4 => (per_s / 1e3, "k "),
+        _ => (per_s, ""),
+    };
+    let digits = if v.abs() >= 100.0 || prefix.is_empty() && v.abs() >= 10.0 { 0 } else { 1 };
+    format!("{v:.digits$} {prefix}{unit}/s")
+}
+
+#[cfg(test)]
+mod rate_tests {
+    use super::rate;
+
+    #[test]
+    fn rates_read_as_people_write_them() {
+        assert_eq!(rate(5.3e6, "photons"), "5.3 M photons/s");
+        assert_eq!(rate(64.9494, "rows"), "65 rows/s");
+        assert_eq!(rate(3.27, "rows"), "3.3 rows/s");
+        assert_eq!(rate(812.0, "rows"), "812 rows/s");
+        assert_eq!(rate(42_000.0, "rays"), "42.0 k rays/s");
+        assert_eq!(rate(123.4e6, "rays"), "123 M rays/s");
+        assert_eq!(rate(2.5e9, "photons"), "2.5 G photons/s");
+    }
+}

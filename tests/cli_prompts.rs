@@ -148,3 +148,46 @@ fn old_spellings_still_work() {
     let ib = ["interior", "--size", "16,16", "--off", cube.as_str()];
     pair(&[&ib[..], &["--color", "0,0,255"]].concat(), &[&ib[..], &["--object-colour", "0,0,255"]].concat(), "object colour");
 }
+
+/// A report-era answer file, answers separated by spaces as C++ `cin >>`
+/// reads them, with blank lines, replays to the same bytes as the flags; a
+/// bad token names its line.
+#[test]
+fn space_separated_answers_replay_to_the_flags_bytes() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let cube = repo("off/cube.off");
+    let answers = format!("2 40\n\n10 200 30\n  tokens.ppm   {}\n0 1.2\n\n15 -20 5 1.6\n", cube.display());
+    let o = run(&["interior", "--size", "40,30"], &answers, d);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let flags = [
+        "interior",
+        "--size",
+        "40,30",
+        "--trace",
+        "2",
+        "--opacity",
+        "40",
+        "--object-colour",
+        "10,200,30",
+        "--out",
+        "flags.ppm",
+        "--off",
+        cube.to_str().unwrap(),
+        "--scale",
+        "1.2",
+        "--rot",
+        "15,-20,5",
+        "--ior",
+        "1.6",
+    ];
+    let o = run(&flags, "", d);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(std::fs::read(d.join("tokens.ppm")).unwrap(), std::fs::read(d.join("flags.ppm")).unwrap());
+
+    let before = snapshot(d);
+    let bad = format!("2 40\n\n10 200 300\n  bad.ppm   {}\n0 1.2\n\n15 -20 5 1.6\n", cube.display());
+    let o = run(&["interior", "--size", "40,30"], &bad, d);
+    assert_fails_with(&o, 1, "refract: error: line 3 of standard input: `300` is no answer to \"B\": 300 is outside 0-255");
+    assert_eq!(snapshot(d), before);
+}

@@ -81,7 +81,7 @@ fn render_overrides_parameters() {
     let o = run(&["render", scene.to_str().unwrap(), "--set", "photons=0", "--out", "x.png"], "", dir.path());
     assert_clean_failure(&o, "--set photons: 0 is not between 1 and 2000000000");
     let o = run(&["render", scene.to_str().unwrap(), "--set", "colour=1", "--out", "x.png"], "", dir.path());
-    assert_clean_failure(&o, "--set: `colour` is not a prism parameter");
+    assert_clean_failure(&o, "--set `colour`: unknown prism parameter (did you mean `colour_map`?); expected one of scene, glass,");
     let o = run(&["render", scene.to_str().unwrap(), "--set", "film_kernel=2", "--out", "x.png"], "", dir.path());
     assert_clean_failure(&o, "--set film_kernel: only --map film has a kernel; --map kdtree gathers with --radius and --filter");
     assert!(!dir.path().join("x.png").exists());

@@ -267,9 +267,9 @@ mod cli {
         let o = run(&["prism", "--quick", "--out", "q.png"], "", dir.path());
         assert!(o.status.success(), "{}", stderr(&o));
         // The default 640x240 and 1 000 000 photons, quick: half the size, a tenth of the photons.
-        assert!(stderr(&o).contains("(320x120): 100000 photons"), "{}", stderr(&o));
+        assert!(stderr(&o).contains("(320x120, 100000 photons"), "{}", stderr(&o));
         let o = run(&["prism", "--quick", "--size", "64,24", "--photons", "3000", "--out", "q.png"], "", dir.path());
-        assert!(stderr(&o).contains("(64x24): 3000 photons"), "{}", stderr(&o));
+        assert!(stderr(&o).contains("(64x24, 3000 photons"), "{}", stderr(&o));
     }
 
     #[test]

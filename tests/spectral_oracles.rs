@@ -79,7 +79,7 @@ fn glass_cli_prints_catalogue_indices() {
     let list = String::from_utf8(o.stdout).unwrap();
     assert_eq!(list.lines().count(), 10, "{list}");
     let o = run(&["glass", "BK9"], "", &repo(""));
-    assert_clean_failure(&o, "unknown glass `BK9`; valid: N-BK7");
+    assert_clean_failure(&o, "unknown glass `BK9` (did you mean `N-BK7`?); valid: N-BK7");
     // The list takes no model or wavelengths, which it would ignore.
     let o = run(&["glass", "--list", "--model", "cauchy"], "", &repo(""));
     assert_clean_failure(&o, "the argument '--list' cannot be used with '--model <MODEL>'");

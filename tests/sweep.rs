@@ -143,7 +143,7 @@ fn shards_merged_equal_the_unsharded_run() {
     assert_eq!(stable(Path::new(&d("resumed"))), stable(Path::new(&d("all"))));
     // A shard of another version of the experiment file:
     let other = dir.path().join("tiny2.toml");
-    std::fs::write(&other, std::fs::read_to_string(tiny()).unwrap() + "\n# edited\n").unwrap();
+    std::fs::write(&other, moved(&tiny()) + "\n# edited\n").unwrap();
     let o = sweep(&[other.to_str().unwrap(), "--out", &d("other"), "--shard", "1/2"], &repo(""));
     assert!(o.status.success(), "{}", stderr(&o));
     let o = sweep(&["merge", &d("shard0"), &d("other"), "--out", &d("mixed")], &repo(""));
@@ -214,13 +214,17 @@ fn shipped_experiments_parse_and_stability_records_failures_as_rows() {
     let big = dir.path().join("big.toml");
     std::fs::write(
         &big,
-        "name = \"big\"\nmode = \"interior\"\n[fixed]\noff = \"off/cube.off\"\n[sweep]\nior = { from = 1.0, to = 3.0, step = 0.0001 }\ntrace = { from = 0, to = 100, step = 1 }\n",
+        format!(
+            "name = \"big\"\nmode = \"interior\"\n[fixed]\noff = \"{}\"\n[sweep]\nior = {{ from = 1.0, to = 3.0, step = 0.0001 }}\ntrace = {{ from = 0, to = 100, step = 1 }}\n",
+            repo("off/cube.off").display()
+        ),
     )
     .unwrap();
     let o = sweep(&[big.to_str().unwrap(), "--out", dir.path().join("o").to_str().unwrap()], &repo(""));
     assert_clean_failure(&o, "big.toml:5: `sweep`: the experiment has 2020101 runs (cases x sweep values x repeats); at most 100000");
     let dir = tempfile::tempdir().unwrap();
-    let o = sweep(&[repo("experiments/stability.toml").to_str().unwrap(), "--quick", "--out", dir.path().to_str().unwrap()], &repo(""));
+    // (stability.toml has no [quick] settings: --quick would be refused.)
+    let o = sweep(&[repo("experiments/stability.toml").to_str().unwrap(), "--out", dir.path().to_str().unwrap()], &repo(""));
     // Its runs fail on purpose: each a row, and the status says so.
     assert_clean_failure(&o, "stability: ");
     assert!(stderr(&o).contains("failed); the first failed run, "), "{}", stderr(&o));
@@ -278,7 +282,7 @@ fn resume_refuses_what_an_edited_experiment_file_made() {
     let before = r[0][c].clone();
     let old = std::fs::read(out.join("runs.csv")).unwrap();
     let edited = dir.path().join("tiny.toml");
-    std::fs::write(&edited, std::fs::read_to_string(tiny()).unwrap() + "\n# edited\n").unwrap();
+    std::fs::write(&edited, moved(&tiny()) + "\n# edited\n").unwrap();
     let o = sweep(&[edited.to_str().unwrap(), "--out", out.to_str().unwrap(), "--resume"], &repo(""));
     assert_clean_failure(&o, &format!("{}/runs.csv: holds 6 runs (6 of experiment {before}), not of tiny@", out.display()));
     assert_eq!(std::fs::read(out.join("runs.csv")).unwrap(), old);
@@ -308,4 +312,10 @@ fn plans_have_no_empty_shard() {
     let o = sweep(&["plan", &lab, "--quick", "--engine", "slurm", "--out", &out("one")], &repo(""));
     assert!(o.status.success() && String::from_utf8_lossy(&o.stdout).contains("5 runs in 1 shard "), "{}", stderr(&o));
     assert!(std::fs::read_to_string(dir.path().join("one/merge.sh")).unwrap().contains("\nN=1\n"));
+}
+
+/// An experiment file's text for a copy in another folder: its mesh path,
+/// which is from the file's own folder, made absolute.
+fn moved(file: &str) -> String {
+    std::fs::read_to_string(file).unwrap().replace("\"off/cube.off\"", &format!("\"{}\"", repo("off/cube.off").display()))
 }

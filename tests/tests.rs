@@ -47,3 +47,17 @@ mod docs;
 // A matte scene through a dispersive wedge against the sum of its
 // monochromatic renders.
 mod wedge;
+// Paths in scene and experiment files are from the file's folder.
+mod file_paths;
+// Flags, keys and axes that cannot change the image are refused.
+mod ignored_flags;
+// Every shipped scene kind at its defaults is neither black nor white.
+mod default_scenes;
+// The help against what the program does.
+mod help_text;
+// One vocabulary: names, hints, one error style.
+mod names;
+// The README's commands, from a fresh clone (ignored: CI runs it).
+mod readme;
+// Progress lines, rates and the summary line.
+mod progress;

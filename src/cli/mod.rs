@@ -9,6 +9,7 @@ use crate::modes::glass::IorKind;
 use anyhow::{bail, Context, Result};
 use clap::{Args, Parser, Subcommand};
 use param_args::Given;
+use std::ffi::OsString;
 use std::path::PathBuf;
 
 #[derive(Parser, Debug)]
@@ -52,8 +53,7 @@ pub enum Command {
         /// Its [quick] settings
         #[arg(long)]
         quick: bool,
-        /// Output image (.png, .ppm; prism scenes also .pfm)
-        #[arg(long)]
+        #[arg(long, help = format!("{} (.pfm: prism scenes only) [default: results/<id>.png]", out_help(<modes::prism::Prism as modes::ModeKind>::FORMATS, "")))]
         out: Option<PathBuf>,
         /// Override a parameter of the scene file, e.g. --set photons=100000 --set size=320,120 (repeatable)
         #[arg(long, value_name = "KEY=VALUE")]
@@ -146,8 +146,7 @@ pub struct PrismArgs {
     pub probe: Option<PrismCommand>,
     #[command(flatten)]
     pub params: Given<param_args::Prism>,
-    /// Output image: .png, .ppm (display) or .pfm (linear sRGB)
-    #[arg(long, default_value = "results/prism.png", help_heading = "Output")]
+    #[arg(long, default_value = "results/prism.png", help_heading = "Output", help = out_help(<modes::prism::Prism as modes::ModeKind>::FORMATS, ""))]
     pub out: PathBuf,
     /// Append one timing row to this CSV
     #[arg(long, value_name = "FILE", help_heading = "Output")]
@@ -171,6 +170,22 @@ pub enum PrismCommand {
         #[arg(long, value_delimiter = ',', value_parser = parse_visible_nm, default_value = "486.1327,587.5618,656.2725")]
         wavelengths: Vec<f64>,
     },
+}
+
+/// The help of an output flag, from the formats the mode writes (the
+/// extensions `image_io::check_output` accepts; "" = no default to show).
+fn out_help(formats: &[crate::image_io::ImageFormat], default: &str) -> String {
+    use crate::image_io::ImageFormat;
+    let list: Vec<String> = formats
+        .iter()
+        .map(|f| match f {
+            ImageFormat::Png => ".png".to_string(),
+            ImageFormat::Ppm => ".ppm (binary P6)".into(),
+            ImageFormat::Pfm => ".pfm (linear sRGB floats)".into(),
+        })
+        .collect();
+    let default = if default.is_empty() { String::new() } else { format!(" [default: {default}]") };
+    format!("Output image, by its extension: {}; any other is refused{default}", list.join(", "))
 }
 
 fn parse_visible_nm(s: &str) -> Result<f64, String> {
@@ -207,7 +222,7 @@ pub struct SweepArgs {
     /// Remove the output folder's lock whoever holds it (only when the sweep it names is known to be gone, e.g. on another host)
     #[arg(long)]
     pub break_lock: bool,
-    /// Only runs whose id modulo N is I (0 <= I < N), for job arrays; join with `sweep merge`
+    /// Only shard I of N (0 <= I < N): the grid's chains of runs along its first sweep axis, balanced by estimated cost over N shards as `sweep plan` does; at most as many shards as chains. Join with `sweep merge`
     #[arg(long, value_name = "I/N", value_parser = parse_shard)]
     pub shard: Option<(usize, usize)>,
     /// Stop after this many runs (for testing interruption)
@@ -342,8 +357,7 @@ fn parse_wavelength(s: &str) -> Result<f64, String> {
 pub struct InteriorArgs {
     #[command(flatten)]
     pub params: Given<param_args::Interior>,
-    /// Output image: .png, anything else is written as binary PPM (P6) [default: results/interior.png]
-    #[arg(long, help_heading = crate::params::interior::PROMPTS)]
+    #[arg(long, help_heading = crate::params::interior::PROMPTS, help = out_help(<modes::interior::Interior as modes::ModeKind>::FORMATS, "results/interior.png"))]
     pub out: Option<PathBuf>,
     /// Append one timing row (mode, mesh, triangles, ..., rays_per_s) to this CSV
     #[arg(long, value_name = "FILE", help_heading = "Output")]
@@ -360,7 +374,9 @@ impl InteriorArgs {
     /// Flag mode: the report's fields from flags or their defaults.
     fn flag_config(&self) -> Result<<modes::interior::Interior as modes::ModeKind>::Config> {
         if !self.params.has("off") {
-            bail!("--off FILE is required when any of the report's flags (--trace, --opacity, --color, --out, --coff, --scale, --rot, --ior) is given");
+            let prompts = crate::params::interior::PARAMS.iter().filter(|p| p.section == crate::params::interior::PROMPTS && p.key != "off");
+            let flags: Vec<String> = prompts.map(|p| format!("--{}", p.flag())).chain(["--out".to_string()]).collect();
+            bail!("--off is required when any of the report's flags ({}) is given", flags.join(", "));
         }
         let mut c = self.params.config();
         match &self.out {
@@ -369,6 +385,105 @@ impl InteriorArgs {
         }
         Ok(c)
     }
+}
+
+/// The command line with the modes' old flag spellings (each row's
+/// `aliases`, as `--color` for `--object-colour`) written as today's, and a
+/// note for each: clap knows only today's names, so a typo hint never
+/// points at an old one, and the old ones keep working.
+pub fn modern_args(args: Vec<OsString>) -> (Vec<OsString>, Vec<String>) {
+    fn old<C>(table: &'static [crate::params::Param<C>], name: &str) -> Option<String> {
+        let n = name.replace('-', "_");
+        table.iter().find(|p| p.aliases.contains(&n.as_str())).map(|p| p.flag())
+    }
+    let mode = args.get(1).and_then(|a| a.to_str()).unwrap_or_default().to_string();
+    let mut notes = Vec::new();
+    let mut out = Vec::with_capacity(args.len());
+    let mut rest = false;
+    for a in args {
+        let text = a.to_str().filter(|t| !rest && t.starts_with("--") && t.len() > 2);
+        let Some(t) = text else {
+            rest |= a == "--";
+            out.push(a);
+            continue;
+        };
+        let (name, value) = match t[2..].split_once('=') {
+            Some((n, v)) => (n, Some(v)),
+            None => (&t[2..], None),
+        };
+        let new = match mode.as_str() {
+            "interior" => old(crate::params::interior::PARAMS, name),
+            "prism" => old(crate::params::prism::PARAMS, name),
+            _ => None,
+        };
+        match new {
+            Some(flag) => {
+                notes.push(format!("--{name} is the old spelling of --{flag}"));
+                out.push(OsString::from(match value {
+                    Some(v) => format!("--{flag}={v}"),
+                    None => format!("--{flag}"),
+                }));
+            }
+            None => out.push(a),
+        }
+    }
+    (out, notes)
+}
+
+/// A command line clap refused, as every error is: one line, `refract:
+/// error: ...`, with clap's reason, its hint (or the nearest option when it
+/// has none) and the possible values; help and version are printed as
+/// they are. Returns the exit status: 0 for help and version, else 1.
+pub fn parse_failure(e: clap::Error, args: &[OsString]) -> u8 {
+    use clap::error::{ContextKind, ContextValue, ErrorKind};
+    use clap::CommandFactory;
+    match e.kind() {
+        ErrorKind::DisplayHelp | ErrorKind::DisplayVersion => {
+            let _ = e.print();
+            return 0;
+        }
+        ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
+            let _ = e.print();
+            return 1;
+        }
+        _ => {}
+    }
+    // The subcommand the error is about, for its options.
+    let mut cmd = Cli::command();
+    let mut path = vec!["refract".to_string()];
+    for a in args.iter().skip(1).filter_map(|a| a.to_str()) {
+        match cmd.find_subcommand(a) {
+            Some(sub) => {
+                path.push(a.to_string());
+                cmd = sub.clone();
+            }
+            None if a.starts_with('-') => continue,
+            None => break,
+        }
+    }
+    let text = e.render().to_string();
+    let mut parts: Vec<String> = Vec::new();
+    for line in text.lines().map(str::trim).take_while(|l| !l.starts_with("Usage:") && !l.starts_with("For more information")) {
+        let line = line.trim_start_matches("error: ").trim_start_matches("tip: ");
+        match parts.last_mut() {
+            _ if line.is_empty() => {}
+            Some(last) if line.starts_with('[') => {
+                last.push(' ');
+                last.push_str(line);
+            }
+            _ => parts.push(line.to_string()),
+        }
+    }
+    if e.kind() == ErrorKind::UnknownArgument && e.get(ContextKind::SuggestedArg).is_none() {
+        if let Some(ContextValue::String(typed)) = e.get(ContextKind::InvalidArg) {
+            let longs: Vec<String> = cmd.get_arguments().filter_map(|a| a.get_long()).map(|l| format!("--{l}")).collect();
+            if let Some(near) = crate::names::nearest(typed, longs.iter().map(String::as_str)) {
+                parts.push(format!("a similar argument exists: '{near}'"));
+            }
+        }
+    }
+    eprintln!("refract: error: {} (see `{} --help`)", parts.join("; "), path.join(" "));
+    1
 }
 
 /// Runs the parsed command line.
@@ -388,6 +503,9 @@ pub fn run(cli: Cli) -> Result<()> {
         }
         Command::Render { file, quick, out, set } => {
             let mut scene = crate::experiment::scene_file::SceneFile::load(&file, quick)?;
+            if quick && scene.params == crate::experiment::scene_file::SceneFile::load(&file, false)?.params {
+                bail!("--quick: {} has no [quick] settings, so the render would be the full one; add a [quick] table or leave --quick out", file.display());
+            }
             scene.set(&set)?;
             let out = match out {
                 Some(o) => o,
@@ -398,8 +516,10 @@ pub fn run(cli: Cli) -> Result<()> {
             };
             crate::image_io::check_output(&out, scene.mode.formats()).map_err(|e| anyhow::anyhow!("--out: {e}"))?;
             crate::image_io::remove_stale_temps(out.parent().unwrap_or(std::path::Path::new("")));
-            let secs = scene.render(&out, &crate::terminal::Bars::new())?;
-            eprintln!("wrote {} ({secs:.2} s)", out.display());
+            let bars = crate::terminal::Bars::new();
+            let (_, summary) = scene.render_summarised(&out, &bars)?;
+            bars.done();
+            eprintln!("wrote {} ({summary})", out.display());
             Ok(())
         }
         Command::Sweep(args) => run_sweep(args),
@@ -416,8 +536,13 @@ pub fn run(cli: Cli) -> Result<()> {
 }
 
 fn run_interior(args: InteriorArgs) -> Result<()> {
-    // What the flags fix is checked before any question is asked.
-    args.params.check_used(&args.params.config()).map_err(anyhow::Error::msg)?;
+    // What the flags fix is checked before any question is asked; the
+    // trace count, asked first, is taken as above 0 until it is answered.
+    let mut known = args.params.config();
+    if !args.flag_mode() {
+        known.max_trace = known.max_trace.max(1);
+    }
+    args.params.check_used(&known).map_err(anyhow::Error::msg)?;
     crate::params::check_threads(args.params.config().threads).map_err(anyhow::Error::msg)?;
     if let Some(path) = &args.timing_csv {
         modes::interior::check_timing_csv(path).context("--timing-csv")?;
@@ -430,7 +555,9 @@ fn run_interior(args: InteriorArgs) -> Result<()> {
         let interactive = stdin.is_terminal();
         let mut input = stdin.lock();
         let mut out = std::io::stdout();
-        crate::params::prompts::ask_all(&mut crate::params::prompts::Prompter::new(&mut input, &mut out, interactive), args.params.config())?
+        let cfg = crate::params::prompts::ask_all(&mut crate::params::prompts::Prompter::new(&mut input, &mut out, interactive), args.params.config())?;
+        args.params.check_used(&cfg).map_err(anyhow::Error::msg)?;
+        cfg
     };
     modes::interior::run_to_files(&cfg, args.timing_csv.as_deref(), &mut |line| eprintln!("{line}"))
 }
@@ -470,7 +597,8 @@ fn run_prism(args: PrismArgs) -> Result<()> {
         modes::prism::quick(&mut cfg, |k| args.params.has(k));
     }
     args.params.check_used(&cfg).map_err(anyhow::Error::msg)?;
-    modes::prism::run_to_files(&cfg, args.timing_csv.as_deref(), &crate::terminal::Bars::new(), &mut |line| eprintln!("{line}"))
+    let bars = crate::terminal::Bars::new();
+    modes::prism::run_to_files(&cfg, args.timing_csv.as_deref(), &bars, &mut |line| bars.println(&line))
 }
 
 /// This command line as it would go on from where it stops: `--fresh`
@@ -521,6 +649,18 @@ fn run_sweep(args: SweepArgs) -> Result<()> {
     let e = Experiment::load(&file, args.quick)?;
     if args.jobs == 0 || args.jobs > 256 {
         bail!("--jobs: {} is not between 1 and 256", args.jobs);
+    }
+    if args.quick && e.same_runs(&Experiment::load(&file, false)?) {
+        bail!("--quick: {} has no [quick] settings, so the sweep would be the full one; add a [quick] table or leave --quick out", file.display());
+    }
+    if let Some((i, n)) = args.shard {
+        let runs = crate::experiment::grid::expand(&e);
+        if !crate::experiment::plan::assign(&runs, n).contains(&i) {
+            let chains = crate::experiment::plan::chain_count(&runs);
+            bail!(
+                "--shard {i}/{n}: shard {i} would run nothing: the grid holds {chains} chain(s) of runs (the runs along its first sweep axis stay in one shard); use at most {chains} shard(s)"
+            );
+        }
     }
     let on_record = match (args.resume, args.fresh) {
         (true, _) => sweep::OnRecord::Resume,

@@ -6,7 +6,7 @@
 
 use crate::modes::{self, ModeKind};
 use crate::params::{self, Kind, Param, Value};
-use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
+use clap::builder::{PossibleValue, TypedValueParser};
 use clap::parser::ValueSource;
 use clap::{Arg, ArgAction, ArgMatches, Command};
 use std::marker::PhantomData;
@@ -16,6 +16,11 @@ pub trait ParamSet: 'static {
     type Config: 'static;
     fn params() -> Vec<&'static Param<Self::Config>>;
     fn defaults() -> Self::Config;
+    /// Flags that must be given (when the mode's rule says so) rather than
+    /// defaulted: their help says so, and shows no default.
+    fn required() -> &'static [&'static str] {
+        &[]
+    }
 }
 
 /// Every parameter of a spectral run.
@@ -56,6 +61,9 @@ impl ParamSet for Interior {
     fn defaults() -> Self::Config {
         modes::interior::Interior::defaults()
     }
+    fn required() -> &'static [&'static str] {
+        &["off"]
+    }
 }
 
 /// The parameters given on the command line (defaults are not listed:
@@ -86,7 +94,7 @@ impl<S: ParamSet> Given<S> {
     /// Refuses a flag that `c` (the run these flags describe) would ignore,
     /// naming it and why.
     pub fn check_used(&self, c: &S::Config) -> Result<(), String> {
-        match params::first_ignored(S::params().into_iter().filter(|p| self.has(p.key)), c) {
+        match params::first_ignored_change(S::params().into_iter().filter(|p| self.has(p.key)), c, &S::defaults()) {
             Some((p, why)) => Err(format!("--{}: {why}", p.flag())),
             None => Ok(()),
         }
@@ -98,7 +106,7 @@ impl<S: ParamSet> Given<S> {
 }
 
 /// One row as a clap argument.
-fn arg<C>(p: &'static Param<C>, defaults: &C) -> Arg {
+fn arg<C>(p: &'static Param<C>, defaults: &C, required: bool) -> Arg {
     let mut help = p.help.to_string();
     if !p.unit.is_empty() {
         help.push_str(&format!(" [unit: {}]", p.unit));
@@ -107,20 +115,17 @@ fn arg<C>(p: &'static Param<C>, defaults: &C) -> Arg {
     if !range.is_empty() {
         help.push_str(&format!(" [range: {range}]"));
     }
+    // Old spellings (`aliases`) are not clap's: `cli::modern_args` rewrites
+    // them first, so a typo hint never points at one.
     let mut a = Arg::new(p.key).long(p.flag()).help_heading(p.section);
-    for alias in p.aliases {
-        a = a.alias(alias.replace('_', "-"));
-    }
     let kind = p.kind;
     a = match kind {
         Kind::Flag => a.action(ArgAction::SetTrue),
-        Kind::Choice(list) => {
-            let values = list().into_iter().map(|(name, about)| PossibleValue::new(name).help(about));
-            a.value_parser(PossibleValuesParser::new(values).try_map(move |s: String| kind.parse_text(&s))).ignore_case(true).value_name("NAME")
-        }
+        Kind::Choice(list) => a.value_parser(Choices { names: list(), parse: move |s: &str| kind.parse_text(s) }).value_name("NAME"),
         _ => a.value_parser(move |s: &str| kind.parse_text(s)).value_name(kind.value_name()).allow_hyphen_values(true),
     };
     match ((p.get)(defaults), p.default_text(defaults)) {
+        _ if required => help.push_str(" [required with any of the report's flags; otherwise asked]"),
         (Some(Value::Flag(_)), _) | (_, None) => {}
         (Some(_), Some(d)) => a = a.default_value(d),
         (None, Some(auto)) => help.push_str(&format!(" [default: {auto}]")),
@@ -155,7 +160,7 @@ impl<S: ParamSet> clap::FromArgMatches for Given<S> {
 impl<S: ParamSet> clap::Args for Given<S> {
     fn augment_args(cmd: Command) -> Command {
         let defaults = S::defaults();
-        S::params().into_iter().fold(cmd, |cmd, p| cmd.arg(arg(p, &defaults)))
+        S::params().into_iter().fold(cmd, |cmd, p| cmd.arg(arg(p, &defaults, S::required().contains(&p.key))))
     }
 
     fn augment_args_for_update(cmd: Command) -> Command {
@@ -164,8 +169,40 @@ impl<S: ParamSet> clap::Args for Given<S> {
 }
 
 /// A clap value parser for a `Named` enum: its names as possible values,
-/// each with its description.
+/// each with its description, matched as every name is (`names::key`).
 pub fn named<T: crate::names::Named + Send + Sync>() -> impl TypedValueParser<Value = T> {
-    let values = T::choices().into_iter().map(|(name, about)| PossibleValue::new(name).help(about));
-    PossibleValuesParser::new(values).try_map(|s: String| T::from_name(&s).ok_or_else(|| format!("`{s}` is not a valid name")))
+    Choices {
+        names: T::choices(),
+        parse: |s: &str| {
+            T::from_name(s).ok_or_else(|| {
+                let names = T::choices().into_iter().map(|c| c.0);
+                format!("`{}` is not one of {}{}", s.trim(), names.clone().collect::<Vec<_>>().join(", "), crate::names::did_you_mean(s, names))
+            })
+        },
+    }
+}
+
+/// A choice among names: shown in help as its possible values, each with
+/// its description, and parsed by `parse` (case and separators aside, a
+/// miss naming the nearest name), not by clap's exact match.
+#[derive(Clone)]
+struct Choices<F> {
+    names: Vec<(&'static str, &'static str)>,
+    parse: F,
+}
+
+impl<T, F> TypedValueParser for Choices<F>
+where
+    T: Clone + Send + Sync + 'static,
+    F: Fn(&str) -> Result<T, String> + Clone + Send + Sync + 'static,
+{
+    type Value = T;
+
+    fn parse_ref(&self, cmd: &Command, arg: Option<&Arg>, value: &std::ffi::OsStr) -> Result<T, clap::Error> {
+        TypedValueParser::parse_ref(&self.parse, cmd, arg, value)
+    }
+
+    fn possible_values(&self) -> Option<Box<dyn Iterator<Item = PossibleValue> + '_>> {
+        Some(Box::new(self.names.iter().map(|(name, about)| PossibleValue::new(*name).help(*about))))
+    }
 }

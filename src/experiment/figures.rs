@@ -188,10 +188,13 @@ pub fn run(o: &FigureOptions) -> Result<Outcome> {
         crate::image_io::remove_stale_temps(&d);
     }
     let mut records = read_records(&o.out);
-    let bar = crate::terminal::counter(todo.len() as u64, "figures", "");
+    // One bar for the figures, each figure's stages in turn on it; a line
+    // per figure as it is written (on a terminal or not).
+    let bar = crate::terminal::Bars::new();
     let mut failed = Vec::new();
-    for id in &todo {
-        bar.set_message(id.clone());
+    for (i, id) in todo.iter().enumerate() {
+        bar.set_context(format!("figure {}/{} {id}", i + 1, todo.len()));
+        let mut summary = String::new();
         let png = dir.join(format!("{id}.png"));
         let result: Result<Record> = match DRAWN.iter().find(|d| d.0 == id) {
             Some(&(_, report, caption)) => draw(id, &png, o.quick, &o.scenes).map(|params| Record {
@@ -202,7 +205,8 @@ pub fn run(o: &FigureOptions) -> Result<Outcome> {
                 status: "ok".into(),
             }),
             None => SceneFile::load(&o.scenes.join(format!("{id}.toml")), o.quick).and_then(|s| {
-                let secs = s.render(&png, &crate::terminal::Bars::new())?;
+                let (secs, line) = s.render_summarised(&png, &bar)?;
+                summary = line;
                 Ok(Record { report: s.report.clone(), caption: s.caption.clone(), params: s.describe(), seconds: format!("{secs:.2}"), status: "ok".into() })
             }),
         };
@@ -210,11 +214,15 @@ pub fn run(o: &FigureOptions) -> Result<Outcome> {
             failed.push((id.clone(), format!("{e:#}")));
             Record { status: format!("error: {e:#}"), ..Default::default() }
         });
+        bar.println(&match (rec.status.as_str(), summary.is_empty()) {
+            ("ok", true) => format!("figure {}/{} {id}: drawn", i + 1, todo.len()),
+            ("ok", false) => format!("figure {}/{} {id}: {summary}", i + 1, todo.len()),
+            (status, _) => format!("figure {}/{} {id}: {status}", i + 1, todo.len()),
+        });
         records.insert(id.clone(), rec);
         write_records(&o.out, &records)?;
-        bar.inc(1);
     }
-    bar.finish_and_clear();
+    bar.done();
     if o.only.is_empty() {
         // Resumed: a complete sweep is a record and is kept (its runs.csv
         // rewritten byte for byte, its plots redrawn), so running the

@@ -27,7 +27,7 @@ fn chain_key(r: &RunSpec) -> ChainKey {
 }
 
 /// How many chains the grid holds: the most shards that all have work.
-fn chain_count(runs: &[RunSpec]) -> usize {
+pub fn chain_count(runs: &[RunSpec]) -> usize {
     runs.iter().map(chain_key).collect::<std::collections::BTreeSet<_>>().len()
 }
 

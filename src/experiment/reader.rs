@@ -173,7 +173,10 @@ impl Experiment {
         // cross keys that apply to some of their cases only (`split` under
         // the hero wavelength in eye-split.toml).
         let grid = super::grid::expand(&e);
-        for key in e.param_names() {
+        // A fixed key that restates its default is let be (see
+        // `params::first_ignored_change`); an axis never is.
+        let restated = |key: &str| e.fixed.iter().any(|(k, v)| k == key && e.mode.restates_default(k, v)) && !e.sweep.iter().any(|(k, _)| k == key);
+        for key in e.param_names().into_iter().filter(|k| !restated(k)) {
             let mut why = None;
             let used = grid.iter().filter(|r| r.params.iter().any(|(k, _)| *k == key)).any(|r| match r.mode.ignored(&r.params, &key) {
                 Some(w) => {
@@ -241,6 +244,11 @@ impl<'a> FileParser<'a> {
         Ok(p)
     }
 
+    /// The file's folder: paths in it are resolved from there.
+    fn base(&self) -> &Path {
+        Path::new(self.file).parent().unwrap_or(Path::new(""))
+    }
+
     /// An error at `key` of the `nth` `[section]`, with its line.
     fn err(&self, section: &str, nth: usize, key: &str, msg: String) -> anyhow::Error {
         anyhow!("{}:{}: `{key}`: {msg}", self.file, line_of(self.text, section, nth, key))
@@ -266,7 +274,10 @@ impl<'a> FileParser<'a> {
 
     /// A section's parameters, each checked against the mode's table.
     fn checked(&self, mode: Mode, section: &str) -> Result<Vec<(String, Value)>> {
-        self.merged(section)?.into_iter().map(|(k, v)| mode.check(&k, &v).map(|_| (k.clone(), v)).map_err(|m| self.err(section, 0, &k, m))).collect()
+        self.merged(section)?
+            .into_iter()
+            .map(|(k, v)| mode.check(&k, &v, self.base()).map(|v| (k.clone(), v)).map_err(|m| self.err(section, 0, &k, m)))
+            .collect()
     }
 
     fn string(&self, key: &str) -> Result<String> {
@@ -315,9 +326,7 @@ impl<'a> FileParser<'a> {
                 Value::Table(t) => range(t).map_err(|m| self.err("sweep", 0, &k, m))?,
                 _ => return Err(self.err("sweep", 0, &k, "must be a non-empty list or { from, to, step }".into())),
             };
-            for x in &values {
-                mode.check(&k, x).map_err(|m| self.err("sweep", 0, &k, m))?;
-            }
+            let values = values.iter().map(|x| mode.check(&k, x, self.base()).map_err(|m| self.err("sweep", 0, &k, m))).collect::<Result<Vec<_>>>()?;
             sweep.push((k, values));
         }
         Ok(sweep)
@@ -339,14 +348,12 @@ impl<'a> FileParser<'a> {
             };
             let mut set = Vec::new();
             for (k, v) in t.iter().filter(|(k, _)| k.as_str() != "name" && k.as_str() != "mode") {
-                let values = match v {
-                    Value::Array(list) if sweep.iter().any(|(a, _)| a == k) => list.clone(),
-                    _ => vec![v.clone()],
+                let check = |x: &Value| case_mode.check(k, x, self.base()).map_err(|m| self.err("case", i, k, m));
+                let v = match v {
+                    Value::Array(list) if sweep.iter().any(|(a, _)| a == k) => Value::Array(list.iter().map(check).collect::<Result<_>>()?),
+                    _ => check(v)?,
                 };
-                for x in &values {
-                    case_mode.check(k, x).map_err(|m| self.err("case", i, k, m))?;
-                }
-                set.push((k.clone(), v.clone()));
+                set.push((k.clone(), v));
             }
             cases.push(Case { name, mode: case_mode, params: set });
         }

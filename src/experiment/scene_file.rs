@@ -9,7 +9,7 @@
 //! [params]                         # the mode's parameters (as in experiments)
 //! scene = "amici-screen"
 //! photons = 4000000
-//! obj = "off/prism60.obj"          # meshes are referenced by path
+//! obj = "off/prism60.obj"          # paths are from this file's folder, then those above it
 //! [quick]                          # overrides for --quick
 //! photons = 400000
 //! [close_up]                       # another view pasted on the image (`close_up`)
@@ -50,6 +50,8 @@ impl SceneFile {
 
     pub fn parse(text: &str, file: &str, quick: bool) -> Result<SceneFile> {
         let root = parse_toml(text, file)?;
+        // Paths in the file are resolved from its folder.
+        let base = Path::new(file).parent().unwrap_or(Path::new(""));
         let err = |section: &str, key: &str, msg: String| anyhow!("{file}:{}: `{key}`: {msg}", line_of(text, section, 0, key));
         for k in root.keys() {
             if !["id", "report", "caption", "mode", "params", "quick", "close_up", "label"].contains(&k.as_str()) {
@@ -78,9 +80,9 @@ impl SceneFile {
                 None => {}
                 Some(Value::Table(t)) => {
                     for (k, v) in t {
-                        mode.check(k, v).map_err(|m| err(section, k, m))?;
+                        let v = mode.check(k, v, base).map_err(|m| err(section, k, m))?;
                         params.retain(|(p, _)| p != k);
-                        params.push((k.clone(), v.clone()));
+                        params.push((k.clone(), v));
                         from.retain(|(p, _)| p != k);
                         from.push((k.clone(), section));
                     }
@@ -96,9 +98,9 @@ impl SceneFile {
             params,
             close_up: match root.get("close_up") {
                 Some(v) => {
-                    let close = super::close_up::parse(v).map_err(|m| anyhow!("{file}:{}: `close_up`: {m}", line_of(text, "", 0, "close_up")))?;
-                    for (k, v) in &close.params {
-                        mode.check(k, v).map_err(|m| err("close_up.params", k, m))?;
+                    let mut close = super::close_up::parse(v).map_err(|m| anyhow!("{file}:{}: `close_up`: {m}", line_of(text, "", 0, "close_up")))?;
+                    for (k, v) in &mut close.params {
+                        *v = mode.check(k, v, base).map_err(|m| err("close_up.params", k, m))?;
                     }
                     Some(close)
                 }
@@ -125,13 +127,24 @@ impl SceneFile {
     /// Renders to `out`; returns the render time in seconds (light pass,
     /// map build and eye pass; for the interior mode, build and render).
     pub fn render(&self, out: &Path, progress: &dyn Progress) -> Result<f64> {
-        let mut secs = self.render_image(out, progress)?;
+        self.render_summarised(out, progress).map(|(secs, _)| secs)
+    }
+
+    /// As `render`, with the main image's summary line (size, what was
+    /// traced, exposure, each stage's time; `Record::summary`).
+    pub fn render_summarised(&self, out: &Path, progress: &dyn Progress) -> Result<(f64, String)> {
+        let start = std::time::Instant::now();
+        let run = self.mode.render_to(&self.params, out, progress)?;
+        let mut secs = run.record.render_time();
+        let mut summary = run.record.summary(run.exposure, start.elapsed().as_secs_f64());
+        drop(run);
         if self.close_up.is_none() && self.labels.is_empty() {
-            return Ok(secs);
+            return Ok((secs, summary));
         }
+        summary.push_str(", with its close-up and labels");
         if !out.extension().is_some_and(|e| e.eq_ignore_ascii_case("png")) {
             eprintln!("note: the scene file's close-up and labels are drawn on PNG images only; {} has none", out.display());
-            return Ok(secs);
+            return Ok((secs, summary));
         }
         let img = image::open(out).map_err(|e| anyhow!("{}: cannot read back to annotate: {e}", out.display()))?.to_rgb8();
         let (w, h) = (img.width() as usize, img.height() as usize);
@@ -163,7 +176,7 @@ impl SceneFile {
         }
         super::labels::draw(&mut buf, w, h, &self.labels).map_err(|e| anyhow!("{}: labels: {e}", self.id))?;
         crate::image_io::write_rgb8(out, w, h, &buf)?;
-        Ok(secs)
+        Ok((secs, summary))
     }
 
     fn render_image(&self, out: &Path, progress: &dyn Progress) -> Result<f64> {
@@ -176,11 +189,7 @@ impl SceneFile {
         for o in overrides {
             let (k, v) = o.split_once('=').ok_or_else(|| anyhow!("--set: `{o}` is not KEY=VALUE"))?;
             let k = k.trim().replace('-', "_");
-            let value = self
-                .mode
-                .parse_text(&k, v)
-                .ok_or_else(|| anyhow!("--set: `{k}` is not a {} parameter", self.mode.name()))?
-                .map_err(|e| anyhow!("--set {k}: {e}"))?;
+            let value = self.mode.parse_text(&k, v).map_err(|e| anyhow!("--set {e}"))?;
             self.params.retain(|(p, _)| *p != k);
             self.params.push((k, value.to_toml()));
         }

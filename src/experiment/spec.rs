@@ -152,6 +152,13 @@ impl Experiment {
         cases.saturating_mul(self.repeats as u128)
     }
 
+    /// Whether `other` (the same file read with or without its [quick]
+    /// settings) runs the same grid and reference: then --quick changes
+    /// nothing.
+    pub fn same_runs(&self, other: &Experiment) -> bool {
+        (&self.fixed, &self.sweep, &self.cases, &self.reference, self.repeats) == (&other.fixed, &other.sweep, &other.cases, &other.reference, other.repeats)
+    }
+
     /// The reference run's parameters: the fixed ones with the reference's
     /// overrides, if the experiment has a reference.
     pub fn reference_params(&self) -> Option<Vec<(String, Value)>> {

@@ -49,8 +49,9 @@ pub struct InteriorConfig {
     pub ior: f32,
     // What the report fixed in its code.
     pub shininess: f32,
-    /// c in the attenuation 1 / (1 + c d^2); 0 = none.
-    pub atten: f32,
+    /// c in the attenuation 1 / (1 + c d^2); 0 = none; `None` = the
+    /// scene's own (`attenuation`).
+    pub atten: Option<f32>,
     /// Light position; `None` = centre of the mesh's bounding box.
     pub light: Option<Vec3>,
     pub light_color: Rgb,
@@ -79,6 +80,18 @@ pub struct InteriorConfig {
 }
 
 impl InteriorConfig {
+    /// The attenuation constant c in effect: as set, else 1 around the mesh
+    /// alone (radius 1: the far side at about half the light) and 0.1 in the
+    /// Cornell boxes, whose walls stand 1.6 to 2.5 units from the light (at
+    /// c = 1 they would get a fifth of it and read nearly black; at 0.1 two
+    /// thirds, as the shipped Cornell scenes set).
+    pub fn attenuation(&self) -> f32 {
+        self.atten.unwrap_or(match self.scene {
+            SceneKind::Mesh => 1.0,
+            SceneKind::Cornell | SceneKind::CornellTiled => 0.1,
+        })
+    }
+
     /// Defaults of the report's results section (opacity 25, white mesh and
     /// light, shininess 16, trace 0) for a given mesh.
     pub fn with_defaults(off: MeshSource, out: PathBuf) -> Self {
@@ -93,7 +106,7 @@ impl InteriorConfig {
             rot: Vec3::ZERO,
             ior: 1.4,
             shininess: 16.0,
-            atten: 1.0,
+            atten: None,
             light: None,
             light_color: Rgb::WHITE,
             ka: 0.1,

@@ -55,7 +55,15 @@ impl<'a> Tracer<'a> {
         Tracer {
             scene,
             accel,
-            phong: Phong { ka: cfg.ka, kd: cfg.kd, ks: cfg.ks, shininess: cfg.shininess, atten: cfg.atten, light_color: cfg.light_color, ambient: Rgb::WHITE },
+            phong: Phong {
+                ka: cfg.ka,
+                kd: cfg.kd,
+                ks: cfg.ks,
+                shininess: cfg.shininess,
+                atten: cfg.attenuation(),
+                light_color: cfg.light_color,
+                ambient: Rgb::WHITE,
+            },
             max_trace: cfg.max_trace,
             specular_opacity: cfg.specular_opacity,
             background: Rgb::from_u8(cfg.background),

@@ -71,7 +71,7 @@ fn run_of(cfg: &InteriorConfig, mut r: RunReport) -> Run {
         stored: None,
         tir_fraction: r.tir as f64 / r.rays.max(1) as f64,
     };
-    Run { record, notes: std::mem::take(&mut r.notes), report: Report::Interior(r) }
+    Run { record, notes: std::mem::take(&mut r.notes), report: Report::Interior(r), exposure: cfg.exposure as f64 }
 }
 
 /// Checks the timing CSV a run would append to, before any work.
@@ -83,6 +83,7 @@ pub fn check_timing_csv(path: &Path) -> Result<()> {
 /// and a row to `timing_csv`; tells the user (`say`) of its notes and of what
 /// it wrote.
 pub fn run_to_files(cfg: &InteriorConfig, timing_csv: Option<&Path>, say: &mut dyn FnMut(String)) -> Result<()> {
+    let start = std::time::Instant::now();
     crate::image_io::remove_stale_temps(cfg.out.parent().unwrap_or(Path::new("")));
     let report = crate::interior::run(cfg)?;
     for n in &report.notes {
@@ -91,15 +92,8 @@ pub fn run_to_files(cfg: &InteriorConfig, timing_csv: Option<&Path>, say: &mut d
     if let Some(path) = timing_csv {
         crate::timing::append(path, &TimingRow::new(cfg, &report))?;
     }
-    say(format!(
-        "wrote {} ({}x{}, {} triangles, {:.3} s render, {:.2} M rays/s on {} threads)",
-        cfg.out.display(),
-        cfg.width,
-        cfg.height,
-        report.triangles,
-        report.render_s,
-        report.rays as f64 / report.render_s.max(1e-9) / 1e6,
-        report.threads
-    ));
+    let threads = report.threads;
+    let run = run_of(cfg, report);
+    say(format!("wrote {} ({} on {threads} threads)", cfg.out.display(), run.record.summary(run.exposure, start.elapsed().as_secs_f64())));
     Ok(())
 }

@@ -51,6 +51,46 @@ macro_rules! with_mode {
     };
 }
 
+/// A file named by a scene or experiment file in folder `base`: a relative
+/// path is looked for in that folder, then in each folder above it in turn
+/// (so the shipped files' `off/cube.off` names the repository's `off/`
+/// wherever refract runs); the path found is written from `base` as given
+/// (`scenes/../off/cube.off` as `off/cube.off`). An absolute path is
+/// taken as it is. Not found: an error naming the path and the folder.
+pub fn resolve_from(base: &Path, path: &Path) -> Result<std::path::PathBuf, String> {
+    if path.is_absolute() {
+        return if path.is_file() { Ok(path.to_path_buf()) } else { Err(format!("{}: no such file", path.display())) };
+    }
+    let mut up = base.to_path_buf();
+    // As many folders up as `base` has above it (an absolute form counts them).
+    let depth = std::path::absolute(base).map_or(0, |a| a.components().count());
+    for _ in 0..depth.max(1) {
+        let candidate = tidy(&up.join(path));
+        if candidate.is_file() {
+            return Ok(candidate);
+        }
+        up.push("..");
+    }
+    let folder = if base.as_os_str().is_empty() { Path::new(".") } else { base };
+    Err(format!("{}: no such file in {} or any folder above it (paths in a file are from its own folder)", path.display(), folder.display()))
+}
+
+/// `a/b/../c` as `a/c` and `./a` as `a` (lexically; a leading `..` stays).
+fn tidy(p: &Path) -> std::path::PathBuf {
+    use std::path::Component;
+    let mut out: Vec<Component> = Vec::new();
+    for c in p.components() {
+        match c {
+            Component::CurDir => {}
+            Component::ParentDir if matches!(out.last(), Some(Component::Normal(_))) => {
+                out.pop();
+            }
+            c => out.push(c),
+        }
+    }
+    out.iter().collect()
+}
+
 /// The configuration `given` describes, from the mode's defaults, checked.
 pub fn config<M: ModeKind>(given: &[(String, Value)]) -> Result<M::Config> {
     let mut cfg = M::defaults();
@@ -67,48 +107,67 @@ impl Mode {
         with_mode!(self, M => params::find(M::params(), key).is_some())
     }
 
-    /// Checks one parameter (on the mode's defaults); a mesh file it names
-    /// must exist.
     /// The parameter's own key for a key or one of its aliases
     /// (`light` -> `light_pos`), if the mode has it.
     pub fn canonical(self, key: &str) -> Option<&'static str> {
         with_mode!(self, M => params::find(M::params(), key).map(|p| p.key))
     }
 
-    pub fn check(self, key: &str, v: &Value) -> Result<(), String> {
+    /// Checks one parameter of a scene or experiment file in folder `base`
+    /// (on the mode's defaults) and gives it back with a mesh path it names
+    /// resolved from that folder (`resolve_from`); the mesh must exist.
+    pub fn check(self, key: &str, v: &Value, base: &Path) -> Result<Value, String> {
         with_mode!(self, M => {
             let Some(_) = params::find(M::params(), key) else {
-                let keys: Vec<&str> = M::params().iter().map(|p| p.key).collect();
-                return Err(format!("unknown {} parameter; expected one of {}", self.name(), keys.join(", ")));
+                return Err(params::unknown_key(M::params(), key, self.name()));
             };
             let mut cfg = M::defaults();
             params::apply_toml(M::params(), &mut cfg, key, v)?;
             match M::mesh_file(&cfg, key) {
-                Some(p) if !p.is_file() => Err(format!("{}: no such file (paths are from the folder refract runs in)", p.display())),
-                _ => Ok(()),
+                Some(p) => resolve_from(base, &p).map(|found| Value::String(found.display().to_string())),
+                None => Ok(v.clone()),
             }
         })
     }
 
     /// A value typed as text (`--set KEY=VALUE`), read by the key's row;
-    /// `None` when the mode has no such key.
-    pub fn parse_text(self, key: &str, text: &str) -> Option<Result<params::Value, String>> {
-        with_mode!(self, M => params::find(M::params(), key).map(|p| p.kind.parse_text(text)))
+    /// an unknown key names the nearest and every key.
+    pub fn parse_text(self, key: &str, text: &str) -> Result<params::Value, String> {
+        with_mode!(self, M => match params::find(M::params(), key) {
+            Some(p) => p.kind.parse_text(text).map_err(|e| format!("{key}: {e}")),
+            None => Err(format!("`{key}`: {}", params::unknown_key(M::params(), key, self.name()))),
+        })
     }
 
-    /// The first of `keys` that the run `given` describes would ignore, and
-    /// why; an error if the configuration itself is refused.
+    /// Whether `v` is `key`'s default (a key that is not the mode's, or a
+    /// bad value, is not).
+    pub fn restates_default(self, key: &str, v: &Value) -> bool {
+        with_mode!(self, M => params::find(M::params(), key).is_some_and(|p| {
+            let mut cfg = M::defaults();
+            p.apply_toml(&mut cfg, v).is_ok() && (p.get)(&cfg) == (p.get)(&M::defaults())
+        }))
+    }
+
+    /// The first of `keys` that the run `given` describes would ignore (a
+    /// key set to its default is let be: `params::first_ignored_change`),
+    /// and why; an error if the configuration itself is refused.
     pub fn first_ignored<'k>(self, given: &[(String, Value)], keys: impl IntoIterator<Item = &'k str>) -> Result<Option<(String, String)>> {
         with_mode!(self, M => {
             let cfg = config::<M>(given)?;
-            Ok(params::first_ignored(keys.into_iter().filter_map(|k| params::find(M::params(), k)), &cfg).map(|(p, why)| (p.key.to_string(), why)))
+            let set = keys.into_iter().filter_map(|k| params::find(M::params(), k));
+            Ok(params::first_ignored_change(set, &cfg, &M::defaults()).map(|(p, why)| (p.key.to_string(), why)))
         })
     }
 
     /// Why a run with these parameters would ignore `key` (`None`: it uses
     /// it, or its configuration is refused anyway, which the run reports).
+    /// A key set to its default counts here too (an axis's default value
+    /// is one run of the axis).
     pub fn ignored(self, given: &[(String, Value)], key: &str) -> Option<String> {
-        self.first_ignored(given, [key]).ok().flatten().map(|(_, why)| why)
+        with_mode!(self, M => {
+            let cfg = config::<M>(given).ok()?;
+            params::first_ignored(params::find(M::params(), key), &cfg).map(|(_, why)| why)
+        })
     }
 
     /// The image formats the mode writes.

@@ -67,7 +67,8 @@ fn run_of(cfg: &SpectralConfig, mut report: SpectralReport) -> Run {
         stored: Some(s.stored),
         tir_fraction: s.tir as f64 / s.emitted.max(1) as f64,
     };
-    Run { record, notes: std::mem::take(&mut report.notes), report: Report::Prism { report, gamut: cfg.gamut } }
+    let exposure = report.exposure;
+    Run { record, notes: std::mem::take(&mut report.notes), report: Report::Prism { report, gamut: cfg.gamut }, exposure }
 }
 
 /// `--quick` on the command line: unless given, a tenth of the photons, 1
@@ -101,6 +102,7 @@ pub fn run_to_files(cfg: &SpectralConfig, timing_csv: Option<&Path>, progress: &
     if let Some(path) = timing_csv {
         crate::timing::check_header::<TimingRow>(path).context("--timing-csv")?;
     }
+    let start = std::time::Instant::now();
     let report = crate::spectral::run(cfg, progress)?;
     for n in &report.notes {
         say(format!("warning: {n}"));
@@ -108,32 +110,9 @@ pub fn run_to_files(cfg: &SpectralConfig, timing_csv: Option<&Path>, progress: &
     if let Some(path) = timing_csv {
         crate::timing::append(path, &TimingRow::new(cfg, &report))?;
     }
-    let s = &report.render.stats;
-    if cfg.exact {
-        say(format!(
-            "wrote {} ({}x{}): the exact image, {} wavelengths, {:.2} s, exposure {:.3e}",
-            cfg.out.display(),
-            cfg.scene.width,
-            cfg.scene.height,
-            cfg.exact_wavelengths,
-            report.render.render_s,
-            report.exposure
-        ));
-        return Ok(());
-    }
-    say(format!(
-        "wrote {} ({}x{}): {} photons, {} stored, {:.2} s light pass ({:.2} M photons/s), {:.2} s eye pass, exposure {:.3e}",
-        cfg.out.display(),
-        cfg.scene.width,
-        cfg.scene.height,
-        s.emitted,
-        s.stored,
-        report.render.trace_s,
-        s.emitted as f64 / report.render.trace_s.max(1e-9) / 1e6,
-        report.render.render_s,
-        report.exposure
-    ));
-    if let Some(r) = report.render.film_kernel {
+    let wall = start.elapsed().as_secs_f64();
+    let film_kernel = report.render.film_kernel;
+    if let Some(r) = film_kernel {
         let how = match (cfg.film_kernel, cfg.passes > 1) {
             (Some(_), _) => "as asked",
             (None, true) => "none under --passes",
@@ -141,5 +120,8 @@ pub fn run_to_files(cfg: &SpectralConfig, timing_csv: Option<&Path>, progress: &
         };
         say(format!("film kernel: {r} px ({how})"));
     }
+    let run = run_of(cfg, report);
+    let what = if cfg.exact { format!("the exact image, {} wavelengths; ", cfg.exact_wavelengths) } else { String::new() };
+    say(format!("wrote {} ({what}{})", cfg.out.display(), run.record.summary(run.exposure, wall)));
     Ok(())
 }

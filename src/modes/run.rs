@@ -136,6 +136,47 @@ pub struct Run {
     pub record: Record,
     pub notes: Vec<String>,
     pub report: Report,
+    /// The exposure the image was written with.
+    pub exposure: f64,
+}
+
+impl Record {
+    /// The run in one line for its user: size, what was traced, exposure,
+    /// and the wall time of each stage that took time; `wall_s`, all the
+    /// run took, shows the rest (setting up, writing) and the total, so
+    /// the times add up.
+    pub fn summary(&self, exposure: f64, wall_s: f64) -> String {
+        let mut what = vec![format!("{}x{}", self.width, self.height)];
+        if let Some(t) = self.triangles {
+            what.push(format!("{t} triangles"));
+        }
+        if let Some(p) = self.photons.filter(|p| *p > 0) {
+            what.push(format!("{p} photons ({} stored)", self.stored.unwrap_or(0)));
+        }
+        if self.rays > 0 {
+            what.push(format!("{} {}", self.rays, if self.photons.is_some() { "eye samples" } else { "rays" }));
+        }
+        let shown = if (0.01..1000.0).contains(&exposure.abs()) { format!("{}", (exposure * 1000.0).round() / 1000.0) } else { format!("{exposure:.3e}") };
+        what.push(format!("exposure {shown}"));
+        let rate = |n: u64, s: f64, unit: &str| if s > 0.0 && n > 0 { format!(" ({})", crate::timing::rate(n as f64 / s, unit)) } else { String::new() };
+        let mut stages: Vec<(&str, f64, String)> = Vec::new();
+        if let Some(l) = self.load_s {
+            stages.push(("read", l, String::new()));
+        }
+        if let Some(t) = self.trace_s {
+            stages.push(("light", t, rate(self.photons.unwrap_or(0), t, "photons")));
+        }
+        stages.push(("build", self.build_s, String::new()));
+        let eye = if self.photons.is_some() { "eye" } else { "render" };
+        stages.push((eye, self.render_s, rate(self.rays, self.render_s, "rays")));
+        let sum: f64 = stages.iter().map(|s| s.1).sum();
+        let mut shown: Vec<String> = stages.iter().filter(|s| s.1 >= 0.005).map(|(n, t, r)| format!("{n} {t:.2} s{r}")).collect();
+        if wall_s - sum >= 0.005 {
+            shown.push(format!("other {:.2} s", wall_s - sum));
+        }
+        shown.push(format!("total {:.2} s", wall_s.max(sum)));
+        format!("{}; {}", what.join(", "), shown.join(", "))
+    }
 }
 
 /// The mode's own report of a run.

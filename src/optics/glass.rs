@@ -82,9 +82,11 @@ impl Glass {
 }
 
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error("unknown glass `{name}`; valid: {valid}")]
+#[error("unknown glass `{name}`{hint}; valid: {valid}")]
 pub struct UnknownGlass {
     pub name: String,
+    /// ` (did you mean ...?)` or nothing.
+    pub hint: String,
     pub valid: String,
 }
 
@@ -113,8 +115,12 @@ pub fn catalogue() -> &'static [Glass] {
 /// A glass by name, ignoring case, spaces, `-` and `_` (`n-bk7`, `NBK7`,
 /// `fused silica`).
 pub fn by_name(name: &str) -> Result<&'static Glass, UnknownGlass> {
-    let key = |s: &str| s.chars().filter(|c| c.is_ascii_alphanumeric()).collect::<String>().to_ascii_uppercase();
-    catalogue().iter().find(|g| key(&g.name) == key(name)).ok_or_else(|| UnknownGlass { name: name.to_string(), valid: names().join(", ") })
+    use crate::names::key;
+    catalogue().iter().find(|g| key(&g.name) == key(name)).ok_or_else(|| UnknownGlass {
+        name: name.to_string(),
+        hint: crate::names::did_you_mean(name, names()),
+        valid: names().join(", "),
+    })
 }
 
 pub fn names() -> Vec<&'static str> {

@@ -17,7 +17,25 @@ fn f32s(v: &Value) -> glam::Vec3 {
 }
 
 fn f64s(v: glam::Vec3) -> Value {
-    Value::Triple(v.as_dvec3().to_array())
+    Value::Triple(v.to_array().map(wide))
+}
+
+/// An `f32` field as the real its shortest text names (1.4, not the
+/// 1.399999976158142 that `as f64` gives): help prints defaults as the
+/// table writes them, and the value sets back to the same `f32`.
+fn wide(x: f32) -> f64 {
+    x.to_string().parse().unwrap_or(x as f64)
+}
+
+fn real(x: f32) -> Value {
+    Value::Real(wide(x))
+}
+
+/// Why opacity and its compositing change nothing at trace count 0: the
+/// first hit is drawn opaque (`interior::trace`, the report's
+/// `if (cc == max_ray_trace_count) tmp.a = 100`).
+fn trace_zero(c: &InteriorConfig, what: &str) -> Option<String> {
+    (c.max_trace == 0).then(|| format!("at trace count 0 the first hit is drawn opaque, so {what} changes nothing; it needs a trace count above 0"))
 }
 
 /// The report's prompts (asked in this order, after the trace count).
@@ -48,9 +66,9 @@ pub static PARAMS: &[Param<InteriorConfig>] = &[
         unit: "percent",
         kind: Kind::closed(0.0, 100.0),
         auto: "",
-        get: |c| Some(Value::Real(c.opacity as f64)),
+        get: |c| Some(real(c.opacity)),
         set: |c, v| c.opacity = v.real() as f32,
-        ignored: never,
+        ignored: |c| trace_zero(c, "the opacity"),
     },
     Param {
         key: "object_colour",
@@ -100,7 +118,7 @@ pub static PARAMS: &[Param<InteriorConfig>] = &[
         unit: "times",
         kind: Kind::above(0.0, 1e6),
         auto: "",
-        get: |c| Some(Value::Real(c.scale as f64)),
+        get: |c| Some(real(c.scale)),
         set: |c, v| c.scale = v.real() as f32,
         ignored: never,
     },
@@ -126,7 +144,7 @@ pub static PARAMS: &[Param<InteriorConfig>] = &[
         unit: "",
         kind: Kind::above(0.0, 100.0),
         auto: "",
-        get: |c| Some(Value::Real(c.ior as f64)),
+        get: |c| Some(real(c.ior)),
         set: |c, v| c.ior = v.real() as f32,
         ignored: never,
     },
@@ -138,7 +156,7 @@ pub static PARAMS: &[Param<InteriorConfig>] = &[
         unit: "",
         kind: Kind::closed(0.0, 1e4),
         auto: "",
-        get: |c| Some(Value::Real(c.shininess as f64)),
+        get: |c| Some(real(c.shininess)),
         set: |c, v| c.shininess = v.real() as f32,
         ignored: never,
     },
@@ -149,9 +167,9 @@ pub static PARAMS: &[Param<InteriorConfig>] = &[
         help: "Distance attenuation constant c in 1/(1 + c d^2); 0 = none (the mesh has radius 1)",
         unit: "per unit^2",
         kind: Kind::closed(0.0, 1e6),
-        auto: "",
-        get: |c| Some(Value::Real(c.atten as f64)),
-        set: |c, v| c.atten = v.real() as f32,
+        auto: "1 around the mesh alone, 0.1 in the Cornell boxes (larger: their walls stand 1.6 to 2.5 from the light)",
+        get: |c| c.atten.map(real),
+        set: |c, v| c.atten = Some(v.real() as f32),
         ignored: never,
     },
     Param {
@@ -174,7 +192,7 @@ pub static PARAMS: &[Param<InteriorConfig>] = &[
         unit: "",
         kind: Kind::closed(0.0, 1000.0),
         auto: "",
-        get: |c| Some(Value::Real(c.ka as f64)),
+        get: |c| Some(real(c.ka)),
         set: |c, v| c.ka = v.real() as f32,
         ignored: never,
     },
@@ -186,7 +204,7 @@ pub static PARAMS: &[Param<InteriorConfig>] = &[
         unit: "",
         kind: Kind::closed(0.0, 1000.0),
         auto: "",
-        get: |c| Some(Value::Real(c.kd as f64)),
+        get: |c| Some(real(c.kd)),
         set: |c, v| c.kd = v.real() as f32,
         ignored: never,
     },
@@ -198,7 +216,7 @@ pub static PARAMS: &[Param<InteriorConfig>] = &[
         unit: "",
         kind: Kind::closed(0.0, 1000.0),
         auto: "",
-        get: |c| Some(Value::Real(c.ks as f64)),
+        get: |c| Some(real(c.ks)),
         set: |c, v| c.ks = v.real() as f32,
         ignored: never,
     },
@@ -212,7 +230,10 @@ pub static PARAMS: &[Param<InteriorConfig>] = &[
         auto: "",
         get: |c| Some(pick(c.specular_opacity)),
         set: |c, v| c.specular_opacity = v.choice(),
-        ignored: never,
+        ignored: |c| {
+            trace_zero(c, "how specular light is composited")
+                .or_else(|| (c.opacity >= 100.0).then(|| "an opaque object (--opacity 100) has no layers to composite".to_string()))
+        },
     },
     Param {
         key: "size",
@@ -246,7 +267,7 @@ pub static PARAMS: &[Param<InteriorConfig>] = &[
         unit: "times",
         kind: Kind::above(0.0, 1e6),
         auto: "",
-        get: |c| Some(Value::Real(c.exposure as f64)),
+        get: |c| Some(real(c.exposure)),
         set: |c, v| c.exposure = v.real() as f32,
         ignored: never,
     },
@@ -282,7 +303,7 @@ pub static PARAMS: &[Param<InteriorConfig>] = &[
         unit: "scene units",
         kind: Kind::closed(0.0, 1.0),
         auto: "",
-        get: |c| Some(Value::Real(c.offset as f64)),
+        get: |c| Some(real(c.offset)),
         set: |c, v| c.offset = v.real() as f32,
         ignored: never,
     },

@@ -209,6 +209,14 @@ pub fn first_ignored<C>(set: impl IntoIterator<Item = &'static Param<C>>, c: &C)
     set.into_iter().find_map(|p| (p.ignored)(c).map(|why| (p, why)))
 }
 
+/// As `first_ignored`, but a parameter set to its default is let be: the
+/// run is then exactly what was written (files restate the report's values
+/// for the record, as `opacity = 25` at trace count 0), while any other
+/// value would be expected to change the image and is refused.
+pub fn first_ignored_change<C>(set: impl IntoIterator<Item = &'static Param<C>>, c: &C, defaults: &C) -> Option<(&'static Param<C>, String)> {
+    first_ignored(set.into_iter().filter(|p| (p.get)(c) != (p.get)(defaults)), c)
+}
+
 impl<C> Param<C> {
     pub fn flag(&self) -> String {
         self.key.replace('_', "-")
@@ -399,11 +407,16 @@ impl Kind {
 
     fn choose(&self, name: &str) -> Result<Value, String> {
         let Kind::Choice(list) = *self else { return Err("not a choice".into()) };
-        let key = |s: &str| s.chars().filter(|c| c.is_ascii_alphanumeric()).collect::<String>().to_ascii_lowercase();
+        let key = crate::names::key;
         let names = list();
         match names.iter().position(|(n, _)| key(n) == key(name)) {
             Some(i) => Ok(Value::Choice(i, names[i].0)),
-            None => Err(format!("`{}` is not one of {}", name.trim(), names.iter().map(|n| n.0).collect::<Vec<_>>().join(", "))),
+            None => Err(format!(
+                "`{}` is not one of {}{}",
+                name.trim(),
+                names.iter().map(|n| n.0).collect::<Vec<_>>().join(", "),
+                crate::names::did_you_mean(name, names.iter().map(|n| n.0))
+            )),
         }
     }
 
@@ -502,12 +515,19 @@ pub fn find<C>(params: &'static [Param<C>], name: &str) -> Option<&'static Param
     params.iter().find(|p| p.is(name))
 }
 
+/// A key that is no parameter of `params`: the nearest one and every one.
+pub fn unknown_key<C>(params: &'static [Param<C>], key: &str, mode: &str) -> String {
+    let keys = params.iter().map(|p| p.key);
+    let mode = if mode.is_empty() { String::new() } else { format!("{mode} ") };
+    format!("unknown {mode}parameter{}; expected one of {}", crate::names::did_you_mean(key, keys.clone()), keys.collect::<Vec<_>>().join(", "))
+}
+
 /// Applies `key = value` from a file to a configuration: the message names
 /// the key's problem (the caller adds the file and line).
 pub fn apply_toml<C>(params: &'static [Param<C>], c: &mut C, key: &str, v: &toml::Value) -> Result<(), String> {
     match find(params, key) {
         Some(p) => p.apply_toml(c, v),
-        None => Err(format!("unknown parameter; expected one of {}", params.iter().map(|p| p.key).collect::<Vec<_>>().join(", "))),
+        None => Err(unknown_key(params, key, "")),
     }
 }
 

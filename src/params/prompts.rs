@@ -1,12 +1,16 @@
 //! Report 004's input format: thirteen answers on standard input, asked in
-//! the report's order. At a terminal a bad answer is asked again with a
-//! one-line reason; from a pipe or file the first bad answer stops the run,
-//! naming its line, the question and the answer (a later answer would
-//! otherwise land on the wrong question). The mesh is read when it is
-//! named, so a file that is not a mesh is caught there. Input that ends
-//! early is an error naming the unanswered prompt. Each
+//! the report's order and read as the report's C++ `cin >>` reads them:
+//! whitespace-separated tokens, any number to a line, blank lines skipped
+//! (so a file of answers one per line, or all on one line, replays alike).
+//! At a terminal a bad answer is asked again with a one-line reason (the
+//! rest of its line is dropped); from a pipe or file the first bad answer
+//! stops the run, naming its line, the question and the answer (a later
+//! answer would otherwise land on the wrong question). The mesh is read
+//! when it is named, so a file that is not a mesh is caught there. Input
+//! that ends early is an error naming the unanswered prompt. Each
 //! answer is checked by its parameter's row in `interior::PARAMS`, so a
-//! prompt accepts exactly what the flag and the scene files accept.
+//! prompt accepts exactly what the flag and the scene files accept (a
+//! file name holds no space, as with `cin >>`).
 
 use super::interior::PARAMS;
 use super::{channel, find, parse_real, Param};
@@ -20,6 +24,8 @@ pub enum PromptError {
     EndOfInput(String),
     #[error("the answer to \"{0}\" is longer than 4096 bytes")]
     TooLong(String),
+    #[error("more than 4096 blank lines before an answer to \"{0}\"")]
+    Blank(String),
     #[error("line {line} of standard input: `{answer}` is no answer to \"{prompt}\": {reason}")]
     BadAnswer { line: usize, prompt: String, answer: String, reason: String },
     // No `#[from]`: as a source the reason would be printed twice.
@@ -40,12 +46,39 @@ pub struct Prompter<'a> {
     pub input: &'a mut dyn BufRead,
     pub out: &'a mut dyn Write,
     pub interactive: bool,
+    /// The line the pending tokens came from.
     line: usize,
+    /// Answers read but not yet taken, in order.
+    pending: std::collections::VecDeque<String>,
 }
 
 impl<'a> Prompter<'a> {
     pub fn new(input: &'a mut dyn BufRead, out: &'a mut dyn Write, interactive: bool) -> Self {
-        Prompter { input, out, interactive, line: 0 }
+        Prompter { input, out, interactive, line: 0, pending: Default::default() }
+    }
+
+    /// The next answer: the next token of the current line, else of the
+    /// next line that has one. `None` at the end of the input.
+    fn token(&mut self, prompt: &str) -> Result<Option<String>, PromptError> {
+        let mut blank = 0;
+        while self.pending.is_empty() {
+            let mut line = String::new();
+            // At most MAX_ANSWER bytes of a line: endless input is not an answer.
+            let n = std::io::Read::take(&mut *self.input, MAX_ANSWER).read_line(&mut line)?;
+            if n as u64 == MAX_ANSWER && !line.ends_with('\n') {
+                return Err(PromptError::TooLong(prompt.to_string()));
+            }
+            if n == 0 {
+                return Ok(None);
+            }
+            self.line += 1;
+            blank += 1;
+            if blank > MAX_ANSWER {
+                return Err(PromptError::Blank(prompt.to_string()));
+            }
+            self.pending.extend(line.split_whitespace().map(str::to_string));
+        }
+        Ok(self.pending.pop_front())
     }
 }
 
@@ -58,21 +91,18 @@ fn ask<T>(p: &mut Prompter, prompt: &str, parse: impl Fn(&str) -> Result<T, Stri
     loop {
         write!(p.out, "{prompt}: ")?;
         p.out.flush()?;
-        let mut line = String::new();
-        // At most MAX_ANSWER bytes of a line: endless input is not an answer.
-        let n = std::io::Read::take(&mut *p.input, MAX_ANSWER).read_line(&mut line)?;
-        if n as u64 == MAX_ANSWER && !line.ends_with('\n') {
-            return Err(PromptError::TooLong(prompt.to_string()));
-        }
-        if n == 0 {
+        let Some(answer) = p.token(prompt)? else {
             writeln!(p.out)?;
             return Err(PromptError::EndOfInput(prompt.to_string()));
-        }
-        p.line += 1;
-        let answer = line.trim_end_matches(['\n', '\r']);
+        };
+        let answer = answer.as_str();
         match parse(answer) {
             Ok(v) => return Ok(v),
-            Err(reason) if p.interactive => writeln!(p.out, "\n{prompt}: {reason}; please answer again")?,
+            Err(reason) if p.interactive => {
+                // The rest of a bad line is dropped: it was meant to follow it.
+                p.pending.clear();
+                writeln!(p.out, "\n{prompt}: {reason}; please answer again")?
+            }
             Err(reason) => {
                 writeln!(p.out)?;
                 return Err(PromptError::BadAnswer { line: p.line, prompt: prompt.to_string(), answer: answer.to_string(), reason });
@@ -176,6 +206,18 @@ mod tests {
         let text = format!("0\n25\n255\n255\n255\nout.png\n{readme}\n0\n1\n0\n0\n0\n1.4\n");
         let e = ask_all(&mut Prompter::new(&mut text.as_bytes(), &mut Vec::new(), false), base()).unwrap_err().to_string();
         assert!(e.starts_with(&format!("line 7 of standard input: `{readme}` is no answer to \"File name of .off file\": {readme}:")), "{e}");
+        // Tokens as `cin >>` reads them: several to a line, blank lines
+        // skipped; an error names the line the bad token is on.
+        let off = concat!(env!("CARGO_MANIFEST_DIR"), "/off/cube.off");
+        let lines = format!("0\n25\n255\n255\n255\nout.png\n{off}\n0\n1\n0\n0\n0\n1.4\n");
+        let tokens = format!("\n  0 25\t255 255 255\n\nout.png {off} 0 1\n0 0 0 1.4");
+        let a = ask_all(&mut Prompter::new(&mut lines.as_bytes(), &mut Vec::new(), false), base()).unwrap();
+        let b = ask_all(&mut Prompter::new(&mut tokens.as_bytes(), &mut Vec::new(), false), base()).unwrap();
+        assert_eq!(a, b);
+        let e = ask_all(&mut Prompter::new(&mut "\n0 25\n\n255 999 0".as_bytes(), &mut Vec::new(), false), base()).unwrap_err();
+        assert_eq!(e.to_string(), "line 4 of standard input: `999` is no answer to \"G\": 999 is outside 0-255");
+        let e = ask_all(&mut Prompter::new(&mut "\n".repeat(5000).as_bytes(), &mut Vec::new(), false), base()).unwrap_err();
+        assert_eq!(e.to_string(), "more than 4096 blank lines before an answer to \"Maximum ray trace count\"");
         // Unreadable input: the reason once, as the program prints errors.
         let e = anyhow::Error::from(ask_all(&mut Prompter::new(&mut &b"\xff\xfe\n"[..], &mut Vec::new(), false), base()).unwrap_err());
         assert_eq!(format!("{e:#}"), "reading standard input: stream did not contain valid UTF-8");
