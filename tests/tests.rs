@@ -32,6 +32,8 @@ mod exact_reference;
 mod float_flags;
 // The experiment runner: rows, plots, resume, shards, failures as rows.
 mod sweep;
+// The committed timing charts: medians with error bars, fits where claimed.
+mod committed_charts;
 // Sweeps through GNU parallel and Slurm (ignored unless the engines are there).
 mod scale_out;
 // The figures of the four reports and their gallery; scene files.
