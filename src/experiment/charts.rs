@@ -161,6 +161,9 @@ pub fn is_timing(column: &str) -> bool {
     timing_of(column).is_some()
 }
 
+/// The least and greatest of a point's repeats, if they differ.
+type Spread = Option<(f64, f64)>;
+
 /// One point of a series: its x, and the y of every repeat.
 struct Point {
     x: f64,
@@ -214,12 +217,14 @@ fn line_chart_with(p: &PlotSpec, header: &[String], rows: &[Vec<String>], quick:
     let (log_x, log_y) = (p.log_x && !categorical, p.log_y);
     // Group rows into series, and repeats into points at equal x.
     let mut groups: Vec<(String, Vec<Point>)> = Vec::new();
+    let mut not_positive = 0usize;
     for r in &ok_rows {
         let x = if categorical { categories.iter().position(|c| *c == r[xi]).map(|k| k as f64) } else { r[xi].parse::<f64>().ok() };
         let (Some(x), Ok(y)) = (x, r[yi].parse::<f64>()) else { continue };
         let key = si.iter().zip(&p.series).map(|(&i, n)| format!("{}={}", n.trim_start_matches("param_"), r[i])).collect::<Vec<_>>().join(", ");
         // Log axes show positive values only.
         if (log_x && !(x > 0.0)) || (log_y && !(y > 0.0)) {
+            not_positive += 1;
             continue;
         }
         let n = renders.and_then(|c| r[c].parse::<f64>().ok()).unwrap_or(1.0).max(1.0);
@@ -309,17 +314,22 @@ fn line_chart_with(p: &PlotSpec, header: &[String], rows: &[Vec<String>], quick:
             below_reference += before - pts.len();
         }
         let mut out = Series::new(if name.is_empty() { axis_title(&p.y) } else { name }, Vec::new(), PALETTE[k % PALETTE.len()]);
-        let mut sorted: Vec<(f64, f64, Option<(f64, f64)>, Option<(f64, f64)>)> = pts
+        let mut sorted: Vec<(f64, f64, Spread, Spread)> = pts
             .iter()
             .map(|pt| {
                 let (mut xs, mut ys) = (pt.xs.clone(), pt.ys.clone());
                 xs.sort_by(f64::total_cmp);
                 ys.sort_by(f64::total_cmp);
-                let spread = |v: &[f64]| (v.len() > 1).then(|| (v[0], v[v.len() - 1]));
+                let spread = |v: &[f64]| (v.len() > 1 && v[0] < v[v.len() - 1]).then(|| (v[0], v[v.len() - 1]));
                 (if is_timing(&p.x) { median(&xs) } else { pt.x }, median(&ys), if is_timing(&p.x) { spread(&xs) } else { None }, spread(&ys))
             })
             .collect();
-        sorted.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
+        // A curve runs along x; where x is a timing it runs in the sweep's
+        // order (more photons, more samples), which noise in the times
+        // must not reorder.
+        if !is_timing(&p.x) {
+            sorted.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
+        }
         out.points = sorted.iter().map(|s| (s.0, s.1)).collect();
         out.spread_x = sorted.iter().map(|s| s.2).collect();
         out.spread_y = sorted.iter().map(|s| s.3).collect();
@@ -371,6 +381,9 @@ fn line_chart_with(p: &PlotSpec, header: &[String], rows: &[Vec<String>], quick:
     notes.extend(verdicts);
     if !p.note.is_empty() {
         notes.push((p.note.clone(), RGBColor(60, 60, 60)));
+    }
+    if not_positive > 0 {
+        notes.push((format!("{not_positive} runs with a value of 0 or less are not drawn on the log axis"), RGBColor(60, 60, 60)));
     }
     if short > 0 {
         notes.push((format!("{short} points timed over less than {} ms are not plotted", SHORTEST_TIMING_S * 1e3), RGBColor(60, 60, 60)));

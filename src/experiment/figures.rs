@@ -407,7 +407,7 @@ p,nav,h1,h2,h3{max-width:1400px}\
 figure{display:inline-block;vertical-align:top;margin:0 1em 1.5em 0}\
 img{display:block;border:1px solid #ccc;background:#000}\
 .row{display:flex;flex-wrap:nowrap;align-items:flex-start;gap:1em}.row figure{margin-right:0;flex:none}\
-.charts{display:flex;flex-wrap:wrap;align-items:flex-start;gap:1em;max-width:1960px}.charts figure{margin:0 0 1em 0}\
+.charts figure{display:block;margin:0 0 1.5em 0}\
 .sheet{display:grid;gap:.4em;margin-bottom:1.5em;width:max-content}.sheet figure{margin:0}.sheet figcaption{font-size:85%}\
 .group{border-left:4px solid #58a;padding-left:1em;margin-bottom:1.5em}.look{font-weight:bold;color:#245}\
 figcaption{font-size:90%}code{font-size:85%;color:#555}.missing{color:#a00}.dim,.time{color:#666}\
