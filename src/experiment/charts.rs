@@ -461,7 +461,7 @@ pub fn axis_title(column: &str) -> String {
         ("rmse", "RMSE of the shown image against the reference (0-1 scale)"),
         ("psnr", "PSNR against the reference (dB)"),
         ("rel_rmse", "relative RMSE of luminance against the reference"),
-        ("rel_error", "relative error against the reference (least-squares scaled RMSE / RMS of XYZ)"),
+        ("rel_error", "relative error (least-squares scaled RMSE / RMS, XYZ)"),
         ("renders", "renders inside one timing"),
     ];
     match known.iter().find(|k| k.0 == column) {

@@ -47,10 +47,15 @@ fn run_one(mode: Mode, params: &[(String, Value)], meshes: &MeshCache, min_time:
         let cpu = crate::timing::process_cpu_seconds();
         let mut run = mode.render(params, &crate::progress::Silent, meshes)?;
         let (mut build, mut trace, mut render, mut n) = (run.record.build_s, run.record.trace_s, run.record.render_s, 1u32);
-        // Until the render and the light pass (what a chart plots) each
-        // took min_time in all.
+        // Until the render, the light pass (if the run has one) and the
+        // CPU time (what a chart plots) each took min_time in all; at
+        // most 20 times min_time of wall time, whatever a run's fixed
+        // costs outside those.
         let cpu_so_far = || cpu.zip(crate::timing::process_cpu_seconds()).map_or(f64::INFINITY, |(a, b)| b - a);
-        while min_time > 0.0 && (render < min_time || trace.is_some_and(|t| t < min_time) || cpu_so_far() < min_time) && n < 100_000 {
+        let has_trace = trace.is_some_and(|t| t > 0.0);
+        let started = std::time::Instant::now();
+        let short = |render: f64, trace: Option<f64>| render < min_time || (has_trace && trace.is_some_and(|t| t < min_time)) || cpu_so_far() < min_time;
+        while min_time > 0.0 && short(render, trace) && started.elapsed().as_secs_f64() < 20.0 * min_time && n < 100_000 {
             run = mode.render(params, &crate::progress::Silent, meshes)?;
             build += run.record.build_s;
             trace = trace.map(|t| t + run.record.trace_s.unwrap_or(0.0));
