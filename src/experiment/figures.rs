@@ -299,9 +299,11 @@ fn figure_html(h: &mut String, out: &Path, id: &str, r: &Record, anchor: bool) -
 /// A chart or other picture at its own size, linked, with its caption.
 fn picture_html(h: &mut String, out: &Path, rel: &str, id: &str, caption: &str) -> Result<()> {
     let (w, hh) = image::image_dimensions(out.join(rel)).unwrap_or((640, 400));
+    // A caption as wide as the picture, and never narrower than a line.
+    let cw = w.max(480);
     writeln!(
         h,
-        "<figure id=\"{id}\" style=\"width:{w}px\"><a href=\"{rel}\"><img src=\"{rel}\" alt=\"{rel}\" width=\"{w}\" height=\"{hh}\"></a><figcaption><code>{rel}</code>: {caption}</figcaption></figure>"
+        "<figure id=\"{id}\" style=\"width:{cw}px\"><a href=\"{rel}\"><img src=\"{rel}\" alt=\"{rel}\" width=\"{w}\" height=\"{hh}\"></a><figcaption><code>{rel}</code>: {caption}</figcaption></figure>"
     )?;
     Ok(())
 }
