@@ -383,13 +383,13 @@ fn line_chart_with(p: &PlotSpec, header: &[String], rows: &[Vec<String>], quick:
         notes.push((p.note.clone(), RGBColor(60, 60, 60)));
     }
     if not_positive > 0 {
-        notes.push((format!("{not_positive} runs with a value of 0 or less are not drawn on the log axis"), RGBColor(60, 60, 60)));
+        notes.push((format!("{} with a value of 0 or less not drawn on the log axis", count(not_positive, "run")), RGBColor(60, 60, 60)));
     }
     if short > 0 {
-        notes.push((format!("{short} points timed over less than {} ms are not plotted", SHORTEST_TIMING_S * 1e3), RGBColor(60, 60, 60)));
+        notes.push((format!("{} timed over less than {} ms not plotted", count(short, "point"), SHORTEST_TIMING_S * 1e3), RGBColor(60, 60, 60)));
     }
     if let Some(n) = reference_noise {
-        let also = if below_reference > 0 { format!("; {below_reference} points under 10x that are not plotted") } else { String::new() };
+        let also = if below_reference > 0 { format!("; {} under ten times that left out", count(below_reference, "point")) } else { String::new() };
         if is_error(&p.y) {
             let text = if n > 0.0 {
                 format!("the reference's own noise (two seeds): {}{also}", sig(n))
@@ -410,6 +410,11 @@ fn line_chart_with(p: &PlotSpec, header: &[String], rows: &[Vec<String>], quick:
         categories,
         series,
     })
+}
+
+/// "1 point", "2 points".
+fn count(n: usize, what: &str) -> String {
+    format!("{n} {what}{}", if n == 1 { "" } else { "s" })
 }
 
 /// An error against the reference (what the reference's noise limits).
@@ -609,7 +614,7 @@ mod tests {
         assert_eq!(s.points[0].1, 0.12, "the median, not the mean");
         assert_eq!(s.spread_y[0], Some((0.10, 0.30)));
         assert!(s.fit.is_some() && s.name.contains("slope") && s.name.contains("R²"));
-        assert!(c.notes.iter().any(|n| n.0.contains("1 points timed over less than 50 ms")), "{:?}", c.notes);
+        assert!(c.notes.iter().any(|n| n.0.contains("1 point timed over less than 50 ms not plotted")), "{:?}", c.notes);
         assert!(c.notes.iter().any(|n| n.0.contains("time grows with n") && n.0.contains("DOES NOT HOLD")), "n = 5 is fast: {:?}", c.notes);
         // A quick run judges nothing and says its times are not measurements.
         let q = line_chart_with(&p, &header(), &rows, true, &[], None).unwrap();
@@ -633,7 +638,7 @@ mod tests {
         let rows = vec![row(0, "a", 1, 0.1, 1, 0.5), row(1, "a", 2, 0.1, 1, 0.05), row(2, "a", 3, 0.1, 1, 0.009)];
         let c = line_chart_with(&spec("param_n", "rmse"), &header(), &rows, false, &[], Some(0.001)).unwrap();
         assert_eq!(c.series[0].points.len(), 2);
-        assert!(c.notes.iter().any(|n| n.0.contains("own noise (two seeds): 0.00100; 1 points under 10x")), "{:?}", c.notes);
+        assert!(c.notes.iter().any(|n| n.0.contains("own noise (two seeds): 0.00100; 1 point under ten times that left out")), "{:?}", c.notes);
     }
 
     #[test]
