@@ -586,13 +586,10 @@ fn error_chart(series: &[(String, Runs)]) -> crate::experiment::plot::LineChart 
         series: series
             .iter()
             .zip(PALETTE.iter().cycle())
-            .map(|((name, runs), color)| Series { name: name.clone(), points: runs.clone(), color: *color })
-            .chain(std::iter::once(Series {
-                name: "Mitsuba 3.9 particle tracer (anchor)".into(),
-                points: MITSUBA.to_vec(),
-                color: plotters::style::RGBColor(0, 0, 0),
-            }))
+            .map(|((name, runs), color)| Series::new(name.clone(), runs.clone(), *color))
+            .chain(std::iter::once(Series::new("Mitsuba 3.9 particle tracer (anchor)", MITSUBA.to_vec(), plotters::style::RGBColor(0, 0, 0))))
             .collect(),
+        ..Default::default()
     }
 }
 

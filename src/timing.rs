@@ -100,6 +100,22 @@ pub fn thread_cpu_seconds() -> Option<f64> {
     None
 }
 
+/// CPU time the whole process has run, every thread, in seconds
+/// (`CLOCK_PROCESS_CPUTIME_ID`): the work a multi-threaded render did,
+/// which other processes on a shared machine slow but do not add to.
+/// `None` where the system does not say.
+pub fn process_cpu_seconds() -> Option<f64> {
+    #[cfg(unix)]
+    {
+        let mut ts = libc::timespec { tv_sec: 0, tv_nsec: 0 };
+        // SAFETY: `ts` is a valid timespec for the call to fill.
+        let ok = unsafe { libc::clock_gettime(libc::CLOCK_PROCESS_CPUTIME_ID, &mut ts) } == 0;
+        ok.then_some(ts.tv_sec as f64 + ts.tv_nsec as f64 * 1e-9)
+    }
+    #[cfg(not(unix))]
+    None
+}
+
 #[cfg(all(test, unix))]
 mod tests {
     use super::thread_cpu_seconds;

@@ -57,7 +57,7 @@ fn tiny_experiment_gives_rows_and_plots() {
     // Traces 0 and 2 differ; the reference (trace 10, fixed) is close to trace 4.
     assert!(r[2][col("changed_px")].parse::<u64>().unwrap() > 0);
     assert!(r[5][col("rmse")].parse::<f64>().unwrap() < r[1][col("rmse")].parse::<f64>().unwrap());
-    for p in ["time-vs-trace.png", "change-vs-trace.png", "reference.png", "images/3.png"] {
+    for p in ["time-vs-trace.png", "change-vs-trace.png", "reference.png", "images/trace-2_specular-opacity-fixed.png"] {
         let img = image::open(out.join(p)).unwrap().to_rgb8();
         let first = *img.get_pixel(0, 0);
         assert!(img.pixels().any(|q| *q != first), "{p} is blank");
@@ -102,7 +102,10 @@ fn shards_merged_equal_the_unsharded_run() {
     // Shards hold whole chains along the first axis, so even changed_px
     // (against the previous trace's image) equals the unsharded run's.
     assert_eq!(stable(Path::new(&d("merged"))), stable(Path::new(&d("all"))));
-    assert_eq!(std::fs::read(Path::new(&d("merged")).join("images/5.png")).unwrap(), std::fs::read(Path::new(&d("all")).join("images/5.png")).unwrap());
+    assert_eq!(
+        std::fs::read(Path::new(&d("merged")).join("images/trace-4_specular-opacity-fixed.png")).unwrap(),
+        std::fs::read(Path::new(&d("all")).join("images/trace-4_specular-opacity-fixed.png")).unwrap()
+    );
     assert!(Path::new(&d("merged")).join("time-vs-trace.png").exists());
     // Every row says where it ran.
     let (h, r) = rows(Path::new(&d("merged")));
@@ -261,7 +264,7 @@ fn render_and_sweep_make_the_same_image() {
         let out = dir.path().join(format!("{mode}-out"));
         let o = sweep(&[experiment.to_str().unwrap(), "--out", out.to_str().unwrap()], dir.path());
         assert!(o.status.success(), "{}", stderr(&o));
-        let swept = std::fs::read(out.join("images/0.png")).unwrap();
+        let swept = std::fs::read(out.join("images/run-0.png")).unwrap();
         let alone = std::fs::read(&rendered).unwrap();
         assert!(swept == alone, "{mode}: the sweep's image differs from the render's");
         let size = image::open(&rendered).unwrap().to_rgb8().dimensions();

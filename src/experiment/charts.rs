@@ -1,8 +1,11 @@
 //! The experiment's plots, drawn from its runs.csv (never from memory), as
-//! PNG and SVG: line charts grouped into series, with log axes and fitted
-//! slopes where asked, and a pass/fail table for stability experiments.
+//! PNG and SVG: line charts grouped into series, each point the median of
+//! its repeats with their least and greatest as an error bar, log axes,
+//! fitted lines with their slope's confidence interval and R², and the
+//! report's claim judged where the plot names one; dot plots where x is
+//! text; and a pass/fail table for stability experiments.
 
-use super::plot::{render, LineChart, Series, PALETTE};
+use super::plot::{render, tick, LineChart, Series, PALETTE};
 use super::spec::PlotKind;
 use super::spec::{Experiment, PlotSpec};
 use crate::image_io::write_rgb8;
@@ -10,17 +13,31 @@ use anyhow::{anyhow, Result};
 use plotters::prelude::*;
 use std::path::Path;
 
+/// Timings shorter than this are timer noise and scheduling: a point whose
+/// measured time is shorter is not plotted (an experiment lengthens such
+/// runs with `min_time`, rendering again inside one timing).
+pub const SHORTEST_TIMING_S: f64 = 0.05;
+
+/// A fit is taken to confirm a straight-line claim from this R² up.
+pub const CLAIM_R2: f64 = 0.95;
+
+/// How far a fitted slope may lie from the claimed one and still confirm
+/// it, beyond its confidence interval (timings on a shared machine carry a
+/// few per cent of systematic drift).
+pub const CLAIM_SLOPE_TOLERANCE: f64 = 0.1;
+
 /// Draws the experiment's plots; returns the files of line plots left
 /// undrawn because no run has a value to draw (an empty plot would read as
 /// a measurement), with the column that had none. An older drawing of
 /// such a plot is removed.
 pub fn draw_all(e: &Experiment, dir: &Path, header: &[String], rows: &[Vec<String>]) -> Result<Vec<(String, String)>> {
     let mut undrawn = Vec::new();
+    let reference_noise = read_reference_noise(dir);
     for p in &e.plots {
         match p.kind {
             PlotKind::Table => status_table(p, dir, header, rows)?,
             PlotKind::Line => {
-                let mut chart = line_chart(p, header, rows)?;
+                let mut chart = line_chart_of(e, p, header, rows, reference_noise)?;
                 if chart.series.is_empty() {
                     for ext in ["png", "svg"] {
                         let _ = std::fs::remove_file(dir.join(format!("{}.{ext}", p.file)));
@@ -29,16 +46,21 @@ pub fn draw_all(e: &Experiment, dir: &Path, header: &[String], rows: &[Vec<Strin
                     continue;
                 }
                 chart.subtitle = fixed_text(e);
-                let timed = |c: &str| c.ends_with("_s") || c.ends_with("per_s");
-                if e.quick && (timed(&p.x) || timed(&p.y)) {
-                    chart.subtitle.push_str(" (quick run: too short for its times to be measurements)");
-                }
                 render(&dir.join(format!("{}.png", p.file)), &chart)?;
                 render(&dir.join(format!("{}.svg", p.file)), &chart)?;
             }
         }
     }
     Ok(undrawn)
+}
+
+/// The reference image's own noise as the sweep measured it
+/// (`reference.csv`: the error between two references of different
+/// seeds over the square root of two; 0 for a reference that draws nothing
+/// at random), if the experiment has a reference.
+fn read_reference_noise(dir: &Path) -> Option<f64> {
+    let text = std::fs::read_to_string(dir.join("reference.csv")).ok()?;
+    text.lines().filter_map(|l| l.split_once(',')).find(|(k, _)| *k == "noise").and_then(|(_, v)| v.trim().parse().ok())
 }
 
 /// What the experiment held fixed, for the subtitle: the fixed parameters
@@ -73,65 +95,355 @@ pub fn median(sorted: &[f64]) -> f64 {
 
 /// Least-squares slope of y on x.
 pub fn slope(points: &[(f64, f64)]) -> Option<f64> {
-    let n = points.len() as f64;
-    if n < 2.0 {
+    fit(points).map(|f| f.b)
+}
+
+/// A least-squares line y = a + b x: the slope's 95 % confidence interval
+/// (half-width, Student's t with n - 2 degrees of freedom) and R².
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Fit {
+    pub a: f64,
+    pub b: f64,
+    /// Half-width of the slope's 95 % interval (infinite with two points).
+    pub b_ci: f64,
+    pub r2: f64,
+    pub n: usize,
+}
+
+/// Ordinary least squares (e.g. Montgomery, Introduction to Linear
+/// Regression Analysis, 2.3): b = Sxy / Sxx, se(b) = sqrt(SSE / (n - 2) / Sxx),
+/// R² = 1 - SSE / Syy.
+pub fn fit(points: &[(f64, f64)]) -> Option<Fit> {
+    let n = points.len();
+    if n < 2 {
         return None;
     }
-    let (mx, my) = points.iter().fold((0.0, 0.0), |a, p| (a.0 + p.0 / n, a.1 + p.1 / n));
-    let (sxy, sxx) = points.iter().fold((0.0, 0.0), |a, p| (a.0 + (p.0 - mx) * (p.1 - my), a.1 + (p.0 - mx).powi(2)));
-    (sxx > 0.0).then(|| sxy / sxx)
+    let nf = n as f64;
+    let (mx, my) = points.iter().fold((0.0, 0.0), |a, p| (a.0 + p.0 / nf, a.1 + p.1 / nf));
+    let (sxy, sxx, syy) = points.iter().fold((0.0, 0.0, 0.0), |a, p| (a.0 + (p.0 - mx) * (p.1 - my), a.1 + (p.0 - mx).powi(2), a.2 + (p.1 - my).powi(2)));
+    if !(sxx > 0.0) {
+        return None;
+    }
+    let b = sxy / sxx;
+    let a = my - b * mx;
+    let sse: f64 = points.iter().map(|p| (p.1 - a - b * p.0).powi(2)).sum();
+    let r2 = if syy > 0.0 { 1.0 - sse / syy } else { 1.0 };
+    let b_ci = if n > 2 { t95(n - 2) * (sse / (nf - 2.0) / sxx).sqrt() } else { f64::INFINITY };
+    Some(Fit { a, b, b_ci, r2, n })
+}
+
+/// Student's t, two-sided 95 %, for `df` degrees of freedom.
+fn t95(df: usize) -> f64 {
+    const T: [f64; 30] = [
+        12.706, 4.303, 3.182, 2.776, 2.571, 2.447, 2.365, 2.306, 2.262, 2.228, 2.201, 2.179, 2.160, 2.145, 2.131, 2.120, 2.110, 2.101, 2.093, 2.086, 2.080,
+        2.074, 2.069, 2.064, 2.060, 2.056, 2.052, 2.048, 2.045, 2.042,
+    ];
+    T.get(df.wrapping_sub(1)).copied().unwrap_or(1.96)
+}
+
+/// A number to three significant digits, for slopes and intervals.
+fn sig(v: f64) -> String {
+    if v == 0.0 || !v.is_finite() {
+        return if v.is_finite() { "0".into() } else { "inf".into() };
+    }
+    let d = (2 - v.abs().log10().floor() as i32).max(0) as usize;
+    if v.abs() >= 1e5 || v.abs() < 1e-4 {
+        format!("{v:.2e}")
+    } else {
+        format!("{v:.d$}")
+    }
+}
+
+/// The timing a column is measured by: a time itself, or the time a rate
+/// was taken over.
+pub fn timing_of(column: &str) -> Option<&'static str> {
+    match column {
+        "load_s" => Some("load_s"),
+        "build_s" => Some("build_s"),
+        "trace_s" | "photons_per_s" => Some("trace_s"),
+        "render_s" | "rays_per_s" => Some("render_s"),
+        "total_s" => Some("total_s"),
+        "cpu_s" => Some("cpu_s"),
+        _ => None,
+    }
+}
+
+/// Whether a runs.csv column is one of the run's timings or rates.
+pub fn is_timing(column: &str) -> bool {
+    timing_of(column).is_some()
+}
+
+/// The least and greatest of a point's repeats, if they differ.
+type Spread = Option<(f64, f64)>;
+
+/// One point of a series: its x, and the y of every repeat.
+struct Point {
+    x: f64,
+    xs: Vec<f64>,
+    ys: Vec<f64>,
+    /// The shortest time a repeat was measured over (renders times the
+    /// time per render), for the timings' check.
+    measured: f64,
+    /// The run's parameters, where x is a timing (repeats share them).
+    place: String,
 }
 
 pub fn line_chart(p: &PlotSpec, header: &[String], rows: &[Vec<String>]) -> Result<LineChart> {
+    line_chart_with(p, header, rows, false, &[], None)
+}
+
+fn line_chart_of(e: &Experiment, p: &PlotSpec, header: &[String], rows: &[Vec<String>], reference_noise: Option<f64>) -> Result<LineChart> {
+    let axes: Vec<String> = e.param_names();
+    let mut chart = line_chart_with(p, header, rows, e.quick, &axes, reference_noise)?;
+    if e.repeats > 1 && (is_timing(&p.x) || is_timing(&p.y)) && !e.quick {
+        let lengthened = if e.min_time > 0.0 {
+            format!("; a run shorter than {} s is rendered again inside one timing, and its time is the mean", tick(&e.min_time))
+        } else {
+            String::new()
+        };
+        chart.notes.insert(0, (format!("each point: the median of {} repeats{lengthened}", e.repeats), RGBColor(60, 60, 60)));
+    }
+    Ok(chart)
+}
+
+/// The chart of one plot: `axes` are the experiment's parameters, to say
+/// which of them vary along a curve; `quick`: the timings are not
+/// measurements and no claim is judged.
+fn line_chart_with(p: &PlotSpec, header: &[String], rows: &[Vec<String>], quick: bool, axes: &[String], reference_noise: Option<f64>) -> Result<LineChart> {
     let (xi, yi) = (col(header, &p.x)?, col(header, &p.y)?);
     let si: Vec<usize> = p.series.iter().map(|s| col(header, s)).collect::<Result<_>>()?;
     let status = col(header, "status")?;
-    // Group rows into series; the median of repeats at equal x (timings
-    // have outliers: a median ignores one slow run).
-    let mut groups: Vec<(String, Vec<(f64, f64)>)> = Vec::new();
-    for r in rows.iter().filter(|r| r[status] == "ok") {
-        let (Ok(x), Ok(y)) = (r[xi].parse::<f64>(), r[yi].parse::<f64>()) else { continue };
-        let key = si.iter().zip(&p.series).map(|(&i, n)| format!("{}={}", n.trim_start_matches("param_"), r[i])).collect::<Vec<_>>().join(", ");
-        // Log axes show positive values only.
-        if (p.log_x && !(x > 0.0)) || (p.log_y && !(y > 0.0)) {
-            continue;
-        }
-        match groups.iter_mut().find(|g| g.0 == key) {
-            Some(g) => g.1.push((x, y)),
-            None => groups.push((key, vec![(x, y)])),
+    let renders = header.iter().position(|h| h == "renders");
+    let timing = [timing_of(&p.x), timing_of(&p.y)].into_iter().flatten().next().map(|c| col(header, c)).transpose()?;
+    let ok_rows: Vec<&Vec<String>> = rows.iter().filter(|r| r[status] == "ok").collect();
+    // A column of text (a glass, a map, a scene) is drawn as categories.
+    let categorical = ok_rows.iter().any(|r| !r[xi].is_empty() && r[xi].parse::<f64>().is_err());
+    let mut categories: Vec<String> = Vec::new();
+    if categorical {
+        for r in &ok_rows {
+            if !r[xi].is_empty() && !categories.contains(&r[xi]) {
+                categories.push(r[xi].clone());
+            }
         }
     }
-    let series = groups
-        .into_iter()
-        .zip(PALETTE.iter().cycle())
-        .map(|((name, mut pts), color)| {
-            pts.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
-            let mut groups: Vec<(f64, Vec<f64>)> = Vec::new();
-            for (x, y) in pts {
-                match groups.last_mut() {
-                    Some(g) if g.0 == x => g.1.push(y),
-                    _ => groups.push((x, vec![y])),
-                }
+    let (log_x, log_y) = (p.log_x && !categorical, p.log_y);
+    // Group rows into series, and repeats into points at equal x.
+    let mut groups: Vec<(String, Vec<Point>)> = Vec::new();
+    let mut not_positive = 0usize;
+    for r in &ok_rows {
+        let x = if categorical { categories.iter().position(|c| *c == r[xi]).map(|k| k as f64) } else { r[xi].parse::<f64>().ok() };
+        let (Some(x), Ok(y)) = (x, r[yi].parse::<f64>()) else { continue };
+        let key = si.iter().zip(&p.series).map(|(&i, n)| format!("{}={}", n.trim_start_matches("param_"), r[i])).collect::<Vec<_>>().join(", ");
+        // Log axes show positive values only.
+        if (log_x && !(x > 0.0)) || (log_y && !(y > 0.0)) {
+            not_positive += 1;
+            continue;
+        }
+        let n = renders.and_then(|c| r[c].parse::<f64>().ok()).unwrap_or(1.0).max(1.0);
+        let measured = timing.and_then(|c| r[c].parse::<f64>().ok()).map_or(f64::INFINITY, |t| t * n);
+        // Repeats share every parameter: what tells two runs apart is
+        // everything but the timings, so group by the x the plot shows
+        // where x is not a timing, and by the run's parameters where it is.
+        let place = if is_timing(&p.x) {
+            header.iter().enumerate().filter(|(_, h)| h.starts_with("param_")).map(|(i, _)| r[i].as_str()).collect::<Vec<_>>().join("|")
+        } else {
+            String::new()
+        };
+        let g = match groups.iter().position(|g| g.0 == key) {
+            Some(i) => &mut groups[i].1,
+            None => {
+                groups.push((key.clone(), Vec::new()));
+                &mut groups.last_mut().unwrap().1
             }
-            let points: Vec<(f64, f64)> = groups.into_iter().map(|(x, ys)| (x, median(&ys))).collect();
-            let label = if name.is_empty() { axis_title(&p.y) } else { name };
-            let logged: Vec<(f64, f64)> = points.iter().map(|&(x, y)| (if p.log_x { x.log10() } else { x }, if p.log_y { y.log10() } else { y })).collect();
-            let label = match (p.fit, slope(&logged)) {
-                (true, Some(s)) => format!("{label} (slope {s:.2})"),
-                _ => label,
-            };
-            Series { name: label, points, color: *color }
+        };
+        match g.iter_mut().find(|pt| if is_timing(&p.x) { pt.place == place } else { pt.x == x }) {
+            Some(pt) => {
+                pt.xs.push(x);
+                pt.ys.push(y);
+                pt.measured = pt.measured.min(measured);
+            }
+            None => g.push(Point { x, xs: vec![x], ys: vec![y], measured, place }),
+        }
+    }
+    let mut notes: Vec<(String, RGBColor)> = Vec::new();
+    // What varies along each curve: a parameter neither on the x axis nor
+    // naming the series, that takes more than one value within a series.
+    let along: Vec<String> = axes
+        .iter()
+        .filter(|a| format!("param_{a}") != p.x && !p.series.contains(&format!("param_{a}")))
+        .filter_map(|a| {
+            let c = header.iter().position(|h| *h == format!("param_{a}"))?;
+            let mut vals: Vec<&str> = Vec::new();
+            let mut varies = false;
+            for (key, _) in &groups {
+                let mut within: Vec<&str> = Vec::new();
+                for r in ok_rows.iter().filter(|r| {
+                    si.iter().zip(&p.series).map(|(&i, n)| format!("{}={}", n.trim_start_matches("param_"), r[i])).collect::<Vec<_>>().join(", ") == *key
+                }) {
+                    if !within.contains(&r[c].as_str()) {
+                        within.push(&r[c]);
+                    }
+                    if !vals.contains(&r[c].as_str()) {
+                        vals.push(&r[c]);
+                    }
+                }
+                varies |= within.len() > 1;
+            }
+            let nums: Option<Vec<f64>> = vals.iter().map(|v| v.parse::<f64>().ok()).collect();
+            varies.then(|| match nums {
+                Some(mut n) if n.len() > 2 => {
+                    n.sort_by(f64::total_cmp);
+                    format!("{} from {} to {}", a.replace('_', " "), tick(&n[0]), tick(&n[n.len() - 1]))
+                }
+                _ => format!("{} ({})", a.replace('_', " "), vals.join(", ")),
+            })
         })
         .collect();
+    if !along.is_empty() {
+        notes.push((format!("along each curve: {}", along.join("; ")), RGBColor(60, 60, 60)));
+    }
+    let mut short = 0usize;
+    let mut below_reference = 0usize;
+    let floor = reference_noise.filter(|n| *n > 0.0).map(|n| 10.0 * n);
+    let mut verdicts: Vec<(String, RGBColor)> = Vec::new();
+    let mut series: Vec<Series> = Vec::new();
+    for (k, (name, mut pts)) in groups.into_iter().enumerate() {
+        // Too short to time (not in a quick run, whose every time is).
+        if !quick {
+            let before = pts.len();
+            pts.retain(|pt| !(pt.measured < SHORTEST_TIMING_S));
+            short += before - pts.len();
+        }
+        // Errors below ten times the reference's own noise measure the
+        // reference, not the run.
+        if let (Some(f), true) = (floor, is_error(&p.y)) {
+            let before = pts.len();
+            pts.retain(|pt| {
+                let mut ys = pt.ys.clone();
+                ys.sort_by(f64::total_cmp);
+                median(&ys) >= f
+            });
+            below_reference += before - pts.len();
+        }
+        let mut out = Series::new(if name.is_empty() { axis_title(&p.y) } else { name }, Vec::new(), PALETTE[k % PALETTE.len()]);
+        let mut sorted: Vec<(f64, f64, Spread, Spread)> = pts
+            .iter()
+            .map(|pt| {
+                let (mut xs, mut ys) = (pt.xs.clone(), pt.ys.clone());
+                xs.sort_by(f64::total_cmp);
+                ys.sort_by(f64::total_cmp);
+                let spread = |v: &[f64]| (v.len() > 1 && v[0] < v[v.len() - 1]).then(|| (v[0], v[v.len() - 1]));
+                (if is_timing(&p.x) { median(&xs) } else { pt.x }, median(&ys), if is_timing(&p.x) { spread(&xs) } else { None }, spread(&ys))
+            })
+            .collect();
+        // A curve runs along x; where x is a timing it runs in the sweep's
+        // order (more photons, more samples), which noise in the times
+        // must not reorder.
+        if !is_timing(&p.x) {
+            sorted.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
+        }
+        out.points = sorted.iter().map(|s| (s.0, s.1)).collect();
+        out.spread_x = sorted.iter().map(|s| s.2).collect();
+        out.spread_y = sorted.iter().map(|s| s.3).collect();
+        if p.fit {
+            let drawn: Vec<(f64, f64)> = out.points.iter().map(|&(x, y)| (if log_x { x.log10() } else { x }, if log_y { y.log10() } else { y })).collect();
+            if let Some(f) = fit(&drawn) {
+                let unit = if log_x && log_y { String::new() } else { format!(" {}", slope_unit(&p.x, &p.y)) };
+                out.name = format!("{}: slope {}{} ± {}, R² {:.3}", out.name, sig(f.b), unit, sig(f.b_ci), f.r2);
+                out.fit = Some((f.a, f.b));
+                let judged = !p.claim.is_empty() && (p.claim_series.is_empty() || out.name.contains(&p.claim_series));
+                if judged && !quick {
+                    let holds = f.r2 >= CLAIM_R2
+                        && match p.claim_slope {
+                            Some(s) => (f.b - s).abs() <= f.b_ci.max(CLAIM_SLOPE_TOLERANCE),
+                            None => f.b - f.b_ci > 0.0,
+                        };
+                    let name = if p.series.is_empty() { String::new() } else { format!(" for {}", out.name.split(':').next().unwrap_or_default()) };
+                    let (word, colour) = if holds { ("HOLDS", RGBColor(0, 120, 40)) } else { ("DOES NOT HOLD", RGBColor(190, 0, 0)) };
+                    let rule = match p.claim_slope {
+                        Some(s) => format!("R² ≥ {CLAIM_R2} and slope within its 95 % interval, or {CLAIM_SLOPE_TOLERANCE}, of {}", sig(s)),
+                        None => format!("R² ≥ {CLAIM_R2} and slope above 0 at 95 %"),
+                    };
+                    verdicts.push((
+                        format!("The report's claim \"{}\" {word}{name}: slope {} ± {}, R² {:.3} (the test: {rule})", p.claim, sig(f.b), sig(f.b_ci), f.r2),
+                        colour,
+                    ));
+                }
+            }
+        }
+        series.push(out);
+    }
+    if is_timing(&p.x) || is_timing(&p.y) {
+        // Where the times were taken: the machine's load during the runs.
+        let load: Vec<f64> =
+            header.iter().position(|h| h == "load_1min").map_or(Vec::new(), |c| ok_rows.iter().filter_map(|r| r[c].parse::<f64>().ok()).collect());
+        let cores = header.iter().position(|h| h == "cores").and_then(|c| ok_rows.first().map(|r| r[c].clone())).unwrap_or_default();
+        if let (Some(lo), Some(hi)) = (load.iter().copied().reduce(f64::min), load.iter().copied().reduce(f64::max)) {
+            let what = if p.x == "cpu_s" || p.y == "cpu_s" {
+                "CPU time is the work of every thread, which other processes slow but do not add to"
+            } else {
+                "wall time, which other processes' load stretches"
+            };
+            notes.push((format!("machine load at the runs (1-minute load average): {lo:.1} to {hi:.1} on {cores} cores; {what}"), RGBColor(60, 60, 60)));
+        }
+    }
+    if quick && (is_timing(&p.x) || is_timing(&p.y)) {
+        notes.push(("quick run: its runs are too short for their times to be measurements; no claim is judged".into(), RGBColor(190, 0, 0)));
+    }
+    notes.extend(verdicts);
+    if !p.note.is_empty() {
+        notes.push((p.note.clone(), RGBColor(60, 60, 60)));
+    }
+    if not_positive > 0 {
+        notes.push((format!("{} with a value of 0 or less not drawn on the log axis", count(not_positive, "run")), RGBColor(60, 60, 60)));
+    }
+    if short > 0 {
+        notes.push((format!("{} timed over less than {} ms not plotted", count(short, "point"), SHORTEST_TIMING_S * 1e3), RGBColor(60, 60, 60)));
+    }
+    if let Some(n) = reference_noise {
+        let also = if below_reference > 0 { format!("; {} under ten times that left out", count(below_reference, "point")) } else { String::new() };
+        if is_error(&p.y) {
+            let text = if n > 0.0 {
+                format!("the reference's own noise (two seeds): {}{also}", sig(n))
+            } else {
+                "the reference draws nothing at random: its own noise is 0".into()
+            };
+            notes.push((text, RGBColor(60, 60, 60)));
+        }
+    }
     Ok(LineChart {
         title: p.title.clone(),
         subtitle: String::new(),
+        notes,
         x_label: axis_title(&p.x),
         y_label: axis_title(&p.y),
-        log_x: p.log_x,
-        log_y: p.log_y,
+        log_x,
+        log_y,
+        categories,
         series,
     })
+}
+
+/// "1 point", "2 points".
+fn count(n: usize, what: &str) -> String {
+    format!("{n} {what}{}", if n == 1 { "" } else { "s" })
+}
+
+/// An error against the reference (what the reference's noise limits).
+fn is_error(column: &str) -> bool {
+    matches!(column, "rmse" | "rel_rmse" | "rel_error")
+}
+
+/// The unit of a slope on linear axes: y's unit per x's.
+fn slope_unit(x: &str, y: &str) -> String {
+    let unit = |c: &str| -> String {
+        let t = axis_title(c);
+        match (t.rfind('('), t.ends_with(')')) {
+            (Some(i), true) => t[i + 1..t.len() - 1].to_string(),
+            _ => t.trim_start_matches("maximum ").to_string(),
+        }
+    };
+    format!("{} per {}", unit(y), unit(x))
 }
 
 /// What a runs.csv column is, with its unit, for an axis.
@@ -153,6 +465,7 @@ pub fn axis_title(column: &str) -> String {
         ("trace_s", "light pass time (s)"),
         ("render_s", "render time (s)"),
         ("total_s", "total time (s)"),
+        ("cpu_s", "CPU time of a run, all threads (s)"),
         ("rays_per_s", "rays per second"),
         ("photons", "photons traced"),
         ("stored", "photons stored"),
@@ -162,9 +475,11 @@ pub fn axis_title(column: &str) -> String {
         ("tir_fraction", "fraction of rays totally reflected"),
         ("highlight_px", "highlight area (pixels of luminance >= 0.75)"),
         ("changed_px", "pixels changed from the previous value"),
-        ("rmse", "RMSE against the reference (8-bit levels)"),
+        ("rmse", "RMSE of the shown image against the reference (0-1 scale)"),
         ("psnr", "PSNR against the reference (dB)"),
-        ("rel_rmse", "relative RMSE against the reference"),
+        ("rel_rmse", "relative RMSE of luminance against the reference"),
+        ("rel_error", "relative error (least-squares scaled RMSE / RMS, XYZ)"),
+        ("renders", "renders inside one timing"),
     ];
     match known.iter().find(|k| k.0 == column) {
         Some((_, t)) => t.to_string(),
@@ -239,6 +554,103 @@ mod tests {
     fn median_of_repeats() {
         assert_eq!(median(&[1.0, 2.0, 9.0]), 2.0);
         assert_eq!(median(&[1.0, 2.0, 3.0, 9.0]), 2.5);
+    }
+
+    /// A fit of points on a known line with known scatter: the slope, its
+    /// interval (covering the truth, narrower with more points) and R².
+    #[test]
+    fn a_fit_gives_slope_interval_and_r2() {
+        let exact: Vec<(f64, f64)> = (0..10).map(|i| (i as f64, 3.0 + 2.0 * i as f64)).collect();
+        let f = fit(&exact).unwrap();
+        assert!((f.b - 2.0).abs() < 1e-12 && (f.a - 3.0).abs() < 1e-12 && f.b_ci < 1e-9 && (f.r2 - 1.0).abs() < 1e-12);
+        let noisy: Vec<(f64, f64)> = (0..10).map(|i| (i as f64, 3.0 + 2.0 * i as f64 + if i % 2 == 0 { 0.5 } else { -0.5 })).collect();
+        let g = fit(&noisy).unwrap();
+        assert!((g.b - 2.0).abs() < g.b_ci && g.b_ci > 0.01 && g.r2 < 1.0 && g.r2 > 0.95, "{g:?}");
+        // A flat cloud: R² near 0.
+        let flat: Vec<(f64, f64)> = (0..10).map(|i| (i as f64, if i % 2 == 0 { 1.0 } else { 2.0 })).collect();
+        assert!(fit(&flat).unwrap().r2 < 0.1);
+        assert_eq!(fit(&[(1.0, 1.0)]), None);
+    }
+
+    fn header() -> Vec<String> {
+        ["run_id", "case", "param_glass", "param_n", "status", "render_s", "renders", "rmse"].iter().map(|s| s.to_string()).collect()
+    }
+
+    fn row(id: usize, glass: &str, n: u32, t: f64, renders: u32, rmse: f64) -> Vec<String> {
+        vec![id.to_string(), String::new(), glass.into(), n.to_string(), "ok".into(), t.to_string(), renders.to_string(), rmse.to_string()]
+    }
+
+    fn spec(x: &str, y: &str) -> PlotSpec {
+        PlotSpec {
+            x: x.into(),
+            y: y.into(),
+            series: Vec::new(),
+            log_x: false,
+            log_y: false,
+            fit: false,
+            claim: String::new(),
+            claim_slope: None,
+            claim_series: String::new(),
+            note: String::new(),
+            title: "t".into(),
+            file: "f".into(),
+            kind: PlotKind::Line,
+        }
+    }
+
+    /// Repeats become a median with their least and greatest as an error
+    /// bar; a point timed over less than 50 ms is left out and the chart
+    /// says so; a claim is judged on the fit.
+    #[test]
+    fn timing_points_are_medians_with_bars_and_short_ones_are_dropped() {
+        let rows = vec![
+            row(0, "a", 1, 0.10, 1, 0.0),
+            row(1, "a", 1, 0.12, 1, 0.0),
+            row(2, "a", 1, 0.30, 1, 0.0),
+            row(3, "a", 2, 0.20, 1, 0.0),
+            row(4, "a", 2, 0.21, 1, 0.0),
+            row(5, "a", 2, 0.22, 1, 0.0),
+            row(6, "a", 3, 0.30, 1, 0.0),
+            row(7, "a", 3, 0.31, 1, 0.0),
+            row(8, "a", 3, 0.29, 1, 0.0),
+            // 10 ms once: timer noise; 10 ms over 10 renders: a measurement.
+            row(9, "a", 4, 0.01, 1, 0.0),
+            row(10, "a", 5, 0.01, 10, 0.0),
+        ];
+        let mut p = spec("param_n", "render_s");
+        p.fit = true;
+        p.claim = "time grows with n".into();
+        let c = line_chart_with(&p, &header(), &rows, false, &[], None).unwrap();
+        let s = &c.series[0];
+        assert_eq!(s.points.iter().map(|p| p.0).collect::<Vec<_>>(), vec![1.0, 2.0, 3.0, 5.0], "n = 4 timed over 10 ms is left out");
+        assert_eq!(s.points[0].1, 0.12, "the median, not the mean");
+        assert_eq!(s.spread_y[0], Some((0.10, 0.30)));
+        assert!(s.fit.is_some() && s.name.contains("slope") && s.name.contains("R²"));
+        assert!(c.notes.iter().any(|n| n.0.contains("1 point timed over less than 50 ms not plotted")), "{:?}", c.notes);
+        assert!(c.notes.iter().any(|n| n.0.contains("time grows with n") && n.0.contains("DOES NOT HOLD")), "n = 5 is fast: {:?}", c.notes);
+        // A quick run judges nothing and says its times are not measurements.
+        let q = line_chart_with(&p, &header(), &rows, true, &[], None).unwrap();
+        assert!(q.notes.iter().any(|n| n.0.contains("to be measurements")) && !q.notes.iter().any(|n| n.0.contains("HOLD")));
+        assert_eq!(q.series[0].points.len(), 5, "quick: short points are drawn, and called what they are");
+    }
+
+    /// An x column of text gives categories, in the order met.
+    #[test]
+    fn a_text_x_is_drawn_as_categories() {
+        let rows = vec![row(0, "N-BK7", 1, 0.1, 1, 0.5), row(1, "N-SF11", 1, 0.1, 1, 0.7), row(2, "F2", 1, 0.1, 1, 0.6)];
+        let c = line_chart_with(&spec("param_glass", "rmse"), &header(), &rows, false, &[], None).unwrap();
+        assert_eq!(c.categories, vec!["N-BK7", "N-SF11", "F2"]);
+        assert_eq!(c.series[0].points, vec![(0.0, 0.5), (1.0, 0.7), (2.0, 0.6)]);
+        assert!(!c.log_x);
+    }
+
+    /// Errors under ten times the reference's own noise are left out.
+    #[test]
+    fn errors_under_the_reference_s_noise_are_left_out() {
+        let rows = vec![row(0, "a", 1, 0.1, 1, 0.5), row(1, "a", 2, 0.1, 1, 0.05), row(2, "a", 3, 0.1, 1, 0.009)];
+        let c = line_chart_with(&spec("param_n", "rmse"), &header(), &rows, false, &[], Some(0.001)).unwrap();
+        assert_eq!(c.series[0].points.len(), 2);
+        assert!(c.notes.iter().any(|n| n.0.contains("own noise (two seeds): 0.00100; 1 point under ten times that left out")), "{:?}", c.notes);
     }
 
     #[test]

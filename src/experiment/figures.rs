@@ -135,7 +135,10 @@ fn write_records(out: &Path, records: &BTreeMap<String, Record>) -> Result<()> {
         }
         w.flush()?;
         Ok(())
-    })
+    })?;
+    // The same for the gallery page, which reads it where it exists.
+    let js: Vec<String> = records.iter().filter(|(_, r)| r.seconds.parse::<f64>().is_ok()).map(|(id, r)| format!("{id:?}:{:?}", r.seconds)).collect();
+    crate::image_io::write_text(&out.join("timings").join("figures.js"), &format!("window.refractTimes={{{}}};\n", js.join(",")))
 }
 
 /// What `figures` did.
@@ -277,37 +280,158 @@ const GROUPS: [(&str, &[&str], &str); 8] = [
 ];
 
 /// One figure with its caption; `anchor` on its first appearance only (a
-/// figure may stand in two comparisons).
+/// figure may stand in two comparisons). At 1:1 (its own pixel size), a
+/// link to the image itself; its render time, where this machine measured
+/// one, filled in from `timings/figures.js`.
 fn figure_html(h: &mut String, out: &Path, id: &str, r: &Record, anchor: bool) -> Result<()> {
     let png = out.join("figures").join(format!("{id}.png"));
     let size = image::image_dimensions(&png).ok();
     // The caption as wide as the image.
     let width = size.map_or(640, |(w, _)| w);
-    if anchor {
-        writeln!(h, "<figure id=\"{id}\" style=\"width:{width}px\">")?;
-    } else {
-        writeln!(h, "<figure style=\"width:{width}px\">")?;
-    }
+    let anchor = if anchor { format!(" id=\"{id}\"") } else { String::new() };
+    writeln!(h, "<figure{anchor} style=\"width:{width}px\">")?;
     if let Some((w, hh)) = size {
-        // At 1:1, so figures compared side by side are seen as rendered.
         writeln!(h, "<a href=\"figures/{id}.png\"><img src=\"figures/{id}.png\" alt=\"{id}\" width=\"{w}\" height=\"{hh}\"></a>")?;
     } else {
         writeln!(h, "<p class=\"missing\">not rendered yet: <code>refract figures --only {id}</code></p>")?;
     }
-
     let error = if r.status.starts_with("error") { format!("<br><span class=\"missing\">{}</span>", esc(&r.status)) } else { String::new() };
-    writeln!(h, "<figcaption><b>{id}</b>: {}<br><code>{}</code>{error}</figcaption></figure>", esc(&r.caption), esc(&r.params))?;
+    writeln!(
+        h,
+        "<figcaption><b>{id}</b> <span class=\"time\" data-id=\"{id}\"></span>: {}<br><code>{}</code>{error}</figcaption></figure>",
+        esc(&r.caption),
+        esc(&r.params)
+    )?;
     Ok(())
 }
 
+/// A chart or other picture at its own size, linked, with its caption.
+fn picture_html(h: &mut String, out: &Path, rel: &str, id: &str, caption: &str) -> Result<()> {
+    let (w, hh) = image::image_dimensions(out.join(rel)).unwrap_or((640, 400));
+    // A caption as wide as the picture, and never narrower than a line.
+    let cw = w.max(480);
+    writeln!(
+        h,
+        "<figure id=\"{id}\" style=\"width:{cw}px\"><a href=\"{rel}\"><img src=\"{rel}\" alt=\"{rel}\" width=\"{w}\" height=\"{hh}\"></a><figcaption><code>{rel}</code>: {caption}</figcaption></figure>"
+    )?;
+    Ok(())
+}
+
+/// What a chart of a sweep shows, for the gallery: its title, its axes.
+fn chart_caption(p: &super::spec::PlotSpec) -> String {
+    match p.kind {
+        super::spec::PlotKind::Table => esc(&p.title),
+        super::spec::PlotKind::Line => {
+            let by = if p.series.is_empty() {
+                String::new()
+            } else {
+                format!(", a curve per {}", p.series.iter().map(|s| s.trim_start_matches("param_")).collect::<Vec<_>>().join(" and "))
+            };
+            format!("{}: {} against {}{by}", esc(&p.title), esc(&super::charts::axis_title(&p.y)), esc(&super::charts::axis_title(&p.x)))
+        }
+    }
+}
+
+/// A sweep's images as a contact sheet: each labelled by its parameters
+/// (its file name, e.g. `ior-1.4.png`) and its median render time.
+fn contact_sheet(h: &mut String, out: &Path, name: &str) -> Result<()> {
+    let dir = out.join(name).join("images");
+    let mut files: Vec<String> = std::fs::read_dir(&dir)
+        .map(|rd| rd.flatten().map(|e| e.file_name().to_string_lossy().into_owned()).filter(|f| f.ends_with(".png") && !f.starts_with('.')).collect())
+        .unwrap_or_default();
+    if files.is_empty() {
+        return Ok(());
+    }
+    // In the sweep's order: by the numbers in the name.
+    let key = |f: &str| -> Vec<f64> { f.trim_end_matches(".png").split(['_', '-']).filter_map(|t| t.parse::<f64>().ok()).collect() };
+    files.sort_by(|a, b| key(a).partial_cmp(&key(b)).unwrap_or(std::cmp::Ordering::Equal).then(a.cmp(b)));
+    let times = image_times(out, name);
+    let per_row = files.len().div_ceil(files.len().div_ceil(5));
+    writeln!(h, "<p id=\"sheet-{name}\">The sweep's images, labelled by their parameters (click one for the file):</p><div class=\"sheet\" style=\"grid-template-columns:repeat({per_row},auto)\">")?;
+    for f in files {
+        let label = f.trim_end_matches(".png").replace('_', ", ").replace('-', " ");
+        let (w, hh) = image::image_dimensions(dir.join(&f)).unwrap_or((200, 200));
+        let time = times.iter().find(|t| t.0 == f).map_or(String::new(), |t| format!(" <span class=\"dim\">{} s</span>", t.1));
+        writeln!(h, "<figure><a href=\"{name}/images/{f}\"><img src=\"{name}/images/{f}\" alt=\"{f}\" width=\"{w}\" height=\"{hh}\"></a><figcaption><b>{}</b>{time}</figcaption></figure>", esc(&label))?;
+    }
+    h.push_str("</div>\n");
+    Ok(())
+}
+
+/// Each image of a sweep with the median render time of its runs (from
+/// runs.csv and the experiment file, which names the images).
+fn image_times(out: &Path, name: &str) -> Vec<(String, String)> {
+    let Ok(e) = super::spec::Experiment::load(&PathBuf::from("experiments").join(format!("{name}.toml")), false) else { return Vec::new() };
+    let Ok(text) = std::fs::read_to_string(out.join(name).join("runs.csv")) else { return Vec::new() };
+    let mut r = csv::Reader::from_reader(text.as_bytes());
+    let Ok(header) = r.headers().map(|h| h.iter().map(str::to_string).collect::<Vec<_>>()) else { return Vec::new() };
+    let Some(t) = header.iter().position(|c| c == "render_s") else { return Vec::new() };
+    let rows: Vec<csv::StringRecord> = r.records().flatten().collect();
+    let grid = super::grid::expand(&e);
+    let mut by_name: Vec<(String, Vec<f64>)> = Vec::new();
+    for row in &rows {
+        let (Some(id), Some(v)) = (row.get(0).and_then(|x| x.parse::<usize>().ok()), row.get(t).and_then(|x| x.parse::<f64>().ok())) else { continue };
+        let Some(spec) = grid.get(id) else { continue };
+        let n = super::sweep::image_name(&e, spec);
+        match by_name.iter_mut().find(|b| b.0 == n) {
+            Some(b) => b.1.push(v),
+            None => by_name.push((n, vec![v])),
+        }
+    }
+    by_name
+        .into_iter()
+        .map(|(n, mut v)| {
+            v.sort_by(f64::total_cmp);
+            (n, format!("{:.3}", super::charts::median(&v)))
+        })
+        .collect()
+}
+
+/// The experiment's reference image, with what it is and its own noise.
+fn reference_html(h: &mut String, out: &Path, name: &str, e: Option<&super::spec::Experiment>) -> Result<()> {
+    if !out.join(name).join("reference.png").is_file() {
+        return Ok(());
+    }
+    let params = e
+        .and_then(|e| e.reference_params())
+        .map(|p| p.iter().map(|(k, v)| format!("{k}={}", super::params::cell(v))).collect::<Vec<_>>().join(" "))
+        .unwrap_or_default();
+    let record = std::fs::read_to_string(out.join(name).join("reference.csv")).unwrap_or_default();
+    let field = |k: &str| record.lines().filter_map(|l| l.split_once(',')).find(|(a, _)| *a == k).map(|(_, v)| v.to_string());
+    let noise = match field("noise").and_then(|v| v.parse::<f64>().ok()) {
+        Some(n) if n > 0.0 => format!("; its own noise (two seeds): {n:.4}"),
+        Some(_) => "; it draws nothing at random (its own noise is 0)".to_string(),
+        None => String::new(),
+    };
+    let secs = field("seconds").and_then(|v| v.parse::<f64>().ok()).map_or(String::new(), |s| format!("; rendered in {s:.2} s"));
+    picture_html(
+        h,
+        out,
+        &format!("{name}/reference.png"),
+        &format!("{name}-reference"),
+        &format!("the reference every run is measured against: <code>{}</code>{secs}{noise}", esc(&params)),
+    )
+}
+
+const STYLE: &str = "body{font-family:sans-serif;margin:2em;background:#fafafa;min-width:max-content}\
+p,nav,h1,h2,h3{max-width:1400px}\
+figure{display:inline-block;vertical-align:top;margin:0 1em 1.5em 0}\
+img{display:block;border:1px solid #ccc;background:#000}\
+.row{display:flex;flex-wrap:nowrap;align-items:flex-start;gap:1em}.row figure{margin-right:0;flex:none}\
+.charts figure{display:block;margin:0 0 1.5em 0}\
+.sheet{display:grid;gap:.4em;margin-bottom:1.5em;width:max-content}.sheet figure{margin:0}.sheet figcaption{font-size:85%}\
+.group{border-left:4px solid #58a;padding-left:1em;margin-bottom:1.5em}.look{font-weight:bold;color:#245}\
+figcaption{font-size:90%}code{font-size:85%;color:#555}.missing{color:#a00}.dim,.time{color:#666}\
+.banner{background:#fe9;padding:.6em 1em;border:1px solid #cb6}nav li{margin:.2em 0}";
+
 fn write_index(out: &Path, ids: &[String], records: &BTreeMap<String, Record>, quick: bool) -> Result<()> {
-    let mut h = String::from("<!doctype html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>refract: the reports' figures</title>\n<style>body{font-family:sans-serif;margin:2em;background:#fafafa}p,nav{max-width:1400px}figure{display:inline-block;vertical-align:top;margin:0 1em 1.5em 0}img{border:1px solid #ccc;background:#000}.group{border-left:4px solid #58a;padding-left:1em;margin-bottom:1.5em}.look{font-weight:bold;color:#245}figcaption{font-size:90%}code{font-size:85%;color:#555}.missing{color:#a00}.banner{background:#fe9;padding:.6em 1em;border:1px solid #cb6}nav li{margin:.2em 0}</style></head><body>\n<h1>refract: every figure of the four reports</h1>\n");
+    let mut h = format!("<!doctype html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>refract: the reports' figures</title>\n<style>{STYLE}</style></head><body>\n<h1>refract: every figure of the four reports</h1>\n");
     if quick {
-        h.push_str("<p class=\"banner\"><b>Quick set</b> (<code>figures --quick</code>): smaller images and fewer samples, for a fast look. The full-quality set is <code>results/index.html</code>.</p>\n");
+        h.push_str("<p class=\"banner\"><b>Quick set</b> (<code>figures --quick</code>): smaller images and fewer samples, for a fast look; its timings are not measurements. The full-quality set is <code>results/index.html</code>.</p>\n");
     } else {
         h.push_str("<p class=\"banner\"><b>Full-quality set</b>, regenerated by <code>cargo run --release -- figures</code>.</p>\n");
     }
-    h.push_str("<p>Each figure: the report's caption, the parameters that made it (scene files in <code>scenes/</code>, the list in <code>scenes/FIGURES.md</code>). Render times depend on the machine, so they are not on this page: <code>timings/figures.csv</code> holds those this machine measured (not committed). Figures a reader should compare stand side by side, with what to look for.</p>\n");
+    h.push_str("<p>Each figure at its own size (click for the file): the report's caption and the parameters that made it (scene files in <code>scenes/</code>, the list in <code>scenes/FIGURES.md</code>). Figures a reader should compare stand in one row, with what to look for. A figure's render time is shown where this machine measured it (<code>timings/figures.csv</code>, not committed: it depends on the machine); the sweeps' times are in their <code>runs.csv</code>.</p>\n");
     let reports = [
         ("000", "Report 000 (CSS552): dispersion through an Amici prism, photon map"),
         ("004", "Report 004: internal illumination of a translucent object"),
@@ -325,6 +449,15 @@ fn write_index(out: &Path, ids: &[String], records: &BTreeMap<String, Record>, q
             "003"
         }
     };
+    let experiments: Vec<(&str, Option<super::spec::Experiment>)> =
+        SWEEPS.iter().map(|(name, _)| (*name, super::spec::Experiment::load(&PathBuf::from("experiments").join(format!("{name}.toml")), quick).ok())).collect();
+    let charts_of = |name: &str, e: &Option<super::spec::Experiment>| -> Vec<(String, String)> {
+        e.iter()
+            .flat_map(|e| e.plots.iter())
+            .filter(|p| out.join(name).join(format!("{}.png", p.file)).is_file())
+            .map(|p| (format!("{name}/{}.png", p.file), chart_caption(p)))
+            .collect()
+    };
     h.push_str("<nav><h2>Contents</h2><ul>\n");
     for (rep, title) in reports {
         writeln!(
@@ -334,11 +467,32 @@ fn write_index(out: &Path, ids: &[String], records: &BTreeMap<String, Record>, q
             ids.iter().filter(|id| report_of(id) == rep).map(|id| format!("<a href=\"#{id}\">{id}</a>")).collect::<Vec<_>>().join(", ")
         )?;
     }
-    h.push_str("<li><a href=\"#plots\">Plots from the shipped sweeps</a></li>");
-    if out.join("display/transforms.png").exists() {
-        h.push_str("<li><a href=\"#display\">Display transforms</a></li>");
+    h.push_str("<li><a href=\"#plots\">Plots from the shipped sweeps</a><ul>\n");
+    for (name, e) in &experiments {
+        let charts: Vec<String> =
+            charts_of(name, e).iter().map(|(rel, _)| format!("<a href=\"#{}\">{}</a>", anchor_of(rel), esc(rel.rsplit('/').next().unwrap_or(rel)))).collect();
+        let mut extra = Vec::new();
+        if out.join(name).join("reference.png").is_file() {
+            extra.push(format!("<a href=\"#{name}-reference\">reference image</a>"));
+        }
+        if out.join(name).join("images").is_dir() {
+            extra.push(format!("<a href=\"#sheet-{name}\">its images</a>"));
+        }
+        writeln!(h, "<li><a href=\"#sweep-{name}\">{name}</a>: {}</li>", charts.into_iter().chain(extra).collect::<Vec<_>>().join(", "))?;
     }
-    h.push_str("<li><a href=\"#spectral\">Spectral accuracy</a></li></ul></nav>\n");
+    h.push_str("</ul></li>\n");
+    if out.join("bench/prism-error-vs-time.png").is_file() {
+        h.push_str("<li><a href=\"#bench\">Benchmark</a>: <a href=\"#bench-prism-error-vs-time\">prism-error-vs-time.png</a> (against Mitsuba 3.9)</li>\n");
+    }
+    if out.join("display/transforms.png").exists() {
+        h.push_str("<li><a href=\"#display\">Display transforms</a></li>\n");
+    }
+    let spectral_charts: Vec<&(&str, &str)> = SPECTRAL_CHARTS.iter().filter(|(f, _)| out.join("spectral").join(f).is_file()).collect();
+    writeln!(
+        h,
+        "<li><a href=\"#spectral\">Spectral accuracy</a>: {}</li></ul></nav>",
+        spectral_charts.iter().map(|(f, _)| format!("<a href=\"#spectral-{}\">{f}</a>", f.trim_end_matches(".png"))).collect::<Vec<_>>().join(", ")
+    )?;
     let none = Record::default();
     for (rep, title) in reports {
         writeln!(h, "<h2 id=\"report-{rep}\">{}</h2>", esc(title))?;
@@ -346,19 +500,19 @@ fn write_index(out: &Path, ids: &[String], records: &BTreeMap<String, Record>, q
         let mut groups_done: Vec<usize> = Vec::new();
         for id in ids.iter().filter(|id| report_of(id) == rep) {
             // Every comparison this figure stands in, the first time one of
-            // its members comes up; a figure in two comparisons is shown in
-            // both (anchored at the first).
+            // its members comes up, in one row; a figure in two comparisons
+            // is shown in both (anchored at the first).
             for (g, (_, members, look)) in GROUPS.iter().enumerate() {
                 if groups_done.contains(&g) || !members.contains(&id.as_str()) {
                     continue;
                 }
                 groups_done.push(g);
-                writeln!(h, "<div class=\"group\"><p class=\"look\">Compare: {}</p>", esc(look))?;
+                writeln!(h, "<div class=\"group\"><p class=\"look\">Compare: {}</p><div class=\"row\">", esc(look))?;
                 for m in members.iter().filter(|m| ids.iter().any(|i| i == *m) || EXTRAS.iter().any(|e| e.0 == **m)) {
                     figure_html(&mut h, out, m, records.get(*m).unwrap_or(&none), !shown.contains(m))?;
                     shown.push(m);
                 }
-                h.push_str("</div>\n");
+                h.push_str("</div></div>\n");
             }
             if !shown.contains(&id.as_str()) {
                 figure_html(&mut h, out, id, records.get(id).unwrap_or(&none), true)?;
@@ -367,38 +521,64 @@ fn write_index(out: &Path, ids: &[String], records: &BTreeMap<String, Record>, q
         }
     }
     writeln!(h, "<h2 id=\"plots\">Plots from the shipped sweeps (<code>experiments/</code>)</h2>")?;
-    for (name, what) in SWEEPS {
-        let d = out.join(name);
-        let pngs: Vec<String> = std::fs::read_dir(&d)
-            .map(|rd| rd.flatten().map(|e| e.file_name().to_string_lossy().into_owned()).filter(|f| f.ends_with(".png") && f != "reference.png").collect())
-            .unwrap_or_default();
-        let mut pngs = pngs;
-        pngs.sort();
-        writeln!(h, "<h3>{name}: {}</h3>", esc(what))?;
-        if pngs.is_empty() {
+    h.push_str("<p>Each chart at its own size (click for the file, and its SVG beside it). Timing points are the median of the experiment's repeats, with the least and greatest as error bars; where the report claims a straight line, the chart draws the fitted one and says whether the claim holds.</p>\n");
+    for ((name, what), (_, e)) in SWEEPS.iter().zip(&experiments) {
+        writeln!(h, "<h3 id=\"sweep-{name}\">{name}: {}</h3>", esc(what))?;
+        let charts = charts_of(name, e);
+        if charts.is_empty() {
             writeln!(h, "<p class=\"missing\">not run yet: <code>refract sweep experiments/{name}.toml</code></p>")?;
+            continue;
         }
-        for p in pngs {
-            writeln!(h, "<figure><a href=\"{name}/{p}\"><img src=\"{name}/{p}\" alt=\"{p}\"></a><figcaption><code>{name}/{p}</code> (data: <a href=\"{name}/runs.csv\">runs.csv</a>)</figcaption></figure>")?;
+        writeln!(h, "<p>Data: <a href=\"{name}/runs.csv\"><code>{name}/runs.csv</code></a>, one row a run; the experiment: <code>experiments/{name}.toml</code>.</p><div class=\"charts\">")?;
+        for (rel, caption) in &charts {
+            picture_html(&mut h, out, rel, &anchor_of(rel), caption)?;
         }
+        reference_html(&mut h, out, name, e.as_ref())?;
+        h.push_str("</div>\n");
+        contact_sheet(&mut h, out, name)?;
+    }
+    if out.join("bench/prism-error-vs-time.png").is_file() {
+        writeln!(h, "<h2 id=\"bench\">Benchmark: the prism's error against time, beside an outside renderer</h2>")?;
+        writeln!(h, "<p>From <code>cargo run --release -- bench prism</code> (data: <a href=\"bench/prism-error-vs-time.csv\">prism-error-vs-time.csv</a>; the machine, date and commit: <a href=\"bench/README.md\">bench/README.md</a>). The same error as the prism-photons and eye-split charts above: least-squares scaled RMSE of XYZ over the reference's RMS, here against the exact image.</p>")?;
+        picture_html(
+            &mut h,
+            out,
+            "bench/prism-error-vs-time.png",
+            "bench-prism-error-vs-time",
+            "every photon map, filter, light tracing and progressive photon mapping on the single-prism anchor scene, with Mitsuba 3.9's particle tracer (black) as the anchor",
+        )?;
     }
     if out.join("display/transforms.png").exists() {
         writeln!(h, "<h2 id=\"display\">Display transforms for spectral light</h2>")?;
-        writeln!(h, "<p>{}, each rendered once at its quick size and shown four ways: each channel clipped to [0, 1]; desaturated toward the grey of its own luminance (hue kept, the brightest parts no brighter than white paper); the filmic AgX curve, where bright saturated light rolls smoothly toward white as on film; and AgX with a print look (more contrast and saturation), which sinks faint light toward black as contrasty film does (docs/physics.md §23). The photograph-like figures use AgX or its print look.</p>", super::display::FIGURES.join(", "))?;
-        writeln!(h, "<figure><a href=\"display/transforms.png\"><img src=\"display/transforms.png\" alt=\"display transforms\"></a></figure>")?;
+        writeln!(h, "<p>{}, each rendered once at its quick size and shown four ways: each channel clipped to [0, 1]; desaturated toward the grey of its own luminance (hue kept, the brightest parts no brighter than white paper); the filmic AgX curve, where bright saturated light rolls smoothly toward white as on film; and AgX with a print look (more contrast and saturation), which sinks faint light toward black as contrasty film does (docs/physics.md §23). The photograph-like figures use one of these, each named in its scene file.</p>", super::display::FIGURES.join(", "))?;
+        picture_html(&mut h, out, "display/transforms.png", "display-transforms", "the same renders through four display transforms")?;
     }
-    let spectral = out.join("spectral");
-    if spectral.join("colour_maps.png").exists() {
-        writeln!(h, "<h2 id=\"spectral\">Spectral accuracy: IOR models and colour maps (<code>refract spectrum accuracy</code>)</h2>")?;
-        for p in ["ior_models.png", "ior_models_error.png", "colour_maps.png", "colour_maps_error.png"] {
-            if spectral.join(p).exists() {
-                writeln!(h, "<figure><a href=\"spectral/{p}\"><img src=\"spectral/{p}\" alt=\"{p}\"></a></figure>")?;
-            }
+    if !spectral_charts.is_empty() {
+        writeln!(h, "<h2 id=\"spectral\">Spectral accuracy: IOR models and colour maps (<code>refract spectrum accuracy</code>)</h2><div class=\"charts\">")?;
+        for (f, caption) in spectral_charts {
+            picture_html(&mut h, out, &format!("spectral/{f}"), &format!("spectral-{}", f.trim_end_matches(".png")), caption)?;
         }
+        h.push_str("</div>\n");
     }
+    // Render times, where this machine measured them (an ignored file).
+    h.push_str("<script src=\"timings/figures.js\"></script>\n<script>if(window.refractTimes){for(const s of document.querySelectorAll('span.time')){const t=window.refractTimes[s.dataset.id];if(t)s.textContent='('+t+' s here)';}}</script>\n");
     writeln!(h, "</body></html>")?;
     crate::image_io::write_text(&out.join("index.html"), &h)
 }
+
+/// The page anchor of a chart (`lab-trace/time-vs-trace.png` ->
+/// `lab-trace-time-vs-trace`).
+fn anchor_of(rel: &str) -> String {
+    rel.trim_end_matches(".png").replace('/', "-")
+}
+
+/// The spectral accuracy charts, with what each shows.
+const SPECTRAL_CHARTS: [(&str, &str); 4] = [
+    ("ior_models.png", "N-BK7's index against wavelength by every IOR model (models that coincide are drawn dashed over each other, and the legend says so)"),
+    ("ior_models_error.png", "each model minus Sellmeier: how far the reports' simpler models stray"),
+    ("colour_maps.png", "wavelength to colour: CIE and each of the reports' maps, as strips"),
+    ("colour_maps_error.png", "each map's hue error against CIE by wavelength (CIELAB hue angle), with mean Delta E in the legend"),
+];
 
 /// Draws one of the figures made in code; returns its parameter text.
 fn draw(id: &str, png: &Path, quick: bool, scenes: &Path) -> Result<String> {

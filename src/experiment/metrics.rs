@@ -32,6 +32,19 @@ pub fn relative_rmse(a: &Frame, reference: &Frame) -> Option<f64> {
     Some(relative(num, den))
 }
 
+/// The error the prism bench reports (`bench prism`,
+/// `spectral::exact::relative_error`): the frame scaled by least squares
+/// onto the reference, RMS difference of XYZ over the reference's RMS.
+/// `None` where either frame has no XYZ (not a spectral render) or the
+/// sizes differ.
+pub fn relative_error(a: &Frame, reference: &Frame) -> Option<f64> {
+    if (a.width, a.height) != (reference.width, reference.height) || a.xyz.is_empty() || a.xyz.len() != reference.xyz.len() {
+        return None;
+    }
+    let finite = |v: &[glam::DVec3]| -> Vec<glam::DVec3> { v.iter().map(|p| if p.is_finite() { *p } else { glam::DVec3::ZERO }).collect() };
+    Some(crate::spectral::exact::relative_error_xyz(&finite(&a.xyz), &finite(&reference.xyz)))
+}
+
 /// sqrt(num / den) for sums of squares, with x / 0 read as infinite for
 /// x > 0 and as 0 for x = 0 (two black images are equal).
 pub fn relative(num: f64, den: f64) -> f64 {
@@ -93,7 +106,7 @@ mod tests {
 
     fn frame(lum: Vec<f64>) -> Frame {
         let n = lum.len();
-        Frame { width: n, height: 1, display: lum.iter().flat_map(|v| [(v.clamp(0.0, 1.0) * 255.0) as u8; 3]).collect(), luminance: lum }
+        Frame { width: n, height: 1, display: lum.iter().flat_map(|v| [(v.clamp(0.0, 1.0) * 255.0) as u8; 3]).collect(), luminance: lum, xyz: Vec::new() }
     }
 
     #[test]
@@ -129,10 +142,19 @@ mod tests {
     }
 
     #[test]
+    fn relative_error_is_the_bench_s_scale_free_one() {
+        let with = |v: Vec<f64>| Frame { xyz: v.iter().map(|&y| glam::DVec3::new(y, y, y)).collect(), ..frame(v) };
+        let r = with(vec![1.0, 2.0, 3.0]);
+        assert!(relative_error(&with(vec![2.0, 4.0, 6.0]), &r).unwrap() < 1e-12, "a brighter copy is no error");
+        assert!(relative_error(&with(vec![1.0, 2.0, 4.0]), &r).unwrap() > 0.01);
+        assert_eq!(relative_error(&frame(vec![1.0, 2.0, 3.0]), &r), None, "no XYZ, no error");
+    }
+
+    #[test]
     fn fireflies_stand_out() {
         let mut lum = vec![0.1; 25];
         lum[12] = 5.0;
-        let f = Frame { width: 5, height: 5, display: vec![0; 75], luminance: lum };
+        let f = Frame { width: 5, height: 5, display: vec![0; 75], luminance: lum, xyz: Vec::new() };
         assert_eq!(fireflies(&f), 1);
     }
 }

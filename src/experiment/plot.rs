@@ -25,39 +25,73 @@ fn register_font() {
 }
 
 /// One named curve.
+#[derive(Clone, Debug, Default)]
 pub struct Series {
     pub name: String,
     pub points: Vec<(f64, f64)>,
     pub color: RGBColor,
+    /// The least and greatest of the repeats behind each point (same order
+    /// as `points`), drawn as error bars: along y, and along x where x is
+    /// a timing too; empty where there are none.
+    pub spread_y: Vec<Option<(f64, f64)>>,
+    pub spread_x: Vec<Option<(f64, f64)>>,
+    /// A fitted line y = a + b x in the axes' own coordinates (log10 of a
+    /// log axis), drawn thin and dashed over the series' x range.
+    pub fit: Option<(f64, f64)>,
+}
+
+impl Series {
+    pub fn new(name: impl Into<String>, points: Vec<(f64, f64)>, color: RGBColor) -> Series {
+        Series { name: name.into(), points, color, ..Default::default() }
+    }
 }
 
 /// A line chart with labelled axes (units in the labels), a point marker
-/// at every measured value, and a legend.
+/// at every measured value (a different shape for each series), and a
+/// legend; a series that coincides with an earlier one is drawn dashed
+/// over it, and the legend says so.
 #[derive(Default)]
 pub struct LineChart {
     pub title: String,
     /// A second line under the title: what was held fixed.
     pub subtitle: String,
+    /// Further lines under the subtitle (what varies along a curve, a
+    /// claim and whether it holds), each with its colour.
+    pub notes: Vec<(String, RGBColor)>,
     pub x_label: String,
     pub y_label: String,
     /// Logarithmic axes, ticked in real units.
     pub log_x: bool,
     pub log_y: bool,
+    /// A categorical x axis: x values are indices into these names, drawn
+    /// as a dot plot (markers side by side, no lines between categories).
+    pub categories: Vec<String>,
     pub series: Vec<Series>,
 }
 
-/// A tick label in real units: whole numbers without a decimal point,
-/// others to four significant digits, trailing zeros dropped (so ticks
-/// 0.0045 and 0.005 never both read 0.005).
+/// A tick label in real units: whole numbers without a decimal point (in
+/// thousands and millions from 10 000 on, so 3800000 reads 3.8M), others
+/// to four significant digits, trailing zeros dropped (so ticks 0.0045
+/// and 0.005 never both read 0.005).
 pub fn tick(v: &f64) -> String {
     let v = *v;
     if !v.is_finite() {
         return String::new();
     }
-    if v == v.round() && v.abs() < 1e15 {
+    let a = v.abs();
+    if (1e4..1e15).contains(&a) {
+        let (d, unit) = if a >= 1e9 {
+            (1e9, "G")
+        } else if a >= 1e6 {
+            (1e6, "M")
+        } else {
+            (1e3, "k")
+        };
+        return format!("{}{unit}", tick(&(v / d)));
+    }
+    if v == v.round() && a < 1e15 {
         return format!("{}", v as i64);
     }
-    let a = v.abs();
     if !(1e-3..1e6).contains(&a) {
         return format!("{v:.0e}");
     }
@@ -66,20 +100,45 @@ pub fn tick(v: &f64) -> String {
     s.trim_end_matches('0').trim_end_matches('.').to_string()
 }
 
+/// Colours told apart by most readers, the colour-blind among them
+/// (Okabe and Ito's eight, then darker and lighter kin); each series also
+/// has its own marker shape.
 pub const PALETTE: [RGBColor; 10] = [
-    RGBColor(31, 119, 180),
-    RGBColor(255, 127, 14),
-    RGBColor(44, 160, 44),
-    RGBColor(214, 39, 40),
-    RGBColor(148, 103, 189),
-    RGBColor(140, 86, 75),
-    RGBColor(227, 119, 194),
-    RGBColor(127, 127, 127),
-    RGBColor(188, 189, 34),
-    RGBColor(23, 190, 207),
+    RGBColor(0, 114, 178),
+    RGBColor(230, 159, 0),
+    RGBColor(0, 158, 115),
+    RGBColor(213, 94, 0),
+    RGBColor(204, 121, 167),
+    RGBColor(86, 180, 233),
+    RGBColor(0, 0, 0),
+    RGBColor(150, 130, 0),
+    RGBColor(120, 60, 150),
+    RGBColor(140, 140, 140),
 ];
 
-const SIZE: (u32, u32) = (960, 600);
+/// The chart's size: 960 wide, taller with many legend rows or notes.
+fn size_of(chart: &LineChart) -> (u32, u32) {
+    let lines: usize = chart.notes.iter().map(|n| wrap(&n.0, NOTE_CHARS).len()).sum();
+    (960, 520 + legend_height(chart) + 20 * lines as u32)
+}
+
+/// Characters of a note's line (15 px type across 960 px).
+const NOTE_CHARS: usize = 115;
+
+/// Text broken at spaces into lines of at most `width` characters.
+fn wrap(text: &str, width: usize) -> Vec<String> {
+    let mut lines: Vec<String> = Vec::new();
+    for word in text.split(' ') {
+        match lines.last_mut() {
+            Some(l) if l.chars().count() + 1 + word.chars().count() <= width => {
+                l.push(' ');
+                l.push_str(word);
+            }
+            _ => lines.push(word.to_string()),
+        }
+    }
+    lines
+}
 
 /// The data's range on one axis: finite values (positive ones on a log
 /// axis, out to whole decades), padded a little; a unit range when there
@@ -132,12 +191,12 @@ mod range_tests {
             let path = dir.path().join(format!("wide-{log}.png"));
             let chart = LineChart {
                 title: "wide".into(),
-                subtitle: String::new(),
                 x_label: "x".into(),
                 y_label: "y".into(),
                 log_x: log,
                 log_y: log,
-                series: vec![Series { name: "s".into(), points: pts, color: PALETTE[0] }],
+                series: vec![Series::new("s", pts, PALETTE[0])],
+                ..Default::default()
             };
             let (tx, rx) = std::sync::mpsc::channel();
             let p = path.clone();
@@ -157,28 +216,132 @@ fn decade_ticks((lo, hi): (f64, f64)) -> Vec<f64> {
     (a..=b).flat_map(|k| steps.iter().map(move |m| m * 10f64.powi(k))).filter(|v| *v >= lo * 0.999 && *v <= hi * 1.001).collect()
 }
 
+/// Marker shapes, one per series in turn: circle, triangle, square,
+/// diamond, downward triangle, cross.
+const SHAPES: usize = 6;
+
+/// Pixel outline of marker shape `k` of half-size `r` (a closed polygon;
+/// the cross is two strokes).
+fn shape_points(k: usize, r: i32) -> Vec<(i32, i32)> {
+    match k % SHAPES {
+        1 => vec![(0, -r - 1), (r + 1, r), (-r - 1, r), (0, -r - 1)],
+        2 => vec![(-r, -r), (r, -r), (r, r), (-r, r), (-r, -r)],
+        3 => vec![(0, -r - 2), (r + 2, 0), (0, r + 2), (-r - 2, 0), (0, -r - 2)],
+        4 => vec![(0, r + 1), (r + 1, -r), (-r - 1, -r), (0, r + 1)],
+        5 => vec![(-r, -r), (r, r), (0, 0), (r, -r), (-r, r)],
+        _ => (0..=16)
+            .map(|i| i as f64 * std::f64::consts::TAU / 16.0)
+            .map(|t| ((r as f64 * t.cos()).round() as i32, (r as f64 * t.sin()).round() as i32))
+            .collect(),
+    }
+}
+
+/// Series `k` lies over an earlier one (the same x values, and y values
+/// within 1.5 % of the axis span in the axis's own coordinates, a few
+/// pixels): the index of the first such.
+pub fn coincides_with(series: &[Series], k: usize, log_y: bool) -> Option<usize> {
+    apart(series, k, log_y, 0.015).map(|(j, _)| j)
+}
+
+/// The first earlier series within `share` of the axis span of series
+/// `k` everywhere, and whether the two are the same to 1e-9 of the span.
+fn apart(series: &[Series], k: usize, log_y: bool, share: f64) -> Option<(usize, bool)> {
+    let y = |v: f64| if log_y { v.max(1e-300).log10() } else { v };
+    let ys = series.iter().flat_map(|s| s.points.iter().map(|p| y(p.1))).filter(|v| v.is_finite());
+    let (lo, hi) = ys.fold((f64::INFINITY, f64::NEG_INFINITY), |a, v| (a.0.min(v), a.1.max(v)));
+    let span = (hi - lo).max(1e-300);
+    let s = &series[k];
+    let gap = |o: &Series| -> Option<f64> {
+        let same_x = !s.points.is_empty() && o.points.len() == s.points.len() && o.points.iter().zip(&s.points).all(|(a, b)| a.0 == b.0);
+        same_x.then(|| o.points.iter().zip(&s.points).map(|(a, b)| (y(a.1) - y(b.1)).abs()).fold(0.0, f64::max))
+    };
+    (0..k).find_map(|j| gap(&series[j]).filter(|g| *g <= span * share).map(|g| (j, g <= span * 1e-9)))
+}
+
 /// The legend, beneath the plot so it never covers data: two columns of
-/// a coloured line and the series' name.
+/// each series' marker and line (dashed where it lies over another) and
+/// its name.
 fn legend<DB: DrawingBackend>(area: &DrawingArea<DB, plotters::coord::Shift>, chart: &LineChart) -> Result<()>
 where
     DB::ErrorType: 'static,
 {
     let (w, _) = area.dim_in_pixel();
-    let col_w = (w as i32 - 120) / 2;
-    for (k, s) in chart.series.iter().enumerate() {
-        let (x, y) = (100 + (k as i32 % 2) * col_w, 8 + (k as i32 / 2) * 22);
-        area.draw(&PathElement::new(vec![(x, y + 8), (x + 24, y + 8)], s.color.stroke_width(3))).map_err(|e| anyhow!("{e}"))?;
-        area.draw(&Text::new(s.name.clone(), (x + 32, y), ("sans-serif", 15).into_font())).map_err(|e| anyhow!("{e}"))?;
+    let cols = legend_columns(chart) as i32;
+    let col_w = (w as i32 - 120) / cols;
+    let e = |e: DrawingAreaErrorKind<DB::ErrorType>| anyhow!("{e}");
+    let entries = legend_entries(chart);
+    for (k, (name, color, shape, dashed, is_fit)) in entries.iter().enumerate() {
+        let (x, y) = (60 + (k as i32 % cols) * col_w, 8 + (k as i32 / cols) * 22);
+        let style = color.stroke_width(if *is_fit { 1 } else { 3 });
+        if shape.is_none() && !*is_fit && name.starts_with("error bars") {
+            // The error bars' key: a bar with its caps.
+            let thin = color.stroke_width(1);
+            area.draw(&PathElement::new(vec![(x + 16, y), (x + 16, y + 16)], thin)).map_err(e)?;
+            for cap in [y, y + 16] {
+                area.draw(&PathElement::new(vec![(x + 11, cap), (x + 21, cap)], thin)).map_err(e)?;
+            }
+        } else if *dashed || *is_fit {
+            for s in [0, 12, 24] {
+                area.draw(&PathElement::new(vec![(x + s, y + 8), (x + s + 7, y + 8)], style)).map_err(e)?;
+            }
+        } else {
+            area.draw(&PathElement::new(vec![(x, y + 8), (x + 32, y + 8)], style)).map_err(e)?;
+        }
+        if let (Some(shape), false) = (*shape, *is_fit) {
+            let pts: Vec<(i32, i32)> = shape_points(shape, 5).into_iter().map(|(dx, dy)| (x + 16 + dx, y + 8 + dy)).collect();
+            if *dashed || shape % SHAPES == 5 {
+                area.draw(&PathElement::new(pts, color.stroke_width(2))).map_err(e)?;
+            } else {
+                area.draw(&Polygon::new(pts, color.filled())).map_err(e)?;
+            }
+        }
+        area.draw(&Text::new(name.clone(), (x + 42, y), ("sans-serif", 15).into_font())).map_err(e)?;
     }
     Ok(())
 }
 
-/// Height of the legend strip for `n` series.
-fn legend_height(n: usize) -> u32 {
+/// The legend's rows: name, colour, marker shape, dashed, and whether it
+/// is the fitted-line key.
+fn legend_entries(chart: &LineChart) -> Vec<(String, RGBColor, Option<usize>, bool, bool)> {
+    let mut v: Vec<(String, RGBColor, Option<usize>, bool, bool)> = chart
+        .series
+        .iter()
+        .enumerate()
+        .map(|(k, s)| {
+            let shape = (s.points.len() <= 60).then_some(k);
+            match apart(&chart.series, k, chart.log_y, 0.015) {
+                Some((j, true)) => (format!("{} (identical to {}: dashed over it)", s.name, chart.series[j].name), s.color, shape, true, false),
+                Some((j, false)) => (format!("{} (within a few pixels of {}: dashed over it)", s.name, chart.series[j].name), s.color, shape, true, false),
+                None => (s.name.clone(), s.color, shape, false, false),
+            }
+        })
+        .collect();
+    if chart.series.iter().any(|s| s.fit.is_some()) {
+        v.push(("fitted line (least squares), thin dashed in the series' colour".into(), RGBColor(60, 60, 60), None, false, true));
+    }
+    if chart.series.iter().any(|s| s.spread_y.iter().chain(&s.spread_x).any(Option::is_some)) {
+        v.push(("error bars: least to greatest of the repeats; point: their median".into(), RGBColor(60, 60, 60), None, false, false));
+    }
+    v
+}
+
+/// Two columns of legend, or one where a name would not fit in half the
+/// width.
+fn legend_columns(chart: &LineChart) -> usize {
+    if legend_entries(chart).iter().any(|e| e.0.chars().count() > 48) {
+        1
+    } else {
+        2
+    }
+}
+
+/// Height of the legend strip.
+fn legend_height(chart: &LineChart) -> u32 {
+    let n = legend_entries(chart).len();
     if n == 0 {
         0
     } else {
-        16 + 22 * n.div_ceil(2) as u32
+        16 + 22 * n.div_ceil(legend_columns(chart)) as u32
     }
 }
 
@@ -188,14 +351,21 @@ where
     DB::ErrorType: 'static,
 {
     root.fill(&WHITE).map_err(|e| anyhow!("{e}"))?;
-    let root = root.titled(&chart.title, ("sans-serif", 24)).map_err(|e| anyhow!("{e}"))?;
-    let root = if chart.subtitle.is_empty() { root } else { root.titled(&chart.subtitle, ("sans-serif", 15)).map_err(|e| anyhow!("{e}"))? };
+    let mut root = root.titled(&chart.title, ("sans-serif", 24)).map_err(|e| anyhow!("{e}"))?;
+    if !chart.subtitle.is_empty() {
+        root = root.titled(&chart.subtitle, ("sans-serif", 15)).map_err(|e| anyhow!("{e}"))?;
+    }
+    for (note, colour) in chart.notes.iter().flat_map(|(n, c)| wrap(n, NOTE_CHARS).into_iter().map(move |l| (l, c))) {
+        root = root.titled(&note, ("sans-serif", 15).into_font().color(colour)).map_err(|e| anyhow!("{e}"))?;
+    }
     let (_, h) = root.dim_in_pixel();
-    let (root, below) = root.split_vertically(h.saturating_sub(legend_height(chart.series.len())));
+    let (root, below) = root.split_vertically(h.saturating_sub(legend_height(chart)));
     legend(&below, chart)?;
     let pts = || chart.series.iter().flat_map(|s| s.points.iter());
-    let x = range(pts().map(|p| p.0), chart.log_x);
-    let y = range(pts().map(|p| p.1), chart.log_y);
+    let spreads_x = || chart.series.iter().flat_map(|s| s.spread_x.iter().flatten().flat_map(|&(a, b)| [a, b]));
+    let spreads_y = || chart.series.iter().flat_map(|s| s.spread_y.iter().flatten().flat_map(|&(a, b)| [a, b]));
+    let x = if chart.categories.is_empty() { range(pts().map(|p| p.0).chain(spreads_x()), chart.log_x) } else { (-0.5, chart.categories.len() as f64 - 0.5) };
+    let y = range(pts().map(|p| p.1).chain(spreads_y()), chart.log_y);
     let mut b = ChartBuilder::on(&root);
     b.margin(16).x_label_area_size(48).y_label_area_size(80);
     let lx = || (x.0..x.1).log_scale().with_key_points(decade_ticks(x));
@@ -210,7 +380,8 @@ where
     Ok(())
 }
 
-/// Axes and lines with point markers, whatever the axes' scales.
+/// Axes, error bars, lines, fitted lines and markers, whatever the axes'
+/// scales.
 fn finish<'a, DB, X, Y>(mut c: ChartContext<'a, DB, Cartesian2d<X, Y>>, chart: &LineChart) -> Result<()>
 where
     DB: DrawingBackend + 'a,
@@ -218,25 +389,83 @@ where
     X: Ranged<ValueType = f64> + ValueFormatter<f64>,
     Y: Ranged<ValueType = f64> + ValueFormatter<f64>,
 {
-    c.configure_mesh()
-        .x_desc(&chart.x_label)
-        .y_desc(&chart.y_label)
-        .x_labels(12)
-        .y_labels(12)
-        .x_label_formatter(&tick)
-        .y_label_formatter(&tick)
-        .label_style(("sans-serif", 15))
-        .draw()
-        .map_err(|e| anyhow!("{e}"))?;
-    let ok = |p: &(f64, f64)| p.0.is_finite() && p.1.is_finite() && (!chart.log_x || p.0 > 0.0) && (!chart.log_y || p.1 > 0.0);
-    for s in &chart.series {
-        let color = s.color;
-        let pts: Vec<(f64, f64)> = s.points.iter().copied().filter(ok).collect();
-        // A marker on each measured value (not on dense curves).
-        if pts.len() <= 60 {
-            c.draw_series(pts.iter().map(|&p| Circle::new(p, 4, color.filled()))).map_err(|e| anyhow!("{e}"))?;
+    let cats = &chart.categories;
+    let cat_label = |v: &f64| -> String {
+        let k = v.round();
+        if (v - k).abs() < 1e-6 && k >= 0.0 && (k as usize) < cats.len() {
+            cats[k as usize].clone()
+        } else {
+            String::new()
         }
-        c.draw_series(LineSeries::new(pts, color.stroke_width(2))).map_err(|e| anyhow!("{e}"))?;
+    };
+    let mut mesh = c.configure_mesh();
+    mesh.x_desc(&chart.x_label).y_desc(&chart.y_label).y_labels(12).y_label_formatter(&tick).label_style(("sans-serif", 15));
+    if cats.is_empty() {
+        mesh.x_labels(12).x_label_formatter(&tick);
+    } else {
+        mesh.x_labels(2 * cats.len() + 1).x_label_formatter(&cat_label).disable_x_mesh();
+    }
+    mesh.draw().map_err(|e| anyhow!("{e}"))?;
+    let err = |e: DrawingAreaErrorKind<DB::ErrorType>| anyhow!("{e}");
+    let ok = |p: &(f64, f64)| p.0.is_finite() && p.1.is_finite() && (!chart.log_x || p.0 > 0.0) && (!chart.log_y || p.1 > 0.0);
+    let n = chart.series.len().max(1) as f64;
+    for (k, s) in chart.series.iter().enumerate() {
+        let color = s.color;
+        // A dot plot's series stand side by side within a category.
+        let dodge = if cats.is_empty() { 0.0 } else { (k as f64 - (n - 1.0) / 2.0) * (0.6 / n) };
+        let keep: Vec<usize> = (0..s.points.len()).filter(|&i| ok(&s.points[i])).collect();
+        let pts: Vec<(f64, f64)> = keep.iter().map(|&i| (s.points[i].0 + dodge, s.points[i].1)).collect();
+        let pos = |v: f64, log: bool| !log || v > 0.0;
+        for &i in &keep {
+            let (px, py) = (s.points[i].0 + dodge, s.points[i].1);
+            if let Some(Some((lo, hi))) = s.spread_y.get(i) {
+                if pos(*lo, chart.log_y) && lo < hi {
+                    c.draw_series([PathElement::new(vec![(px, *lo), (px, *hi)], color.stroke_width(1))]).map_err(err)?;
+                    for v in [*lo, *hi] {
+                        c.draw_series([EmptyElement::at((px, v)) + PathElement::new(vec![(-5, 0), (5, 0)], color.stroke_width(1))]).map_err(err)?;
+                    }
+                }
+            }
+            if let Some(Some((lo, hi))) = s.spread_x.get(i) {
+                if pos(*lo, chart.log_x) && lo < hi {
+                    c.draw_series([PathElement::new(vec![(*lo, py), (*hi, py)], color.stroke_width(1))]).map_err(err)?;
+                    for v in [*lo, *hi] {
+                        c.draw_series([EmptyElement::at((v, py)) + PathElement::new(vec![(0, -5), (0, 5)], color.stroke_width(1))]).map_err(err)?;
+                    }
+                }
+            }
+        }
+        let over = coincides_with(&chart.series, k, chart.log_y).is_some();
+        if cats.is_empty() {
+            if over {
+                c.draw_series(DashedLineSeries::new(pts.clone(), 10, 8, color.stroke_width(2))).map_err(err)?;
+            } else {
+                c.draw_series(LineSeries::new(pts.clone(), color.stroke_width(2))).map_err(err)?;
+            }
+        }
+        if let Some((a, b)) = s.fit {
+            let xs: Vec<f64> = pts.iter().map(|p| p.0).collect();
+            let (x0, x1) = (xs.iter().copied().fold(f64::INFINITY, f64::min), xs.iter().copied().fold(f64::NEG_INFINITY, f64::max));
+            let to = |v: f64, log: bool| if log { v.log10() } else { v };
+            let from = |v: f64, log: bool| if log { 10f64.powf(v) } else { v };
+            let line: Vec<(f64, f64)> = [x0, x1].iter().map(|&x| (x, from(a + b * to(x, chart.log_x), chart.log_y))).collect();
+            if x1 > x0 && line.iter().all(ok) {
+                c.draw_series(DashedLineSeries::new(line, 6, 5, color.stroke_width(1))).map_err(err)?;
+            }
+        }
+        // A marker on each measured value (not on dense curves): filled,
+        // or an outline a size larger where it lies over another series.
+        if pts.len() <= 60 {
+            let r = if over { 7 } else { 4 };
+            for &p in &pts {
+                let shape = shape_points(k, r);
+                if over || k % SHAPES == 5 {
+                    c.draw_series([EmptyElement::at(p) + PathElement::new(shape, color.stroke_width(2))]).map_err(err)?;
+                } else {
+                    c.draw_series([EmptyElement::at(p) + Polygon::new(shape, color.filled())]).map_err(err)?;
+                }
+            }
+        }
     }
     Ok(())
 }
@@ -246,12 +475,13 @@ pub fn render(path: &Path, chart: &LineChart) -> Result<()> {
     register_font();
     if path.extension().is_some_and(|e| e == "svg") {
         let mut svg = String::new();
-        draw(SVGBackend::with_string(&mut svg, SIZE).into_drawing_area(), chart)?;
+        draw(SVGBackend::with_string(&mut svg, size_of(chart)).into_drawing_area(), chart)?;
         write_text(path, &svg)
     } else {
-        let mut buf = vec![0u8; (SIZE.0 * SIZE.1 * 3) as usize];
-        draw(BitMapBackend::with_buffer(&mut buf, SIZE).into_drawing_area(), chart)?;
-        write_rgb8(path, SIZE.0 as usize, SIZE.1 as usize, &buf)
+        let size = size_of(chart);
+        let mut buf = vec![0u8; (size.0 * size.1 * 3) as usize];
+        draw(BitMapBackend::with_buffer(&mut buf, size).into_drawing_area(), chart)?;
+        write_rgb8(path, size.0 as usize, size.1 as usize, &buf)
     }
 }
 
@@ -310,9 +540,99 @@ pub fn colour_strips(path: &Path, title: &str, x_range: (f64, f64), rows: &[Stri
 mod tests {
     use super::*;
 
+    /// Pixels of exactly this colour in a rendered chart.
+    fn count(img: &image::RgbImage, c: RGBColor) -> usize {
+        img.pixels().filter(|p| p.0 == [c.0, c.1, c.2]).count()
+    }
+
+    fn drawn(chart: &LineChart) -> image::RgbImage {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("c.png");
+        render(&path, chart).unwrap();
+        image::open(&path).unwrap().to_rgb8()
+    }
+
+    /// Two series with the same points both show: the second dashed over
+    /// the first with an outlined marker a size larger, and the legend
+    /// says they coincide.
+    #[test]
+    fn coinciding_series_both_draw() {
+        let pts: Vec<(f64, f64)> = (0..8).map(|i| (i as f64, (i * i) as f64)).collect();
+        let (a, b) = (PALETTE[0], PALETTE[1]);
+        let chart = LineChart {
+            title: "t".into(),
+            x_label: "x".into(),
+            y_label: "y".into(),
+            series: vec![Series::new("first", pts.clone(), a), Series::new("second", pts.clone(), b)],
+            ..Default::default()
+        };
+        assert_eq!(coincides_with(&chart.series, 1, false), Some(0));
+        assert!(legend_entries(&chart)[1].0.contains("identical to first"));
+        let img = drawn(&chart);
+        // The legend's samples are about 150 pixels each; the plot must
+        // show far more of both colours than that.
+        let (na, nb) = (count(&img, a), count(&img, b));
+        assert!(na > 600 && nb > 600, "first {na} px, second {nb} px");
+        // A series apart from the other is not called identical.
+        let mut apart = chart;
+        apart.series[1].points.iter_mut().for_each(|p| p.1 += 30.0);
+        assert_eq!(coincides_with(&apart.series, 1, false), None);
+    }
+
+    /// A categorical x axis: one marker per category, side by side for
+    /// two series, and the names as tick labels.
+    #[test]
+    fn a_categorical_axis_is_drawn() {
+        let (a, b) = (PALETTE[2], PALETTE[3]);
+        let chart = LineChart {
+            title: "t".into(),
+            x_label: "glass".into(),
+            y_label: "y".into(),
+            categories: vec!["N-BK7".into(), "N-SF11".into(), "F2".into()],
+            series: vec![Series::new("a", vec![(0.0, 1.0), (1.0, 2.0), (2.0, 3.0)], a), Series::new("b", vec![(0.0, 1.0), (1.0, 2.0), (2.0, 3.0)], b)],
+            ..Default::default()
+        };
+        let img = drawn(&chart);
+        // Marker columns of each colour: three clusters each, and a's to
+        // the left of b's within each category.
+        let columns = |c: RGBColor| -> Vec<u32> {
+            let mut xs: Vec<u32> = img.enumerate_pixels().filter(|(_, y, p)| *y < img.height() - 100 && p.0 == [c.0, c.1, c.2]).map(|(x, _, _)| x).collect();
+            xs.sort();
+            xs.dedup();
+            let mut clusters = vec![xs[0]];
+            for w in xs.windows(2) {
+                if w[1] > w[0] + 20 {
+                    clusters.push(w[1]);
+                }
+            }
+            clusters
+        };
+        let (ca, cb) = (columns(a), columns(b));
+        assert_eq!(ca.len(), 3, "{ca:?}");
+        assert_eq!(cb.len(), 3, "{cb:?}");
+        assert!(ca.iter().zip(&cb).all(|(x, y)| x < y), "{ca:?} {cb:?}");
+        // No line joins the categories: little of either colour between them.
+        assert!(count(&img, a) < 400, "{}", count(&img, a));
+    }
+
+    /// Error bars and a fitted line are drawn: thin vertical strokes at the
+    /// points, and the line's dashes between them.
+    #[test]
+    fn error_bars_and_fitted_lines_are_drawn() {
+        let c = PALETTE[4];
+        let mut s = Series::new("s", vec![(1.0, 1.0), (2.0, 2.0), (3.0, 3.0)], c);
+        let plain = drawn(&LineChart { series: vec![s.clone()], ..Default::default() });
+        s.spread_y = vec![Some((0.5, 1.5)), Some((1.5, 2.5)), Some((2.5, 3.5))];
+        s.fit = Some((0.0, 1.0));
+        let full = drawn(&LineChart { series: vec![s], ..Default::default() });
+        assert!(count(&full, c) > count(&plain, c) + 100, "{} against {}", count(&full, c), count(&plain, c));
+    }
+
     #[test]
     fn ticks_read_in_real_units() {
-        assert_eq!(tick(&180000.0), "180000");
+        assert_eq!(tick(&180000.0), "180k");
+        assert_eq!(tick(&3800000.0), "3.8M");
+        assert_eq!(tick(&5000.0), "5000");
         assert_eq!(tick(&0.25), "0.25");
         assert_eq!(tick(&0.1), "0.1");
         assert_eq!(tick(&0.0045), "0.0045");

@@ -5,7 +5,8 @@
 //! name = "lab-ior"                 # results go to results/<name>/
 //! mode = "interior"                # interior | prism
 //! figures = ["lab-ior1.4"]         # figure ids the experiment backs (optional)
-//! repeats = 1
+//! repeats = 1                      # runs of each point (timings: their median)
+//! min_time = 0.05                  # seconds a timing must last (optional)
 //! [fixed]                          # parameters every run shares
 //! off = "off/cube.off"
 //! size = [201, 201]
@@ -23,7 +24,15 @@
 //! images = true
 //! [[outputs.plot]]
 //! x = "param_trace"; y = "render_s"; series = ["param_specular_opacity"]; log_x = false; fit = false
+//! claim = "time is linear in the trace count"   # judged by the fit (needs fit)
+//! claim_slope = 1.0                # the slope the claim predicts (log-log)
+//! claim_series = "linear"          # judge only series whose name holds this
+//! note = "..."                     # a sentence printed on the chart
 //! ```
+//!
+//! A plot whose axis cannot be drawn (y a column of text, a log or fitted
+//! x of text) is refused here, before any run. An x of text is drawn as
+//! a dot plot.
 //!
 //! Parameter names are the mode's flag names with `_` for `-`. Errors name
 //! the key and its line.
@@ -105,6 +114,7 @@ impl Experiment {
             description: p.root.get("description").and_then(Value::as_str).unwrap_or_default().to_string(),
             figures: p.figures()?,
             repeats: p.repeats()?,
+            min_time: p.min_time()?,
             fixed: p.checked(mode, "fixed")?,
             sweep,
             cases,
@@ -196,6 +206,49 @@ impl Experiment {
                 return Err(p.err(section, nth, &key, format!("no run of the experiment uses it: {why}")));
             }
         }
+        // Axes that cannot be drawn are refused now, before any run.
+        for (i, plot) in e.plots.iter().enumerate().filter(|(_, pl)| pl.kind == PlotKind::Line) {
+            let text_of = |c: &str| -> Option<String> {
+                let vals: Vec<String> = match c.strip_prefix("param_") {
+                    Some(key) => {
+                        let mut v: Vec<String> = Vec::new();
+                        for r in &grid {
+                            if let Some((_, x)) = r.params.iter().find(|(k, _)| k == key) {
+                                if !matches!(x, Value::Integer(_) | Value::Float(_)) {
+                                    let cell = super::params::cell(x);
+                                    if !v.contains(&cell) {
+                                        v.push(cell);
+                                    }
+                                }
+                            }
+                        }
+                        v
+                    }
+                    None if TEXT_COLUMNS.contains(&c) => vec![format!("{c} is text")],
+                    None => Vec::new(),
+                };
+                (!vals.is_empty()).then(|| vals.iter().take(4).cloned().collect::<Vec<_>>().join(", "))
+            };
+            if let Some(v) = text_of(&plot.y) {
+                return Err(p.err("outputs.plot", i, "y", format!("`{}` holds text ({v}); a chart's y must be a number", plot.y)));
+            }
+            if let Some(v) = text_of(&plot.x) {
+                for (key, on) in [("log_x", plot.log_x), ("fit", plot.fit)] {
+                    if on {
+                        return Err(p.err(
+                            "outputs.plot",
+                            i,
+                            key,
+                            format!(
+                                "`{}` holds text ({v}): it is drawn as categories, which have no {}",
+                                plot.x,
+                                if key == "fit" { "line to fit" } else { "logarithm" }
+                            ),
+                        ));
+                    }
+                }
+            }
+        }
         if let (Some(over), Some(given)) = (&e.reference, e.reference_params()) {
             if let Ok(Some((key, why))) = e.mode.first_ignored(&given, over.iter().map(|(k, _)| k.as_str())) {
                 return Err(p.err("reference", 0, &key, format!("the reference run would ignore it: {why}")));
@@ -210,8 +263,11 @@ impl Experiment {
     }
 }
 
-const TOP_KEYS: [&str; 11] = ["name", "mode", "description", "figures", "repeats", "fixed", "sweep", "case", "reference", "quick", "outputs"];
-const PLOT_KEYS: [&str; 9] = ["x", "y", "series", "log_x", "log_y", "fit", "title", "file", "kind"];
+/// Columns of runs.csv that hold text whatever the experiment.
+const TEXT_COLUMNS: [&str; 7] = ["mode", "case", "experiment", "host", "cpu", "status", "error"];
+
+const TOP_KEYS: [&str; 12] = ["name", "mode", "description", "figures", "repeats", "min_time", "fixed", "sweep", "case", "reference", "quick", "outputs"];
+const PLOT_KEYS: [&str; 13] = ["x", "y", "series", "log_x", "log_y", "fit", "title", "file", "kind", "claim", "claim_slope", "claim_series", "note"];
 
 /// An experiment file being read: its text (for line numbers), its table,
 /// and the [quick] overrides in force.
@@ -234,8 +290,8 @@ impl<'a> FileParser<'a> {
         // [quick] is checked whether or not --quick is given.
         let quick_all = p.table("quick")?;
         for k in quick_all.keys() {
-            if !["fixed", "sweep", "repeats", "reference"].contains(&k.as_str()) {
-                return Err(p.err("quick", 0, k, "unknown key in [quick]; expected fixed, sweep, repeats or reference".into()));
+            if !["fixed", "sweep", "repeats", "min_time", "reference"].contains(&k.as_str()) {
+                return Err(p.err("quick", 0, k, "unknown key in [quick]; expected fixed, sweep, repeats, min_time or reference".into()));
             }
         }
         if quick {
@@ -312,6 +368,16 @@ impl<'a> FileParser<'a> {
             None => Ok(1),
             Some(Value::Integer(n)) if (1..=1000).contains(n) => Ok(*n as u32),
             Some(_) => Err(self.err("", 0, "repeats", "must be a whole number from 1 to 1000".into())),
+        }
+    }
+
+    fn min_time(&self) -> Result<f64> {
+        match self.quick.get("min_time").or(self.root.get("min_time")) {
+            None => Ok(0.0),
+            Some(v) => match v.as_float().or(v.as_integer().map(|i| i as f64)) {
+                Some(t) if (0.0..=60.0).contains(&t) => Ok(t),
+                _ => Err(self.err("", 0, "min_time", "must be a number of seconds from 0 to 60".into())),
+            },
         }
     }
 
@@ -394,7 +460,31 @@ impl<'a> FileParser<'a> {
             PlotKind::Table => (s("x").unwrap_or_default(), s("y").unwrap_or_default()),
             PlotKind::Line => (s("x").ok_or_else(|| perr("x", "a line plot needs x"))?, s("y").ok_or_else(|| perr("y", "a line plot needs y"))?),
         };
-        Ok(PlotSpec { x, y, series, log_x: b("log_x"), log_y: b("log_y"), fit: b("fit"), title: s("title").unwrap_or_else(|| file.clone()), file, kind })
+        let claim_slope = match t.get("claim_slope") {
+            None => None,
+            Some(v) => {
+                Some(v.as_float().or(v.as_integer().map(|i| i as f64)).filter(|s| s.is_finite()).ok_or_else(|| perr("claim_slope", "must be a number"))?)
+            }
+        };
+        let claim = s("claim").unwrap_or_default();
+        if (!claim.is_empty() || claim_slope.is_some()) && !b("fit") {
+            return Err(perr(if claim.is_empty() { "claim_slope" } else { "claim" }, "a claim is judged by a fitted line: add fit = true"));
+        }
+        Ok(PlotSpec {
+            x,
+            y,
+            series,
+            log_x: b("log_x"),
+            log_y: b("log_y"),
+            fit: b("fit"),
+            claim,
+            claim_slope,
+            claim_series: s("claim_series").unwrap_or_default(),
+            note: s("note").unwrap_or_default(),
+            title: s("title").unwrap_or_else(|| file.clone()),
+            file,
+            kind,
+        })
     }
 }
 

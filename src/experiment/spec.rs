@@ -23,8 +23,20 @@ pub struct PlotSpec {
     pub series: Vec<String>,
     pub log_x: bool,
     pub log_y: bool,
-    /// Print the least-squares slope (log-log where the axes are) in the legend.
+    /// Fit a least-squares line on the axes as drawn (log-log where both
+    /// are log): drawn, its slope with a 95 % interval and R² in the legend.
     pub fit: bool,
+    /// The report's claim the fit tests, in words ("render time is linear
+    /// in the trace count"); judged on the chart unless the run is quick.
+    pub claim: String,
+    /// The slope the claim predicts (1 for "linear" on log-log axes); none:
+    /// the claim is a positive slope on linear axes.
+    pub claim_slope: Option<f64>,
+    /// Only the series whose legend contains this are judged (all if empty).
+    pub claim_series: String,
+    /// A sentence the chart prints under its subtitle (what a reader must
+    /// know to read it right).
+    pub note: String,
     pub title: String,
     pub file: String,
     pub kind: PlotKind,
@@ -47,6 +59,10 @@ pub struct Experiment {
     pub description: String,
     pub figures: Vec<String>,
     pub repeats: u32,
+    /// Seconds a timing must last: a run that renders faster is rendered
+    /// again inside the same timing until the renders together take this
+    /// long, and its times are per render (0: once).
+    pub min_time: f64,
     pub fixed: Vec<(String, Value)>,
     pub sweep: Vec<(String, Vec<Value>)>,
     /// Named cases: their mode (the file's unless they say) and overrides;
@@ -70,7 +86,7 @@ pub fn fnv1a(bytes: &[u8]) -> u64 {
 
 /// The measured columns of runs.csv, after the run's identity and its
 /// parameters (`Experiment::columns`).
-pub const METRICS: [&str; 29] = [
+pub const METRICS: [&str; 32] = [
     "experiment",
     "host",
     "cpu",
@@ -87,6 +103,8 @@ pub const METRICS: [&str; 29] = [
     "trace_s",
     "render_s",
     "total_s",
+    "renders",
+    "cpu_s",
     "rays",
     "rays_per_s",
     "photons",
@@ -100,6 +118,7 @@ pub const METRICS: [&str; 29] = [
     "rmse",
     "psnr",
     "rel_rmse",
+    "rel_error",
 ];
 
 impl Experiment {
@@ -211,6 +230,32 @@ sweep = { trace = [0] }
         assert_eq!(quick.run_count(), 3 + 3, "the case's own [1, 3, 5] is cut to [1] as [quick] cuts trace to one value");
         let deep = quick.cases.iter().find(|c| c.name == "deep").unwrap();
         assert_eq!(quick.axes_for(&deep.params).find(|(k, _)| *k == "trace").unwrap().1, &vec![Value::Integer(1)]);
+    }
+
+    /// An axis that cannot be drawn is refused when the file is read,
+    /// before any run, on the plot's line; an x of text is drawable (as
+    /// categories).
+    #[test]
+    fn an_undrawable_axis_is_refused_before_any_run() {
+        let base = "name = \"g\"\nmode = \"prism\"\n[fixed]\nsize = [16, 8]\nphotons = 1000\n[sweep]\nmap = [\"buffer\", \"kdtree\"]\n[[outputs.plot]]\n";
+        for (plot, needle) in [
+            ("x = \"total_s\"\ny = \"param_map\"\nfile = \"a\"\n", "g.toml:10: `y`: `param_map` holds text (buffer, kdtree); a chart's y must be a number"),
+            (
+                "x = \"param_map\"\ny = \"total_s\"\nlog_x = true\nfile = \"a\"\n",
+                "g.toml:11: `log_x`: `param_map` holds text (buffer, kdtree): it is drawn as categories, which have no logarithm",
+            ),
+            ("x = \"param_map\"\ny = \"total_s\"\nfit = true\nfile = \"a\"\n", "g.toml:11: `fit`: `param_map` holds text"),
+            ("x = \"host\"\ny = \"cpu\"\nfile = \"a\"\n", "g.toml:10: `y`: `cpu` holds text"),
+            (
+                "x = \"param_photons\"\ny = \"total_s\"\nclaim = \"linear\"\nfile = \"a\"\n",
+                "g.toml:11: `claim`: a claim is judged by a fitted line: add fit = true",
+            ),
+        ] {
+            let e = Experiment::parse(&format!("{base}{plot}"), "g.toml", false).unwrap_err().to_string();
+            assert!(e.starts_with(needle), "{e}\n  expected: {needle}");
+        }
+        // Text on x alone is a dot plot: accepted.
+        Experiment::parse(&format!("{base}x = \"param_map\"\ny = \"total_s\"\nfile = \"a\"\n"), "g.toml", false).unwrap();
     }
 
     #[test]

@@ -109,10 +109,12 @@ fn write_ior_report(dir: &Path, glass: &Glass) -> Result<Vec<IorError>> {
             .iter()
             .zip(PALETTE)
             .zip(&errors)
-            .map(|(((k, m), color), e)| Series {
-                name: if diff { format!("{} (max {:.1e})", k.name(), e.max_abs_380_780) } else { k.name().to_string() },
-                points: curve(&|l| if diff { m.n(l) - glass.sellmeier(l) } else { m.n(l) }),
-                color,
+            .map(|(((k, m), color), e)| {
+                Series::new(
+                    if diff { format!("{} (max {:.1e})", k.name(), e.max_abs_380_780) } else { k.name().to_string() },
+                    curve(&|l| if diff { m.n(l) - glass.sellmeier(l) } else { m.n(l) }),
+                    color,
+                )
             })
             .collect()
     };
@@ -164,17 +166,24 @@ fn write_colour_map_report(dir: &Path) -> Result<Vec<MapSummary>> {
     render(
         &dir.join("colour_maps_error.png"),
         &LineChart {
-            title: "colour error against CIE (CIELAB Delta E)".into(),
+            title: "hue error against CIE: how far each map turns a wavelength's hue".into(),
+            subtitle: "400-700 nm, where every map has a colour".into(),
+            notes: vec![(
+                "the CIELAB hue angle of the map's colour minus CIE's (0 where either is grey); the legend adds each map's mean Delta E 1976, which also counts lightness and chroma".into(),
+                plotters::style::RGBColor(60, 60, 60),
+            )],
             x_label: "wavelength (nm)".into(),
-            y_label: "Delta E (1976)".into(),
+            y_label: "hue error (degrees)".into(),
             series: ColorMap::ALL[1..]
                 .iter()
                 .zip(PALETTE)
                 .zip(&maps[1..])
-                .map(|((&m, color), s)| Series {
-                    name: format!("{} (mean {:.1})", m.name(), s.mean_delta_e),
-                    points: (380..=780).map(|l| (l as f64, error_vs_cie(m, l as f64).delta_e)).collect(),
-                    color,
+                .map(|((&m, color), s)| {
+                    Series::new(
+                        format!("{} (mean hue error {:.1} deg, mean Delta E {:.1})", m.name(), s.mean_hue_deg, s.mean_delta_e),
+                        (400..=700).map(|l| (l as f64, error_vs_cie(m, l as f64).hue_deg)).collect(),
+                        color,
+                    )
                 })
                 .collect(),
             ..Default::default()

@@ -74,9 +74,40 @@ struct RunOutcome {
     cells: Measured,
 }
 
-fn run_one(mode: Mode, params: &[(String, Value)], meshes: &MeshCache) -> RunOutcome {
-    let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-        mode.render(params, &crate::progress::Silent, meshes).map(|run| RunOutcome { frame: Some(run.frame()), cells: run.record.cells() })
+/// Renders one run; with `min_time` above 0, renders it again inside the
+/// same timing until the renders together take that long, and records the
+/// mean time per render (and how many renders were timed), in wall time
+/// and in the process's CPU time (every thread; what a shared machine's
+/// other load does not add to).
+fn run_one(mode: Mode, params: &[(String, Value)], meshes: &MeshCache, min_time: f64) -> RunOutcome {
+    let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| -> Result<RunOutcome> {
+        let cpu = crate::timing::process_cpu_seconds();
+        let mut run = mode.render(params, &crate::progress::Silent, meshes)?;
+        let (mut build, mut trace, mut render, mut n) = (run.record.build_s, run.record.trace_s, run.record.render_s, 1u32);
+        // Until the render, the light pass (if the run has one) and the
+        // CPU time (what a chart plots) each took min_time in all; at
+        // most 20 times min_time of wall time, whatever a run's fixed
+        // costs outside those.
+        let cpu_so_far = || cpu.zip(crate::timing::process_cpu_seconds()).map_or(f64::INFINITY, |(a, b)| b - a);
+        let has_trace = trace.is_some_and(|t| t > 0.0);
+        let started = std::time::Instant::now();
+        let short = |render: f64, trace: Option<f64>| render < min_time || (has_trace && trace.is_some_and(|t| t < min_time)) || cpu_so_far() < min_time;
+        while min_time > 0.0 && short(render, trace) && started.elapsed().as_secs_f64() < 20.0 * min_time && n < 100_000 {
+            run = mode.render(params, &crate::progress::Silent, meshes)?;
+            build += run.record.build_s;
+            trace = trace.map(|t| t + run.record.trace_s.unwrap_or(0.0));
+            render += run.record.render_s;
+            n += 1;
+        }
+        let per = n as f64;
+        let cpu = cpu.zip(crate::timing::process_cpu_seconds()).map(|(a, b)| (b - a) / per);
+        (run.record.build_s, run.record.trace_s, run.record.render_s) = (build / per, trace.map(|t| t / per), render / per);
+        let mut cells = run.record.cells();
+        cells.push(("renders", n.to_string()));
+        if let Some(c) = cpu {
+            cells.push(("cpu_s", crate::timing::cell(c)));
+        }
+        Ok(RunOutcome { frame: Some(run.frame()), cells })
     }));
     match result {
         Ok(Ok(o)) => o,
@@ -86,6 +117,48 @@ fn run_one(mode: Mode, params: &[(String, Value)], meshes: &MeshCache) -> RunOut
             RunOutcome { frame: None, cells: vec![("status", "error".into()), ("error", format!("internal error: {msg}")), ("failed", "1".into())] }
         }
     }
+}
+
+/// An image's file name by its place on the sweep's axes, e.g.
+/// `ior-1.4.png` or `hero_spp-4.png` (the case first where there are
+/// cases): a reader knows what it shows without runs.csv.
+pub fn image_name(e: &Experiment, r: &RunSpec) -> String {
+    let clean = |t: &str| -> String {
+        let t: String = t
+            .chars()
+            .map(|c| {
+                if c.is_ascii_alphanumeric() || c == '.' || c == '-' {
+                    c
+                } else if c == ' ' {
+                    'x'
+                } else {
+                    '-'
+                }
+            })
+            .collect();
+        t.trim_matches('-').to_string()
+    };
+    let mut parts: Vec<String> = Vec::new();
+    if !r.case.is_empty() {
+        parts.push(clean(&r.case));
+    }
+    let case_params = e.cases.iter().find(|c| c.name == r.case).map_or(&[][..], |c| &c.params[..]);
+    for ((k, vals), &i) in e.axes_for(case_params).zip(&r.at) {
+        if vals.len() > 1 || e.sweep.len() == 1 {
+            parts.push(format!("{}-{}", clean(k), clean(&cell(&vals[i]))));
+        }
+    }
+    if parts.is_empty() {
+        parts.push(format!("run-{}", r.id));
+    }
+    format!("{}.png", parts.join("_"))
+}
+
+/// Complete rows of an existing runs.csv (a torn last line is dropped).
+/// Whether `dir` holds no runs.csv, or one with this experiment's columns
+/// (so `--resume` can go on from it).
+pub fn resumable(e: &Experiment, dir: &Path) -> bool {
+    read_rows(&dir.join("runs.csv"), &e.columns()).is_ok()
 }
 
 fn read_rows(path: &Path, header: &[String]) -> Result<Vec<Vec<String>>> {
@@ -180,7 +253,11 @@ pub fn run(e: &Experiment, opts: &SweepOptions) -> Result<Outcome> {
     let again = if opts.again.is_empty() { format!("refract sweep {} --resume --out {}", e.name, dir.display()) } else { opts.again.clone() };
     let _interrupt = interrupt::Guard::new(on_interrupt(&dir, Arc::clone(&lock), Arc::clone(&file), wanted, again));
     let meshes = MeshCache::default();
-    let (reference, reference_error) = reference_frame(e, &dir, &meshes)?;
+    // The reference is rendered only when a run needs it (a complete
+    // record is kept without it; its charts read reference.csv).
+    let shard_ids = opts.shard.map(|(_, n)| super::plan::assign(&all, n));
+    let pending = all.iter().any(|r| !done.contains(&r.id) && opts.shard.is_none_or(|(i, _)| shard_ids.as_ref().is_some_and(|s| s[r.id] == i)));
+    let (reference, reference_error) = if pending || !dir.join("reference.csv").is_file() { reference_frame(e, &dir, &meshes)? } else { (None, None) };
     if let Some(err) = &reference_error {
         eprintln!("refract: the reference run failed: {err}; the runs go on, with rmse, psnr and rel_rmse marked `{NO_REFERENCE}`");
     }
@@ -293,20 +370,33 @@ fn keep_or_move(e: &Experiment, dir: &Path, header: &[String], how: OnRecord) ->
 }
 
 /// The reference run's frame (the fixed parameters with the reference's
-/// overrides), written as reference.png, or the reference run's error.
+/// overrides), written as reference.png, or the reference run's error; and
+/// its own noise measured and written to reference.csv: the reference
+/// rendered again with another seed, the error between the two over the
+/// square root of two (0 for a reference that draws nothing at random).
 fn reference_frame(e: &Experiment, dir: &Path, meshes: &MeshCache) -> Result<(Option<Frame>, Option<String>)> {
     let Some(p) = e.reference_params() else { return Ok((None, None)) };
-    let o = run_one(e.mode, &p, meshes);
-    match &o.frame {
-        Some(f) => {
-            write_rgb8(&dir.join("reference.png"), f.width, f.height, &f.display)?;
-            Ok((o.frame, None))
-        }
-        None => {
-            let err = o.cells.iter().find(|(k, _)| *k == "error").map_or_else(|| "no image".to_string(), |(_, v)| v.clone());
-            Ok((None, Some(err)))
-        }
-    }
+    let t = std::time::Instant::now();
+    let o = run_one(e.mode, &p, meshes, 0.0);
+    let seconds = t.elapsed().as_secs_f64();
+    let Some(f) = o.frame else {
+        let err = o.cells.iter().find(|(k, _)| *k == "error").map_or_else(|| "no image".to_string(), |(_, v)| v.clone());
+        return Ok((None, Some(err)));
+    };
+    write_rgb8(&dir.join("reference.png"), f.width, f.height, &f.display)?;
+    let noise = if e.mode.ignored(&p, "seed").is_some() {
+        0.0
+    } else {
+        let seed = p.iter().find(|(k, _)| k == "seed").and_then(|(_, v)| v.as_integer()).unwrap_or(1);
+        let mut other = p.clone();
+        other.retain(|(k, _)| k != "seed");
+        other.push(("seed".into(), Value::Integer(seed.wrapping_add(7919))));
+        let twin = run_one(e.mode, &other, meshes, 0.0).frame;
+        twin.and_then(|g| metrics::relative_error(&g, &f).or_else(|| metrics::relative_rmse(&g, &f))).map_or(f64::NAN, |d| d / 2f64.sqrt())
+    };
+    let text = format!("what,value\nseconds,{}\nnoise,{}\n", crate::timing::cell(seconds), crate::timing::cell(noise));
+    crate::image_io::write_text(&dir.join("reference.csv"), &text)?;
+    Ok((Some(f), None))
 }
 
 impl Sweep<'_> {
@@ -375,15 +465,19 @@ impl Sweep<'_> {
             if let Some(rel) = metrics::relative_rmse(f, rf) {
                 cells.insert("rel_rmse", crate::timing::cell(rel));
             }
+            if let Some(rel) = metrics::relative_error(f, rf) {
+                cells.insert("rel_error", crate::timing::cell(rel));
+            }
         }
         let prev = self
             .predecessor(r)
-            .and_then(|p| self.frames.lock().unwrap().get(&p).cloned().or_else(|| load_frame(&self.dir.join("images").join(format!("{p}.png")))));
+            .and_then(|p| self.frames.lock().unwrap().get(&p).cloned().or_else(|| load_frame(&self.dir.join("images").join(image_name(self.e, &self.all[p])))));
         if let Some(c) = prev.and_then(|p| metrics::changed_pixels(f, &p)) {
             cells.insert("changed_px", c.to_string());
         }
-        if self.e.images {
-            if let Err(err) = write_rgb8(&self.dir.join("images").join(format!("{}.png", r.id)), f.width, f.height, &f.display) {
+        // One image a place: the repeats of a run draw the same picture.
+        if self.e.images && r.repeat == 0 {
+            if let Err(err) = write_rgb8(&self.dir.join("images").join(image_name(self.e, r)), f.width, f.height, &f.display) {
                 self.errors.lock().unwrap().push(err);
             }
         }
@@ -392,7 +486,7 @@ impl Sweep<'_> {
 
     /// Runs one run and appends its row to runs.csv.
     fn run_row(&self, r: &RunSpec) {
-        let o = run_one(r.mode, &r.params, &self.meshes);
+        let o = run_one(r.mode, &r.params, &self.meshes, self.e.min_time);
         let mut cells: HashMap<&str, String> = o.cells.into_iter().collect();
         cells.insert("experiment", self.e.fingerprint.clone());
         for (k, v) in machine() {
@@ -477,7 +571,7 @@ fn load_frame(path: &Path) -> Option<Frame> {
     let display = img.into_raw();
     let luma = crate::spectrum::cie::SRGB_LUMA;
     let luminance = display.chunks(3).map(|c| luma.x * c[0] as f64 / 255.0 + luma.y * c[1] as f64 / 255.0 + luma.z * c[2] as f64 / 255.0).collect();
-    Some(Frame { width: w as usize, height: h as usize, display, luminance })
+    Some(Frame { width: w as usize, height: h as usize, display, luminance, xyz: Vec::new() })
 }
 
 /// Joins the runs.csv of several shard folders into `out`/runs.csv, with
@@ -603,16 +697,21 @@ pub fn merge(dirs: &[PathBuf], out: &Path, experiment: Option<&Experiment>, o: &
                 ),
             }
         }
-        // The run images and the reference image travel with their rows.
-        for (r, k) in &rows {
-            let from = dirs[*k].join("images").join(format!("{}.png", r[0]));
-            if from.is_file() {
+        // The run images (named by their parameters) and the reference
+        // image and its record travel with the rows.
+        for d in dirs {
+            let mut names: Vec<PathBuf> = std::fs::read_dir(d.join("images")).map(|rd| rd.flatten().map(|e| e.path()).collect()).unwrap_or_default();
+            names.retain(|p| p.extension().is_some_and(|x| x == "png") && !p.file_name().is_some_and(|n| n.to_string_lossy().starts_with('.')));
+            names.sort();
+            for from in names {
                 crate::image_io::create_folder(&out.join("images"))?;
-                copy_into_place(&from, &out.join("images").join(format!("{}.png", r[0])))?;
+                copy_into_place(&from, &out.join("images").join(from.file_name().unwrap_or_default()))?;
             }
         }
-        if let Some(reference) = dirs.iter().map(|d| d.join("reference.png")).find(|p| p.is_file()) {
-            copy_into_place(&reference, &out.join("reference.png"))?;
+        for name in ["reference.png", "reference.csv"] {
+            if let Some(reference) = dirs.iter().map(|d| d.join(name)).find(|p| p.is_file()) {
+                copy_into_place(&reference, &out.join(name))?;
+            }
         }
         let rows: Vec<Vec<String>> = rows.iter().map(|(r, _)| r.clone()).collect();
         write_rows(&out.join("runs.csv"), &header, &rows)?;

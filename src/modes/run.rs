@@ -58,6 +58,8 @@ pub struct Frame {
     pub display: Vec<u8>,
     /// Linear luminance per pixel (non-finite values as they came).
     pub luminance: Vec<f64>,
+    /// CIE XYZ per pixel, linear (spectral renders; empty otherwise).
+    pub xyz: Vec<glam::DVec3>,
 }
 
 /// What one run measured: the one record every path (command line, scene
@@ -202,6 +204,7 @@ impl Run {
                 height: r.image.height,
                 display: r.image.to_rgb8(),
                 luminance: r.image.pixels.iter().map(|p| p.0.dot(crate::spectrum::cie::SRGB_LUMA.as_vec3()) as f64).collect(),
+                xyz: Vec::new(),
             },
             Report::Prism { report, gamut } => {
                 let image = &report.render.image;
@@ -210,6 +213,7 @@ impl Run {
                     height: image.height,
                     display: image.to_srgb8(report.exposure, *gamut),
                     luminance: image.xyz.iter().map(|v| v.y).collect(),
+                    xyz: image.xyz.clone(),
                 }
             }
         }

@@ -366,13 +366,19 @@ fn draw(
 /// onto the reference, over the reference's RMS (all three XYZ channels).
 /// 0 for an image equal to the reference up to a constant factor.
 pub fn relative_error(img: &XyzImage, reference: &XyzImage) -> f64 {
-    let ab: f64 = img.xyz.iter().zip(&reference.xyz).map(|(a, b)| a.dot(*b)).sum();
-    let aa: f64 = img.xyz.iter().map(|a| a.length_squared()).sum();
-    let bb: f64 = reference.xyz.iter().map(|b| b.length_squared()).sum();
+    relative_error_xyz(&img.xyz, &reference.xyz)
+}
+
+/// [`relative_error`] on bare pixel lists (the sweep's frames keep XYZ
+/// without an image around it): one definition for every prism chart.
+pub fn relative_error_xyz(img: &[glam::DVec3], reference: &[glam::DVec3]) -> f64 {
+    let ab: f64 = img.iter().zip(reference).map(|(a, b)| a.dot(*b)).sum();
+    let aa: f64 = img.iter().map(|a| a.length_squared()).sum();
+    let bb: f64 = reference.iter().map(|b| b.length_squared()).sum();
     if bb <= 0.0 {
         return 0.0;
     }
     let s = if aa > 0.0 { ab / aa } else { 0.0 };
-    let num: f64 = img.xyz.iter().zip(&reference.xyz).map(|(a, b)| (*a * s - *b).length_squared()).sum();
+    let num: f64 = img.iter().zip(reference).map(|(a, b)| (*a * s - *b).length_squared()).sum();
     (num / bb).sqrt()
 }
