@@ -55,6 +55,7 @@ fn prism_scene_kinds_are_visible_at_their_defaults() {
         check(scene, &["prism", "--scene", scene, "--quick", "--size", "64,48"], rooms.contains(&scene));
     }
     // The lamp has no photons to cut; one sample a pixel (--quick) misses
-    // its thin lines, so it keeps its samples at a small size.
-    check("amici-lamp", &["prism", "--scene", "amici-lamp", "--size", "160,60"], false);
+    // its thin lines, so it keeps its samples, at a size where each copy of
+    // the lamp (0.10 degrees) is a few pixels wide.
+    check("amici-lamp", &["prism", "--scene", "amici-lamp", "--size", "320,80"], false);
 }

@@ -9,7 +9,7 @@ fn quick_figures_render_and_the_gallery_lists_every_id() {
     let out = dir.path().join("results");
     let o = run(&["figures", "--quick", "--only", "css552-p5,lab-ior3.0,pm-dark-side,css552-p2", "--out", out.to_str().unwrap()], "", &repo(""));
     assert!(o.status.success(), "{}", stderr(&o));
-    for (id, w, h) in [("css552-p5", 480, 270), ("lab-ior3.0", 301, 301), ("pm-dark-side", 240, 180), ("css552-p2", 900, 520)] {
+    for (id, w, h) in [("css552-p5", 480, 270), ("lab-ior3.0", 301, 301), ("pm-dark-side", 480, 360), ("css552-p2", 900, 520)] {
         let img = image::open(out.join("figures").join(format!("{id}.png"))).unwrap().to_rgb8();
         assert_eq!(img.dimensions(), (w, h), "{id}");
         let mut colours: Vec<[u8; 3]> = img.pixels().map(|p| p.0).collect();

@@ -195,6 +195,12 @@ pub fn render_world(cfg: &SpectralConfig, scene: &crate::world::World, progress:
     };
     let what = if cfg.exact {
         format!("--exact at --size {}x{}", cfg.scene.width, cfg.scene.height)
+    } else if cfg.map != MapKind::Kdtree && photon_bytes > need / 2 {
+        // The buffer map's texels, whose size the radius sets, are most of it.
+        match cfg.radius {
+            Some(r) => format!("--radius {r} (the buffer map's texels are {} m wide)", (r / 2.0).max(1e-5)),
+            None => format!("the buffer map at --size {}x{}", cfg.scene.width, cfg.scene.height),
+        }
     } else {
         format!("--photons {} and --size {}x{}", cfg.photons, cfg.scene.width, cfg.scene.height)
     };
