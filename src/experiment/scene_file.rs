@@ -141,7 +141,7 @@ impl SceneFile {
         if self.close_up.is_none() && self.labels.is_empty() {
             return Ok((secs, summary));
         }
-        summary.push_str(", with its close-up and labels");
+        summary.push_str(if self.close_up.is_some() { ", with its close-up and labels" } else { ", with its labels" });
         if !out.extension().is_some_and(|e| e.eq_ignore_ascii_case("png")) {
             eprintln!("note: the scene file's close-up and labels are drawn on PNG images only; {} has none", out.display());
             return Ok((secs, summary));
@@ -164,7 +164,10 @@ impl SceneFile {
             let rendered = other.render_image(&tmp, progress);
             let pixels = rendered.as_ref().ok().map(|_| image::open(&tmp).map(|i| i.to_rgb8().into_raw()));
             let _ = std::fs::remove_file(&tmp);
-            secs += rendered?;
+            let close_s = rendered?;
+            secs += close_s;
+            // The close-up is a second render: its time is said too.
+            summary.push_str(&format!(" (the close-up's render {close_s:.2} s)"));
             let pixels = pixels.expect("rendered").map_err(|e| anyhow!("{}: cannot read the close-up back: {e}", tmp.display()))?;
             super::close_up::paste(&mut buf, w, &pixels, size, at);
             if let Some(text) = &view.label {
@@ -176,6 +179,7 @@ impl SceneFile {
         }
         super::labels::draw(&mut buf, w, h, &self.labels).map_err(|e| anyhow!("{}: labels: {e}", self.id))?;
         crate::image_io::write_rgb8(out, w, h, &buf)?;
+        summary.push_str(&format!("; {:.2} s in all", start.elapsed().as_secs_f64()));
         Ok((secs, summary))
     }
 
