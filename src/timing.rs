@@ -90,12 +90,7 @@ pub fn append<T: Serialize + Default>(path: &Path, record: &T) -> Result<()> {
 /// away. `None` where the system does not say.
 pub fn thread_cpu_seconds() -> Option<f64> {
     #[cfg(unix)]
-    {
-        let mut ts = libc::timespec { tv_sec: 0, tv_nsec: 0 };
-        // SAFETY: `ts` is a valid timespec for the call to fill.
-        let ok = unsafe { libc::clock_gettime(libc::CLOCK_THREAD_CPUTIME_ID, &mut ts) } == 0;
-        ok.then_some(ts.tv_sec as f64 + ts.tv_nsec as f64 * 1e-9)
-    }
+    return cpu_clock(libc::CLOCK_THREAD_CPUTIME_ID);
     #[cfg(not(unix))]
     None
 }
@@ -106,14 +101,18 @@ pub fn thread_cpu_seconds() -> Option<f64> {
 /// `None` where the system does not say.
 pub fn process_cpu_seconds() -> Option<f64> {
     #[cfg(unix)]
-    {
-        let mut ts = libc::timespec { tv_sec: 0, tv_nsec: 0 };
-        // SAFETY: `ts` is a valid timespec for the call to fill.
-        let ok = unsafe { libc::clock_gettime(libc::CLOCK_PROCESS_CPUTIME_ID, &mut ts) } == 0;
-        ok.then_some(ts.tv_sec as f64 + ts.tv_nsec as f64 * 1e-9)
-    }
+    return cpu_clock(libc::CLOCK_PROCESS_CPUTIME_ID);
     #[cfg(not(unix))]
     None
+}
+
+/// One of the system's CPU-time clocks, in seconds.
+#[cfg(unix)]
+fn cpu_clock(clock: libc::clockid_t) -> Option<f64> {
+    let mut ts = libc::timespec { tv_sec: 0, tv_nsec: 0 };
+    // SAFETY: `ts` is a valid timespec for the call to fill.
+    let ok = unsafe { libc::clock_gettime(clock, &mut ts) } == 0;
+    ok.then_some(ts.tv_sec as f64 + ts.tv_nsec as f64 * 1e-9)
 }
 
 #[cfg(all(test, unix))]

@@ -14,8 +14,7 @@ use std::path::Path;
 /// The figures compared: the lamp's lines, the bench's strip, the album
 /// cover's fan and the laser's spectrum on a wall.
 pub const FIGURES: [&str; 4] = ["css552-p1", "css552-p5", "pm-dark-side", "pm-laser-prism"];
-const MAPS: [(GamutMap, &str); 4] =
-    [(GamutMap::Clip, "clip"), (GamutMap::Desaturate, "desaturate"), (GamutMap::Agx, "agx"), (GamutMap::AgxPunchy, "agx-punchy")];
+const MAPS: [GamutMap; 4] = [GamutMap::Clip, GamutMap::Desaturate, GamutMap::Agx, GamutMap::AgxPunchy];
 /// Each tile's width in pixels (heights follow the figures' aspects).
 const TILE: usize = 320;
 
@@ -30,7 +29,7 @@ pub fn write(png: &Path, scenes: &Path) -> Result<()> {
         let th = (TILE * h / w).max(1);
         (cfg.scene.width, cfg.scene.height) = (TILE, th);
         let r = crate::spectral::render_config(&cfg, &crate::progress::Silent)?;
-        let tiles = MAPS.iter().map(|(map, _)| r.render.image.to_srgb8(r.exposure, *map)).collect();
+        let tiles = MAPS.iter().map(|map| r.render.image.to_srgb8(r.exposure, *map)).collect();
         rows.push((th, tiles));
     }
     let head = 24;
@@ -49,7 +48,7 @@ pub fn write(png: &Path, scenes: &Path) -> Result<()> {
     let labels: Vec<Label> = MAPS
         .iter()
         .enumerate()
-        .map(|(k, (_, name))| Label { text: format!("--gamut {name}"), at: [(k as f64 + 0.5) / MAPS.len() as f64, 12.0 / h as f64] })
+        .map(|(k, map)| Label { text: format!("--gamut {}", map.name()), at: [(k as f64 + 0.5) / MAPS.len() as f64, 12.0 / h as f64] })
         .collect();
     draw(&mut buf, w, h, &labels).map_err(anyhow::Error::msg)?;
     write_rgb8(png, w, h, &buf)

@@ -155,12 +155,6 @@ pub fn image_name(e: &Experiment, r: &RunSpec) -> String {
 }
 
 /// Complete rows of an existing runs.csv (a torn last line is dropped).
-/// Whether `dir` holds no runs.csv, or one with this experiment's columns
-/// (so `--resume` can go on from it).
-pub fn resumable(e: &Experiment, dir: &Path) -> bool {
-    read_rows(&dir.join("runs.csv"), &e.columns()).is_ok()
-}
-
 fn read_rows(path: &Path, header: &[String]) -> Result<Vec<Vec<String>>> {
     let text = match std::fs::read_to_string(path) {
         Ok(t) => t,

@@ -170,8 +170,7 @@ pub fn render_world(cfg: &SpectralConfig, scene: &crate::world::World, progress:
             // Where an eye path may reach a matte surface at one wavelength
             // the texels also sum their flux by spectral class (`bands`: 8
             // bytes each, in one copy), 13 times the XYZ sums.
-            let spectral = scene.media.iter().any(|m| m.is_dispersive()) && scene.camera_may_see_specular();
-            let classes = if spectral { texels.saturating_mul(8 * crate::photon::bands::CLASSES as u64) } else { 0 };
+            let classes = if render::keeps_classes(scene) { texels.saturating_mul(8 * crate::photon::bands::CLASSES as u64) } else { 0 };
             texels.saturating_mul(24 * crate::photon::emit::sum_copies(texels, threads) as u64).saturating_add(classes)
         }
         MapKind::Kdtree => cfg.photons.saturating_mul(1 + scene.bounces as u64).saturating_mul(2 * std::mem::size_of::<crate::photon::map::Photon>() as u64),

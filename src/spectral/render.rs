@@ -81,9 +81,7 @@ fn render_with(scene: &World, opts: &RenderOptions, place: Option<PassPlace>, pr
     let mut film: Option<Vec<DVec3>> = None;
     let mut film_kernel = None;
     let mut halves = None;
-    // Whether an eye path may take a wavelength and then meet a matte
-    // surface: only then does the buffer keep its flux by spectral class.
-    let spectral = scene.media.iter().any(|m| m.is_dispersive()) && scene.camera_may_see_specular();
+    let spectral = keeps_classes(scene);
     let (stats, maps, trace_s, build_s): (LightStats, Vec<SurfaceMap>, f64, f64) = if scene.maps.is_empty() {
         (LightStats::default(), Vec::new(), 0.0, 0.0)
     } else if opts.map != MapKind::Kdtree {
@@ -288,6 +286,13 @@ fn mixture(s: &Spectrum, total: f64, colours: crate::spectrum::colormap::ColorMa
         }
     }
     out
+}
+
+/// Whether an eye path may take a wavelength and then meet a matte
+/// surface: only then does the buffer map keep its flux by spectral class
+/// (`photon::bands`), which the memory check counts too.
+pub(crate) fn keeps_classes(scene: &World) -> bool {
+    scene.media.iter().any(|m| m.is_dispersive()) && scene.camera_may_see_specular()
 }
 
 #[cfg(test)]
