@@ -57,6 +57,8 @@ pub struct InteriorConfig {
     pub light_color: Rgb,
     pub ka: f32,
     pub kd: f32,
+    /// Kd of the Cornell walls; `None` = `kd`.
+    pub wall_kd: Option<f32>,
     pub ks: f32,
     pub width: usize,
     pub height: usize,
@@ -111,6 +113,7 @@ impl InteriorConfig {
             light_color: Rgb::WHITE,
             ka: 0.1,
             kd: 0.5,
+            wall_kd: None,
             ks: 0.8,
             width: 401,
             height: 401,

@@ -42,6 +42,9 @@ pub struct Tracer<'a> {
     pub scene: &'a InteriorScene,
     pub accel: &'a Accel,
     pub phong: Phong,
+    /// The model's constants for the Cornell walls: the mesh's, with the
+    /// walls' own Kd.
+    pub wall_phong: Phong,
     pub max_trace: u32,
     pub specular_opacity: SpecularOpacity,
     pub background: Rgb,
@@ -52,18 +55,13 @@ pub struct Tracer<'a> {
 
 impl<'a> Tracer<'a> {
     pub fn new(scene: &'a InteriorScene, accel: &'a Accel, cfg: &InteriorConfig) -> Self {
+        let phong =
+            Phong { ka: cfg.ka, kd: cfg.kd, ks: cfg.ks, shininess: cfg.shininess, atten: cfg.attenuation(), light_color: cfg.light_color, ambient: Rgb::WHITE };
         Tracer {
             scene,
             accel,
-            phong: Phong {
-                ka: cfg.ka,
-                kd: cfg.kd,
-                ks: cfg.ks,
-                shininess: cfg.shininess,
-                atten: cfg.attenuation(),
-                light_color: cfg.light_color,
-                ambient: Rgb::WHITE,
-            },
+            phong,
+            wall_phong: Phong { kd: cfg.wall_kd.unwrap_or(cfg.kd), ..phong },
             max_trace: cfg.max_trace,
             specular_opacity: cfg.specular_opacity,
             background: Rgb::from_u8(cfg.background),
@@ -88,7 +86,8 @@ impl<'a> Tracer<'a> {
             let p = ray.at(hit.t);
             let n = self.scene.normals[hit.tri as usize];
             let m = self.scene.material(&hit, self.use_file_colors);
-            let s = shade(p, n, -ray.dir, self.scene.light, &m, &self.phong);
+            let k = if m.translucent { &self.phong } else { &self.wall_phong };
+            let s = shade(p, n, -ray.dir, self.scene.light, &m, k);
             if count == self.max_trace || m.alpha >= 1.0 || !m.translucent {
                 colour += weight * (s.lit + s.specular);
                 break;

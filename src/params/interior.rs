@@ -209,6 +209,18 @@ pub static PARAMS: &[Param<InteriorConfig>] = &[
         ignored: never,
     },
     Param {
+        key: "wall_kd",
+        aliases: &[],
+        section: PHONG,
+        help: "Diffuse coefficient Kd of the Cornell box's walls (their own material; the report gives the box none)",
+        unit: "",
+        kind: Kind::closed(0.0, 1000.0),
+        auto: "kd, the mesh's",
+        get: |c| c.wall_kd.map(real),
+        set: |c, v| c.wall_kd = Some(v.real() as f32),
+        ignored: |c| (c.scene == SceneKind::Mesh).then(|| "the mesh alone has no walls (--scene cornell or cornell-tiled)".to_string()),
+    },
+    Param {
         key: "ks",
         aliases: &[],
         section: PHONG,
