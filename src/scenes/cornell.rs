@@ -247,6 +247,6 @@ pub fn dark_side(o: &SceneOptions) -> Result<World> {
     // Framed as the cover: the prism up and left of centre, the beam in
     // from the left edge, the whole fan down to the right until its light
     // has come down onto the backdrop.
-    s.camera = Camera::look_at(DVec3::new(0.3, -0.12, 2.8), DVec3::new(0.3, -0.12, 0.0), DVec3::Y, 24.0, o.width, o.height);
+    s.camera = Camera::look_at(DVec3::new(0.17, -0.1, 2.8), DVec3::new(0.17, -0.1, 0.0), DVec3::Y, 19.0, o.width, o.height);
     Ok(s)
 }

@@ -148,10 +148,10 @@ pub fn build(o: &SceneOptions) -> Result<World> {
             let (hole, beam) = (0.11, 0.7 * r);
             // Four pieces round the hole, facing the sphere (+x).
             for (name, y0, y1, z0, z1) in [
-                ("card left of the hole", -1.1, -hole, -0.85, 0.85),
-                ("card right of the hole", hole, 1.1, -0.85, 0.85),
-                ("card below the hole", -hole, hole, -0.85, -hole),
-                ("card above the hole", -hole, hole, hole, 0.85),
+                ("card left of the hole", -1.6, -hole, -1.2, 1.2),
+                ("card right of the hole", hole, 1.6, -1.2, 1.2),
+                ("card below the hole", -hole, hole, -1.2, -hole),
+                ("card above the hole", -hole, hole, hole, 1.2),
             ] {
                 matte(&mut s, name, DVec3::new(0.0, y0, z0), DVec3::new(0.0, y1 - y0, 0.0), DVec3::new(0.0, 0.0, z1 - z0), [0.8; 3]);
             }
@@ -189,7 +189,27 @@ pub fn build(o: &SceneOptions) -> Result<World> {
                 spectrum: light_spectrum(o, "d65")?,
                 power: 1.2,
             });
-            s.photon_shares = Some(vec![1.0, 1e-9]);
+            // The beam's source seen through the hole, as the sun or a
+            // projector is from the sphere's side of a card: a bright face
+            // behind the card, lighting nothing the camera sees but the
+            // hole (it sends no photons; its direct light falls on the
+            // card's back and, through the hole, on the glass, which takes
+            // none).
+            let source = s.lights.len();
+            s.faces.push(Face::rect(
+                "beam source",
+                DVec3::new(-0.3, -0.4, -0.4),
+                DVec3::new(0.0, 0.8, 0.0),
+                DVec3::new(0.0, 0.0, 0.8),
+                Surface::Emitter { light: source },
+            ));
+            s.lights.push(Light {
+                name: "beam source".into(),
+                emission: Emission::Area { face: s.faces.len() - 1 },
+                spectrum: light_spectrum(o, "d65")?,
+                power: 2.0,
+            });
+            s.photon_shares = Some(vec![1.0, 1e-9, 1e-9]);
             s.direct_lighting = true;
             s.camera = Camera::look_at(DVec3::new(4.6, 0.45, 0.3), DVec3::new(0.0, -0.15, 0.0), DVec3::Z, 20.0, o.width, o.height);
         }
