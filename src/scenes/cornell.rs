@@ -114,8 +114,14 @@ pub fn build(o: &SceneOptions) -> Result<World> {
             });
         }
         _ => {
-            let start = aim - dir * 2.5;
+            // The laser stands on the floor 30 cm before the prism, in
+            // view: a dark housing 14 cm long on a block up to the beam's
+            // height, the beam leaving its front face.
+            let start = aim - dir * 0.3;
             let u = DVec3::Z.cross(dir).normalize();
+            let (len, half_w) = (0.14, 0.025);
+            let corner = DVec3::new(start.x, start.y, 0.0) - dir * len - u * half_w;
+            super::matte_box(&mut s, "laser", corner - dir * 1e-3, dir * len, u * (2.0 * half_w), DVec3::Z * (start.z + 0.025), [0.04; 3]);
             s.lights.push(Light {
                 name: "laser".into(),
                 emission: Emission::Beam {
@@ -157,7 +163,9 @@ pub fn build(o: &SceneOptions) -> Result<World> {
         // either side, the spectrum near the back wall's right corner.
         Camera::look_at(DVec3::new(0.0, -3.0, 1.1), DVec3::new(-0.15, 0.0, 0.5), DVec3::Z, 29.0, o.width, o.height)
     } else {
-        Camera::look_at(DVec3::new(0.0, -3.3, 1.0), DVec3::new(0.0, 0.0, 0.9), DVec3::Z, 38.0, o.width, o.height)
+        // The box's front edges just outside the frame (35.5 degrees: at
+        // 38 the dark outside showed down both sides).
+        Camera::look_at(DVec3::new(0.0, -3.3, 1.0), DVec3::new(0.0, 0.0, 0.9), DVec3::Z, 35.5, o.width, o.height)
     };
     Ok(s)
 }

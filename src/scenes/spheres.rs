@@ -207,7 +207,7 @@ pub fn build(o: &SceneOptions) -> Result<World> {
                 name: "beam source".into(),
                 emission: Emission::Area { face: s.faces.len() - 1 },
                 spectrum: light_spectrum(o, "d65")?,
-                power: 2.0,
+                power: 0.5,
             });
             s.photon_shares = Some(vec![1.0, 1e-9, 1e-9]);
             s.direct_lighting = true;
