@@ -53,7 +53,7 @@ pub enum Command {
         /// Its [quick] settings
         #[arg(long)]
         quick: bool,
-        #[arg(long, help = format!("{} (.pfm: prism scenes only) [default: results/<id>.png]", out_help(<modes::prism::Prism as modes::ModeKind>::FORMATS, "")))]
+        #[arg(long, help = format!("{} (.pfm, .exr: prism scenes only) [default: results/<id>.png]", out_help(<modes::prism::Prism as modes::ModeKind>::FORMATS, "")))]
         out: Option<PathBuf>,
         /// Override a parameter of the scene file, e.g. --set photons=100000 --set size=320,120 (repeatable)
         #[arg(long, value_name = "KEY=VALUE")]
@@ -182,6 +182,7 @@ fn out_help(formats: &[crate::image_io::ImageFormat], default: &str) -> String {
             ImageFormat::Png => ".png".to_string(),
             ImageFormat::Ppm => ".ppm (binary P6)".into(),
             ImageFormat::Pfm => ".pfm (linear sRGB floats)".into(),
+            ImageFormat::Exr => ".exr (OpenEXR: linear sRGB and XYZ, see --exr)".into(),
         })
         .collect();
     let default = if default.is_empty() { String::new() } else { format!(" [default: {default}]") };
