@@ -65,3 +65,5 @@ mod readme;
 mod progress;
 // `--out x.exr`: OpenEXR's channels against the PFM and the film's XYZ.
 mod openexr_out;
+// `bench prism` without its peer prints no ratio.
+mod bench_peer;
