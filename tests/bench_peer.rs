@@ -6,7 +6,7 @@
 use crate::common::*;
 
 fn assert_no_ratio(o: &std::process::Output, out: &std::path::Path) {
-    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(o.status.success(), "{}", stderr(o));
     let table = String::from_utf8_lossy(&o.stdout);
     assert!(table.contains("film, chosen kernel"), "{table}");
     assert!(!table.contains("xMi") && !table.contains("Mitsuba"), "{table}");

@@ -30,6 +30,14 @@ pub const DEFAULT_VENV: &str = ".venv-mitsuba";
 /// 360-830 nm (`bands` in the script).
 pub const BANDS: usize = 16;
 
+/// One of Mitsuba's renders: samples per pixel, seconds of its render
+/// calls, relative error against the reference.
+pub struct PeerRun {
+    pub spp: u32,
+    pub seconds: f64,
+    pub error: f64,
+}
+
 /// Mitsuba, found: the environment's Python and the version it reports.
 pub struct Mitsuba {
     python: PathBuf,
@@ -49,7 +57,7 @@ impl Mitsuba {
             .output()
             .map_err(|e| format!("cannot run {}: {e}", python.display()))?;
         if !out.status.success() {
-            let why = String::from_utf8_lossy(&out.stderr).lines().last().unwrap_or("").to_string();
+            let why = String::from_utf8_lossy(&out.stderr).lines().next_back().unwrap_or("").to_string();
             return Err(format!(
                 "{} cannot load Mitsuba's scalar_spectral variant: {why} (make the environment with `bash scripts/mitsuba-venv`)",
                 python.display()
@@ -62,7 +70,7 @@ impl Mitsuba {
     /// and returns (seconds, relative error against `reference`) per
     /// count: the seconds of Mitsuba's render calls alone, as the script
     /// times them; and the variant it ran.
-    pub fn error_vs_time(&self, scene: &World, glass: &Glass, spps: &[u32], reference: &XyzImage) -> Result<(String, Vec<(u32, f64, f64)>)> {
+    pub fn error_vs_time(&self, scene: &World, glass: &Glass, spps: &[u32], reference: &XyzImage) -> Result<(String, Vec<PeerRun>)> {
         let dir = TempDir::new()?;
         let script = dir.path().join("mitsuba_prism.py");
         std::fs::write(&script, SCRIPT)?;
@@ -73,7 +81,7 @@ impl Mitsuba {
         let out = Command::new(&self.python).arg(&script).arg(&json_path).arg(dir.path()).arg(&list).output().context("running Mitsuba")?;
         if !out.status.success() {
             let err = String::from_utf8_lossy(&out.stderr);
-            bail!("Mitsuba failed: {}", err.lines().filter(|l| !l.trim().is_empty()).last().unwrap_or("no message"));
+            bail!("Mitsuba failed: {}", err.lines().rfind(|l| !l.trim().is_empty()).unwrap_or("no message"));
         }
         let (w, h) = (reference.width, reference.height);
         let mut runs = Vec::new();
@@ -86,7 +94,7 @@ impl Mitsuba {
             anyhow::ensure!(bytes.len() == w * h * 12, "Mitsuba's image at {spp} spp has {} bytes, not {}", bytes.len(), w * h * 12);
             let v: Vec<f64> = bytes.chunks_exact(4).map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]]) as f64).collect();
             let img = XyzImage { width: w, height: h, xyz: v.chunks_exact(3).map(|p| glam::DVec3::new(p[0], p[1], p[2])).collect() };
-            runs.push((spp, secs, crate::spectral::exact::relative_error(&img, reference)));
+            runs.push(PeerRun { spp, seconds: secs, error: crate::spectral::exact::relative_error(&img, reference) });
         }
         anyhow::ensure!(runs.len() == spps.len(), "Mitsuba rendered {} of {} sample counts", runs.len(), spps.len());
         Ok((variant, runs))

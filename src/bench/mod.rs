@@ -524,10 +524,10 @@ fn prism_error_vs_time(
             let spps: &[u32] = if quick { &[1, 2] } else { &[1, 2, 4, 8, 16] };
             let (variant, runs) = m.error_vs_time(scene, glass, spps, &reference)?;
             let name = format!("Mitsuba {} {variant}", m.version);
-            for &(spp, secs, err) in &runs {
-                csv.row(&name, spp as u64 * (scene.camera.width * scene.camera.height * mitsuba::BANDS) as u64, secs, err)?;
+            for r in &runs {
+                csv.row(&name, r.spp as u64 * (scene.camera.width * scene.camera.height * mitsuba::BANDS) as u64, r.seconds, r.error)?;
             }
-            Some((name, runs.iter().map(|r| (r.1, r.2)).collect::<Runs>()))
+            Some((name, runs.iter().map(|r| (r.seconds, r.error)).collect::<Runs>()))
         }
         None => None,
     };
