@@ -142,7 +142,7 @@ fn outputs_threads_and_csv_paths_are_checked_before_the_render() {
         (vec!["interior", "--off", c, "--out", "o.png", "--threads", "1000"], "--threads: 1000 is more than four times the", "o.png"),
         (
             vec!["prism", "--photons", "1000", "--size", "8,8", "--out", "p.jpg"],
-            "--out: `p.jpg` does not end in an image extension refract writes here (.png, .ppm, .pfm)",
+            "--out: `p.jpg` does not end in an image extension refract writes here (.png, .ppm, .pfm, .exr)",
             "p.jpg",
         ),
         (vec!["prism", "--photons", "1000", "--size", "8,8", "--out", "p.png", "--threads", "999"], "--threads: 999 is more than four times the", "p.png"),

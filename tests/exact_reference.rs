@@ -276,7 +276,7 @@ fn the_command_line_renders_and_refuses_exact_images() {
     (so.width, so.height) = (64, 48);
     let img = exact::render(&build(&so).unwrap(), &ExactOptions { wavelengths: 256, ..Default::default() }).unwrap();
     let lib = dir.path().join("lib.pfm");
-    img.write(&lib, img.auto_exposure(), refract::spectrum::cie::GamutMap::Desaturate).unwrap();
+    img.write(&lib, img.auto_exposure(), refract::spectrum::cie::GamutMap::Desaturate, refract::image_io::openexr::ExrSample::Float).unwrap();
     assert_eq!(std::fs::read(&out).unwrap(), std::fs::read(&lib).unwrap());
     let o = run(&["prism", "--scene", "cornell-laser", "--exact", "--out", dir.path().join("x.png").to_str().unwrap()], "", &repo(""));
     assert_clean_failure(&o, "--exact needs one collimated beam; this scene has 2 lights");

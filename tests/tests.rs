@@ -63,3 +63,7 @@ mod names;
 mod readme;
 // Progress lines, rates and the summary line.
 mod progress;
+// `--out x.exr`: OpenEXR's channels against the PFM and the film's XYZ.
+mod openexr_out;
+// `bench prism` without its peer prints no ratio.
+mod bench_peer;

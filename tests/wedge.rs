@@ -152,8 +152,10 @@ fn a_matte_edge_through_a_wedge_keeps_the_fringes_of_the_monochromatic_sum() {
     let (dxy, edges, ref_edges, energy) = compare(&all, &sum);
     eprintln!("wedge, CI size: max |dxy| {dxy:.4} at the edges; edge {edges} columns wide against the reference's {ref_edges}; Y ratio {energy:.4}");
     if std::env::var_os("WEDGE_PFM").is_some() {
-        all.write(std::path::Path::new("/tmp/wedge-ci-all.pfm"), 1.0, refract::spectrum::cie::GamutMap::Clip).unwrap();
-        sum.write(std::path::Path::new("/tmp/wedge-ci-sum.pfm"), 1.0, refract::spectrum::cie::GamutMap::Clip).unwrap();
+        all.write(std::path::Path::new("/tmp/wedge-ci-all.pfm"), 1.0, refract::spectrum::cie::GamutMap::Clip, refract::image_io::openexr::ExrSample::Float)
+            .unwrap();
+        sum.write(std::path::Path::new("/tmp/wedge-ci-sum.pfm"), 1.0, refract::spectrum::cie::GamutMap::Clip, refract::image_io::openexr::ExrSample::Float)
+            .unwrap();
     }
     assert!(ref_edges >= 2, "the reference shows its fringed edge ({ref_edges} columns)");
     assert!(dxy < 0.05, "max |dxy| {dxy:.4} at the edges against the monochromatic sum");
@@ -175,8 +177,20 @@ fn the_wedge_at_full_size() {
         let (dxy, edges, ref_edges, energy) = compare(&all, &sum);
         println!("wedge, 640x480, narrow {narrow}: max |dxy| {dxy:.4} at the edges; edge {edges} columns wide against the reference's {ref_edges}; Y ratio {energy:.4}");
         if std::env::var_os("WEDGE_PFM").is_some() {
-            all.write(std::path::Path::new(&format!("/tmp/wedge-all-{narrow}.pfm")), 1.0, refract::spectrum::cie::GamutMap::Clip).unwrap();
-            sum.write(std::path::Path::new(&format!("/tmp/wedge-sum-{narrow}.pfm")), 1.0, refract::spectrum::cie::GamutMap::Clip).unwrap();
+            all.write(
+                std::path::Path::new(&format!("/tmp/wedge-all-{narrow}.pfm")),
+                1.0,
+                refract::spectrum::cie::GamutMap::Clip,
+                refract::image_io::openexr::ExrSample::Float,
+            )
+            .unwrap();
+            sum.write(
+                std::path::Path::new(&format!("/tmp/wedge-sum-{narrow}.pfm")),
+                1.0,
+                refract::spectrum::cie::GamutMap::Clip,
+                refract::image_io::openexr::ExrSample::Float,
+            )
+            .unwrap();
         }
     }
 }

@@ -53,7 +53,7 @@ pub enum Command {
         /// Its [quick] settings
         #[arg(long)]
         quick: bool,
-        #[arg(long, help = format!("{} (.pfm: prism scenes only) [default: results/<id>.png]", out_help(<modes::prism::Prism as modes::ModeKind>::FORMATS, "")))]
+        #[arg(long, help = format!("{} (.pfm, .exr: prism scenes only) [default: results/<id>.png]", out_help(<modes::prism::Prism as modes::ModeKind>::FORMATS, "")))]
         out: Option<PathBuf>,
         /// Override a parameter of the scene file, e.g. --set photons=100000 --set size=320,120 (repeatable)
         #[arg(long, value_name = "KEY=VALUE")]
@@ -113,6 +113,19 @@ pub enum BenchCommand {
         /// the recorded measurement alone]
         #[arg(long)]
         out: Option<PathBuf>,
+        /// Render the same scene in a peer renderer in the same run and
+        /// print each method's time over the peer's (Mitsuba 3's particle
+        /// tracer; its environment made by `bash scripts/mitsuba-venv`).
+        /// Without it, or if the peer is not installed, no ratio is printed
+        #[arg(long, value_parser = ["mitsuba"])]
+        peer: Option<String>,
+        /// The peer's Python environment
+        #[arg(long, default_value = crate::bench::mitsuba::DEFAULT_VENV, requires = "peer")]
+        peer_venv: PathBuf,
+        /// Light tracing onto the film (the default method) alone: no photon
+        /// maps, no progressive runs, no hue along the strip (a shorter run)
+        #[arg(long)]
+        film_only: bool,
     },
     /// The k-nearest gather far from a compact cluster of photons:
     /// single-prism with --no-dispersion (every photon in the beam's
@@ -182,6 +195,7 @@ fn out_help(formats: &[crate::image_io::ImageFormat], default: &str) -> String {
             ImageFormat::Png => ".png".to_string(),
             ImageFormat::Ppm => ".ppm (binary P6)".into(),
             ImageFormat::Pfm => ".pfm (linear sRGB floats)".into(),
+            ImageFormat::Exr => ".exr (OpenEXR: linear sRGB and XYZ, see --exr)".into(),
         })
         .collect();
     let default = if default.is_empty() { String::new() } else { format!(" [default: {default}]") };
@@ -526,9 +540,10 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Spectrum { which } => run_spectrum(which),
         Command::Glass(args) => run_glass(args),
         Command::Bench { which: BenchCommand::Interior { quick } } => write_stdout(&crate::bench::interior(quick)?),
-        Command::Bench { which: BenchCommand::Prism { quick, out } } => {
+        Command::Bench { which: BenchCommand::Prism { quick, out, peer, peer_venv, film_only } } => {
             let out = out.unwrap_or_else(|| PathBuf::from(if quick { "results/quick/bench" } else { "results/bench" }));
-            write_stdout(&crate::bench::prism(quick, &out)?)
+            let bench = crate::bench::PrismBench { quick, film_only, peer: peer.map(|_| peer_venv) };
+            write_stdout(&crate::bench::prism(&bench, &out, &mut |line| eprintln!("{line}"))?)
         }
         Command::Bench { which: BenchCommand::Knn { quick } } => write_stdout(&crate::bench::knn(quick)?),
         Command::Bench { which: BenchCommand::Figures { quick, only, scenes } } => write_stdout(&crate::bench::figures(quick, &scenes, &only)?),

@@ -15,7 +15,7 @@ pub struct Prism;
 
 impl ModeKind for Prism {
     type Config = SpectralConfig;
-    const FORMATS: &'static [ImageFormat] = &[ImageFormat::Png, ImageFormat::Ppm, ImageFormat::Pfm];
+    const FORMATS: &'static [ImageFormat] = &[ImageFormat::Png, ImageFormat::Ppm, ImageFormat::Pfm, ImageFormat::Exr];
 
     fn params() -> &'static [Param<SpectralConfig>] {
         params::prism::PARAMS
@@ -68,7 +68,7 @@ fn run_of(cfg: &SpectralConfig, mut report: SpectralReport) -> Run {
         tir_fraction: s.tir as f64 / s.emitted.max(1) as f64,
     };
     let exposure = report.exposure;
-    Run { record, notes: std::mem::take(&mut report.notes), report: Report::Prism { report, gamut: cfg.gamut }, exposure }
+    Run { record, notes: std::mem::take(&mut report.notes), report: Report::Prism { report, gamut: cfg.gamut, exr: cfg.exr }, exposure }
 }
 
 /// `--quick` on the command line: unless given, a tenth of the photons, 1

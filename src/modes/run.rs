@@ -184,7 +184,7 @@ impl Record {
 /// The mode's own report of a run.
 pub enum Report {
     Interior(crate::interior::RunReport),
-    Prism { report: crate::spectral::SpectralReport, gamut: crate::spectrum::cie::GamutMap },
+    Prism { report: crate::spectral::SpectralReport, gamut: crate::spectrum::cie::GamutMap, exr: crate::image_io::openexr::ExrSample },
 }
 
 impl Run {
@@ -192,7 +192,7 @@ impl Run {
     pub fn write(&self, out: &Path) -> Result<()> {
         match &self.report {
             Report::Interior(r) => crate::image_io::write_image(out, &r.image),
-            Report::Prism { report, gamut } => report.render.image.write(out, report.exposure, *gamut),
+            Report::Prism { report, gamut, exr } => report.render.image.write(out, report.exposure, *gamut, *exr),
         }
     }
 
@@ -206,7 +206,7 @@ impl Run {
                 luminance: r.image.pixels.iter().map(|p| p.0.dot(crate::spectrum::cie::SRGB_LUMA.as_vec3()) as f64).collect(),
                 xyz: Vec::new(),
             },
-            Report::Prism { report, gamut } => {
+            Report::Prism { report, gamut, .. } => {
                 let image = &report.render.image;
                 Frame {
                     width: image.width,

@@ -2,6 +2,7 @@
 //! experiments): one row each. Defaults come from `SpectralConfig::new`.
 
 use super::{choices, never, pick, End, Kind, Param, Value};
+use crate::image_io::openexr::ExrSample;
 use crate::optics::glass;
 use crate::optics::ior::IorKind;
 use crate::photon::gather::Filter;
@@ -97,6 +98,11 @@ fn film_kernel_used(c: &SpectralConfig) -> Option<String> {
 
 fn split_used(c: &SpectralConfig) -> Option<String> {
     photons_used(c).or_else(|| (c.eye == EyeMode::Hero).then(|| "--eye hero takes one wavelength; only --eye split and --eye lines split a ray".to_string()))
+}
+
+fn exr_used(c: &SpectralConfig) -> Option<String> {
+    let exr = c.out.extension().is_some_and(|e| e.eq_ignore_ascii_case("exr"));
+    (!exr).then(|| format!("only an .exr output has samples to choose, and {} is not one", c.out.display()))
 }
 
 fn gain_used(c: &SpectralConfig) -> Option<String> {
@@ -470,6 +476,18 @@ pub static PARAMS: &[Param<SpectralConfig>] = &[
         get: |c| Some(pick(c.gamut)),
         set: |c, v| c.gamut = v.choice(),
         ignored: never,
+    },
+    Param {
+        key: "exr",
+        aliases: &[],
+        section: DISPLAY,
+        help: "Sample type of an .exr output: 32-bit float (exact) or 16-bit half",
+        unit: "",
+        kind: Kind::Choice(choices::<ExrSample>),
+        auto: "",
+        get: |c| Some(pick(c.exr)),
+        set: |c, v| c.exr = v.choice(),
+        ignored: exr_used,
     },
     Param {
         key: "inset",

@@ -1,7 +1,9 @@
 //! The prism renders' film: XYZ per pixel, turned into an image by the
 //! spectral core's pipeline (linear sRGB, exposure, gamut map, encoding).
-//! PNG and PPM are display images; PFM keeps linear sRGB for measurement.
+//! PNG and PPM are display images; PFM keeps linear sRGB for measurement,
+//! OpenEXR linear sRGB and the film's XYZ.
 
+use crate::image_io::openexr::{write_exr, ExrSample, Plane};
 use crate::image_io::{atomic_write, write_rgb8};
 use crate::spectrum::cie::{desaturate, to_srgb8, GamutMap, Xyz};
 use anyhow::Result;
@@ -42,10 +44,11 @@ impl XyzImage {
         self.xyz.iter().filter(|v| !v.is_finite()).count()
     }
 
-    /// Writes .png/.ppm (display) or .pfm (linear sRGB times exposure).
-    /// Refuses, naming the count, an image with NaN or infinite pixels
-    /// (before or after the exposure): they would otherwise show as black.
-    pub fn write(&self, path: &Path, exposure: f64, gamut: GamutMap) -> Result<()> {
+    /// Writes .png/.ppm (display), .pfm (linear sRGB times exposure) or
+    /// .exr (`write_exr`). Refuses, naming the count, an image with NaN or
+    /// infinite pixels (before or after the exposure): they would
+    /// otherwise show as black.
+    pub fn write(&self, path: &Path, exposure: f64, gamut: GamutMap, exr: ExrSample) -> Result<()> {
         // Finite in f32 too: the PFM stores f32.
         let finite = |v: f64| v.is_finite() && (v as f32).is_finite();
         let bad = (0..self.xyz.len()).map(|i| self.linear_srgb(i) * exposure).filter(|c| !(finite(c.x) && finite(c.y) && finite(c.z))).count();
@@ -57,7 +60,9 @@ impl XyzImage {
             );
         }
         let ext = path.extension().map(|e| e.to_string_lossy().to_ascii_lowercase()).unwrap_or_default();
-        if ext == "pfm" {
+        if ext == "exr" {
+            Ok(self.write_exr(path, exposure, exr)?)
+        } else if ext == "pfm" {
             // Portable float map: little-endian, rows bottom to top.
             atomic_write(path, |f| {
                 write!(f, "PF\n{} {}\n-1.0\n", self.width, self.height)?;
@@ -75,6 +80,25 @@ impl XyzImage {
             write_rgb8(path, self.width, self.height, &self.to_srgb8(exposure, gamut))
         }
     }
+
+    /// OpenEXR: linear sRGB times the exposure as R, G, B (the header's
+    /// chromaticities say sRGB's primaries and D65 white) and the film's
+    /// CIE XYZ times the same exposure as XYZ.X, XYZ.Y, XYZ.Z, so that
+    /// R, G, B = M (X, Y, Z) with M sRGB's matrix (IEC 61966-2-1); the
+    /// exposure is the attribute `refract.exposure`, to undo it.
+    fn write_exr(&self, path: &Path, exposure: f64, sample: ExrSample) -> Result<(), crate::image_io::openexr::ExrError> {
+        let n = self.xyz.len();
+        let mut planes: [Vec<f32>; 6] = std::array::from_fn(|_| Vec::with_capacity(n));
+        for (i, v) in self.xyz.iter().enumerate() {
+            let rgb = self.linear_srgb(i) * exposure;
+            for (plane, x) in planes.iter_mut().zip([rgb.x, rgb.y, rgb.z, v.x * exposure, v.y * exposure, v.z * exposure]) {
+                plane.push(x as f32);
+            }
+        }
+        let names = ["R", "G", "B", "XYZ.X", "XYZ.Y", "XYZ.Z"];
+        let planes: Vec<Plane> = names.iter().zip(&planes).map(|(name, values)| Plane { name, values }).collect();
+        write_exr(path, self.width, self.height, &planes, sample, &[("refract.exposure", exposure as f32)])
+    }
 }
 
 #[cfg(test)]
@@ -89,9 +113,9 @@ mod tests {
         for bad in [f64::NAN, f64::INFINITY] {
             let mut img = XyzImage { width: 2, height: 2, xyz: vec![DVec3::splat(0.5); 4] };
             img.xyz[3].y = bad;
-            for name in ["a.png", "a.pfm"] {
+            for name in ["a.png", "a.pfm", "a.exr"] {
                 let p = dir.path().join(name);
-                let e = img.write(&p, 1.0, GamutMap::Clip).unwrap_err().to_string();
+                let e = img.write(&p, 1.0, GamutMap::Clip, ExrSample::Float).unwrap_err().to_string();
                 assert!(e.contains("1 of 4 pixels came out NaN or infinite"), "{e}");
                 assert!(!p.exists());
             }

@@ -62,6 +62,8 @@ pub struct SpectralConfig {
     /// bright lines saturate, dim ones show).
     pub exposure_gain: f64,
     pub gamut: GamutMap,
+    /// The sample type of an OpenEXR output (`--out x.exr`).
+    pub exr: crate::image_io::openexr::ExrSample,
     /// Wavelength to colour: CIE (default) or a report's map.
     pub colours: crate::spectrum::colormap::ColorMap,
     /// A magnified detail drawn into the written PNG (display only).
@@ -91,6 +93,7 @@ impl SpectralConfig {
             exposure: None,
             exposure_gain: 1.0,
             gamut: GamutMap::Desaturate,
+            exr: crate::image_io::openexr::ExrSample::Float,
             colours: crate::spectrum::colormap::ColorMap::Cie,
             inset: None,
             out,
@@ -128,7 +131,7 @@ pub struct SpectralReport {
 /// Builds the scene, renders, writes the image.
 pub fn run(cfg: &SpectralConfig, progress: &dyn Progress) -> Result<SpectralReport> {
     let report = render_config(cfg, progress)?;
-    report.render.image.write(&cfg.out, report.exposure, cfg.gamut)?;
+    report.render.image.write(&cfg.out, report.exposure, cfg.gamut, cfg.exr)?;
     let png = cfg.out.extension().is_some_and(|e| e.eq_ignore_ascii_case("png"));
     if let (Some(inset), true) = (cfg.inset, png) {
         let img = &report.render.image;

@@ -1,6 +1,8 @@
 //! `refract bench`: speed measured in one run and printed as a table.
 //! Timings are never asserted in tests; they are recorded here.
 
+pub mod mitsuba;
+
 use crate::geometry::{Accel, AccelKind, Ray};
 use crate::interior::scene::InteriorScene;
 use crate::interior::trace::Tracer;
@@ -307,28 +309,56 @@ pub fn time_to_error(runs: &[(f64, f64)], target: f64) -> Option<f64> {
     })
 }
 
+/// What `refract bench prism` runs.
+pub struct PrismBench {
+    /// Fewer, smaller runs (a smoke run).
+    pub quick: bool,
+    /// Light tracing onto the film (the default method) alone: no photon
+    /// maps, no progressive runs, no hue along the strip.
+    pub film_only: bool,
+    /// The environment of the peer, Mitsuba 3, to run beside refract
+    /// (`None`: refract alone, and no ratio).
+    pub peer: Option<std::path::PathBuf>,
+}
+
 /// Prism mode: photon throughput per thread, memory per photon, and the
 /// rainbow strip's error against time for every method on the
 /// single-prism anchor scene (320x240, 60 degree N-BK7 prism, 2 cm white
 /// beam at 49.4 degrees, screen 4 m behind), against the exact image
-/// (`spectral::exact`), so blur counts as error as much as noise does.
-pub fn prism(quick: bool, out_dir: &std::path::Path) -> Result<String> {
+/// (`spectral::exact`), so blur counts as error as much as noise does;
+/// with a peer, its error against time on the same scene and reference in
+/// the same run, and each method's time over the peer's.
+pub fn prism(b: &PrismBench, out_dir: &std::path::Path, say: &mut dyn FnMut(String)) -> Result<String> {
     let (csv_path, png_path) = (out_dir.join("prism-error-vs-time.csv"), out_dir.join("prism-error-vs-time.png"));
-    // The folder and both files are checked before the minute of work.
+    // The folder, both files and the peer are checked before the minutes of work.
     crate::image_io::create_folder(out_dir).context("--out")?;
     for path in [&csv_path, &png_path] {
         crate::data::check_regular(path).map_err(|e| anyhow::anyhow!("--out: {e}"))?;
     }
+    let peer = match &b.peer {
+        Some(venv) => match mitsuba::Mitsuba::find(venv) {
+            Ok(m) => Some(m),
+            Err(why) => {
+                say(format!("warning: --peer mitsuba: {why}; refract's own numbers follow, and no ratio"));
+                None
+            }
+        },
+        None => None,
+    };
     let mut so = SceneOptions::new(SceneKind::SinglePrism);
     (so.width, so.height, so.incidence_deg) = (320, 240, Some(49.4));
     let scene = build(&so)?;
     let radius = crate::spectral::default_radius(&scene);
     let mut out = String::new();
     writeln!(out, "prism bench: single-prism, 320x240, 49.4 deg, D65 beam; radius {:.2} mm", radius * 1e3)?;
-    prism_throughput("single prism", &scene, quick, &mut out)?;
-    prism_throughput("Amici prism (amici-screen)", &build(&SceneOptions::new(SceneKind::AmiciScreen))?, quick, &mut out)?;
-    let (csv, series) = prism_error_vs_time(&scene, radius, quick, &mut out)?;
-    prism_strip_hue(quick, &mut out)?;
+    prism_throughput("single prism", &scene, b.quick, &mut out)?;
+    if !b.film_only {
+        prism_throughput("Amici prism (amici-screen)", &build(&SceneOptions::new(SceneKind::AmiciScreen))?, b.quick, &mut out)?;
+    }
+    let (csv, series) = prism_error_vs_time(&scene, so.crown, radius, b, peer.as_ref(), &mut out)?;
+    if !b.film_only {
+        prism_strip_hue(b.quick, &mut out)?;
+    }
     crate::image_io::write_text(&csv_path, &csv).with_context(|| format!("cannot write {}", csv_path.display()))?;
     crate::experiment::plot::render(&png_path, &error_chart(&series)).with_context(|| format!("cannot write {}", png_path.display()))?;
     writeln!(out, "wrote {}/prism-error-vs-time.{{csv,png}}", out_dir.display())?;
@@ -411,33 +441,31 @@ fn prism_throughput(what: &str, scene: &crate::world::World, quick: bool, out: &
 /// (time, relative error) of one method at several photon counts.
 type Runs = Vec<(f64, f64)>;
 
-/// Mitsuba 3.9's particle tracer on the same scene against the same kind
-/// of analytic reference (the anchor): time in seconds to each error.
-const MITSUBA: [(f64, f64); 4] = [(0.20, 0.10), (1.09, 0.05), (4.97, 0.02), (11.4, 0.013)];
-
-/// Mitsuba's time to 0.01, not measured: its last point carried on as its
-/// error falls, one over the square root of the time (about 19.3 s).
-fn mitsuba_at_001() -> f64 {
-    let (t, e) = MITSUBA[3];
-    t * (e / 0.01) * (e / 0.01)
-}
-
 /// The errors the table reports times for.
 const TARGETS: [f64; 4] = [0.10, 0.05, 0.02, 0.01];
 
 /// Every fixed-radius map and filter at increasing photon counts, and
 /// progressive photon mapping pass by pass, against the exact image: the
 /// CSV rows (method, photons, seconds, rel_error) and each method's runs.
-fn prism_error_vs_time(scene: &crate::world::World, radius: f64, quick: bool, out: &mut String) -> Result<(String, Vec<(String, Runs)>)> {
+fn prism_error_vs_time(
+    scene: &crate::world::World,
+    glass: &crate::optics::glass::Glass,
+    radius: f64,
+    b: &PrismBench,
+    peer: Option<&mitsuba::Mitsuba>,
+    out: &mut String,
+) -> Result<(String, Vec<(String, Runs)>)> {
     use crate::spectral::exact::{relative_error, ExactOptions};
     let t = Instant::now();
     let reference = crate::spectral::exact::render(scene, &ExactOptions::default())?;
     writeln!(out, "reference: the exact image (2048 wavelengths, 8x8 subsamples at footprint edges), {:.2} s", t.elapsed().as_secs_f64())?;
+    let quick = b.quick;
     let counts: Vec<u64> =
         if quick { vec![25_000, 100_000] } else { vec![25_000, 50_000, 100_000, 200_000, 400_000, 800_000, 1_600_000, 3_200_000, 6_400_000] };
     let mut csv = ErrorCsv::new()?;
     let mut series: Vec<(String, Runs)> = Vec::new();
-    for map in [MapKind::Buffer, MapKind::Kdtree] {
+    let maps: &[MapKind] = if b.film_only { &[] } else { &[MapKind::Buffer, MapKind::Kdtree] };
+    for &map in maps {
         for filter in [Filter::Box, Filter::Cone, Filter::Gaussian] {
             let name = format!("{} {}", map.name(), filter.name());
             let mut runs = Vec::new();
@@ -472,7 +500,8 @@ fn prism_error_vs_time(scene: &crate::world::World, radius: f64, quick: bool, ou
     // As `refract prism --passes` runs it: the first radius one pixel's
     // footprint (half the one-pass default).
     let passes = if quick { 4 } else { 64 };
-    for (map, per) in [(MapKind::Kdtree, 400_000u64), (MapKind::Buffer, 1_600_000)] {
+    let progressive: &[(MapKind, u64)] = if b.film_only { &[] } else { &[(MapKind::Kdtree, 400_000), (MapKind::Buffer, 1_600_000)] };
+    for &(map, per) in progressive {
         let per = if quick { per / 8 } else { per };
         let name = format!("progressive {} box {}k/pass", map.name(), per / 1000);
         let mut runs = Vec::new();
@@ -489,27 +518,54 @@ fn prism_error_vs_time(scene: &crate::world::World, radius: f64, quick: bool, ou
         }
         series.push((name, runs));
     }
+    // The peer, in the same run, against the same reference.
+    let peer_runs = match peer {
+        Some(m) => {
+            let spps: &[u32] = if quick { &[1, 2] } else { &[1, 2, 4, 8, 16] };
+            let (variant, runs) = m.error_vs_time(scene, glass, spps, &reference)?;
+            let name = format!("Mitsuba {} {variant}", m.version);
+            for r in &runs {
+                csv.row(&name, r.spp as u64 * (scene.camera.width * scene.camera.height * mitsuba::BANDS) as u64, r.seconds, r.error)?;
+            }
+            Some((name, runs.iter().map(|r| (r.seconds, r.error)).collect::<Runs>()))
+        }
+        None => None,
+    };
     let fmt = |t: Option<f64>| t.map_or("-".to_string(), |t| format!("{t:.3}"));
     write!(out, "{:>34}", "method")?;
     for e in TARGETS {
-        write!(out, " {:>8} {:>6}", format!("t({e})"), "xMi")?;
+        write!(out, " {:>8}", format!("t({e})"))?;
+        if peer_runs.is_some() {
+            write!(out, " {:>6}", "xMi")?;
+        }
     }
     writeln!(out, " {:>12}", "floor")?;
-    for (name, runs) in &series {
+    for (name, runs) in series.iter().chain(&peer_runs) {
         write!(out, "{name:>34}")?;
-        for (k, e) in TARGETS.into_iter().enumerate() {
+        for e in TARGETS {
             let t = time_to_error(runs, e);
-            let ratio = match (t, MITSUBA.get(k).filter(|m| m.1 == e)) {
-                (Some(t), Some(m)) => format!("{:.1}", m.0 / t),
-                (Some(t), None) if e == 0.01 => format!("~{:.1}", mitsuba_at_001() / t),
-                _ => "-".into(),
-            };
-            write!(out, " {:>8} {:>6}", fmt(t), ratio)?;
+            write!(out, " {:>8}", fmt(t))?;
+            if let Some((_, mi)) = &peer_runs {
+                let ratio = match (time_to_error(mi, e), t) {
+                    (Some(m), Some(t)) => format!("{:.1}", m / t),
+                    _ => "-".into(),
+                };
+                write!(out, " {ratio:>6}")?;
+            }
         }
         writeln!(out, " {:>12}", floor(runs).map_or("still falls".to_string(), |f| format!("{f:.4}")))?;
     }
-    writeln!(out, "t(e): seconds to reach relative error e (log-log interpolation); xMi: Mitsuba 3.9's time to e over ours (it reaches 0.10 in 0.20 s, 0.05 in 1.09 s, 0.02 in 4.97 s, 0.013 in 11.4 s; ~: 0.01 not measured, carried on as t^-0.5 to {:.1} s)", mitsuba_at_001())?;
+    match &peer_runs {
+        Some((name, _)) => writeln!(
+            out,
+            "t(e): seconds to reach relative error e (log-log interpolation); xMi: {name}'s time to e over the method's, both measured in this run (Mitsuba: its particle tracer, its render calls alone, {} samples per pixel, each in {} wavelength bands of its own rendered one at a time, the glass a Cauchy fit through n_C and n_F)",
+            if quick { "1, 2" } else { "1 to 16" },
+            mitsuba::BANDS
+        )?,
+        None => writeln!(out, "t(e): seconds to reach relative error e (log-log interpolation); no peer ran, so no ratio (--peer mitsuba runs one in the same bench)")?,
+    }
     writeln!(out, "floor: the error where a method stops improving (its last doubling of time gains under 5 %), or 'still falls'")?;
+    series.extend(peer_runs);
     Ok((csv.finish()?, series))
 }
 
@@ -573,7 +629,7 @@ fn prism_strip_hue(quick: bool, out: &mut String) -> Result<()> {
     Ok(())
 }
 
-/// Error against time, every method beside Mitsuba's anchor points.
+/// Error against time, every method (the peer's, if it ran, last, in black).
 fn error_chart(series: &[(String, Runs)]) -> crate::experiment::plot::LineChart {
     use crate::experiment::plot::{LineChart, Series, PALETTE};
     LineChart {
@@ -586,8 +642,10 @@ fn error_chart(series: &[(String, Runs)]) -> crate::experiment::plot::LineChart 
         series: series
             .iter()
             .zip(PALETTE.iter().cycle())
-            .map(|((name, runs), color)| Series::new(name.clone(), runs.clone(), *color))
-            .chain(std::iter::once(Series::new("Mitsuba 3.9 particle tracer (anchor)", MITSUBA.to_vec(), plotters::style::RGBColor(0, 0, 0))))
+            .map(|((name, runs), color)| {
+                let color = if name.starts_with("Mitsuba") { plotters::style::RGBColor(0, 0, 0) } else { *color };
+                Series::new(name.clone(), runs.clone(), color)
+            })
             .collect(),
         ..Default::default()
     }

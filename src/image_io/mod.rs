@@ -1,6 +1,8 @@
-//! Writing images: binary PPM (P6, as report 004 writes) or PNG, always to a
-//! temporary file in the target folder that is renamed into place, so an
+//! Writing images: binary PPM (P6, as report 004 writes), PNG, PFM or
+//! OpenEXR (`openexr`), always to a temporary file in the target folder that is renamed into place, so an
 //! interrupted run never leaves a half-written image.
+
+pub mod openexr;
 
 use crate::color::Rgb;
 use anyhow::{Context, Result};
@@ -40,6 +42,8 @@ crate::named_enum! {
         Ppm = "ppm",
         /// Portable float map: linear sRGB, for measurement.
         Pfm = "pfm",
+        /// OpenEXR: linear sRGB and CIE XYZ, half or float, for measurement.
+        Exr = "exr",
     }
 }
 
