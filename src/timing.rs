@@ -42,7 +42,7 @@ pub fn cell(v: f64) -> String {
 /// exists and is absent, or a regular file that is empty or has exactly
 /// the columns of record type `T` (a FIFO or device is never read).
 pub fn check_header<T: Serialize + Default>(path: &Path) -> Result<()> {
-    crate::data::check_regular(path).map_err(anyhow::Error::msg)?;
+    crate::data::check_regular(path)?;
     if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty() && !d.is_dir()) {
         bail!("folder {} does not exist", dir.display());
     }

@@ -105,7 +105,7 @@ impl Experiment {
         let images = match outputs.get("images") {
             None => false,
             Some(Value::Boolean(b)) => *b,
-            Some(_) => return Err(p.err("outputs", 0, "images", "must be true or false".into())),
+            Some(_) => return Err(p.err("outputs", 0, "images", "must be true or false")),
         };
         let fingerprint = format!("{name}@{:016x}{}", fnv1a(text.as_bytes()), if quick { "-quick" } else { "" });
         let e = Experiment {
@@ -121,7 +121,7 @@ impl Experiment {
             reference: match p.root.get("reference") {
                 None => None,
                 Some(Value::Table(_)) => Some(p.checked(mode, "reference")?),
-                Some(_) => return Err(p.err("", 0, "reference", "must be a table".into())),
+                Some(_) => return Err(p.err("", 0, "reference", "must be a table")),
             },
             images,
             plots: p.plots(&outputs)?,
@@ -291,7 +291,7 @@ impl<'a> FileParser<'a> {
         let quick_all = p.table("quick")?;
         for k in quick_all.keys() {
             if !["fixed", "sweep", "repeats", "min_time", "reference"].contains(&k.as_str()) {
-                return Err(p.err("quick", 0, k, "unknown key in [quick]; expected fixed, sweep, repeats, min_time or reference".into()));
+                return Err(p.err("quick", 0, k, "unknown key in [quick]; expected fixed, sweep, repeats, min_time or reference"));
             }
         }
         if quick {
@@ -306,7 +306,7 @@ impl<'a> FileParser<'a> {
     }
 
     /// An error at `key` of the `nth` `[section]`, with its line.
-    fn err(&self, section: &str, nth: usize, key: &str, msg: String) -> anyhow::Error {
+    fn err(&self, section: &str, nth: usize, key: &str, msg: impl std::fmt::Display) -> anyhow::Error {
         anyhow!("{}:{}: `{key}`: {msg}", self.file, line_of(self.text, section, nth, key))
     }
 
@@ -314,7 +314,7 @@ impl<'a> FileParser<'a> {
         match self.root.get(key) {
             None => Ok(Table::new()),
             Some(Value::Table(t)) => Ok(t.clone()),
-            Some(_) => Err(self.err("", 0, key, "must be a table".into())),
+            Some(_) => Err(self.err("", 0, key, "must be a table")),
         }
     }
 
@@ -322,7 +322,7 @@ impl<'a> FileParser<'a> {
     fn merged(&self, key: &str) -> Result<Table> {
         let mut t = self.table(key)?;
         if let Some(q) = self.quick.get(key) {
-            let Value::Table(q) = q else { return Err(self.err("quick", 0, key, "must be a table".into())) };
+            let Value::Table(q) = q else { return Err(self.err("quick", 0, key, "must be a table")) };
             t.extend(q.iter().map(|(k, v)| (k.clone(), v.clone())));
         }
         Ok(t)
@@ -339,7 +339,7 @@ impl<'a> FileParser<'a> {
     fn string(&self, key: &str) -> Result<String> {
         match self.root.get(key) {
             Some(Value::String(s)) => Ok(s.clone()),
-            Some(_) => Err(self.err("", 0, key, "must be a string".into())),
+            Some(_) => Err(self.err("", 0, key, "must be a string")),
             None => Err(anyhow!("{}: missing `{key}`", self.file)),
         }
     }
@@ -347,7 +347,7 @@ impl<'a> FileParser<'a> {
     fn name_and_mode(&self) -> Result<(String, Mode)> {
         let name = self.string("name")?;
         if name.is_empty() || !name.chars().all(|c| c.is_ascii_alphanumeric() || c == '-' || c == '_') {
-            return Err(self.err("", 0, "name", "use letters, digits, - and _ only (it names a folder)".into()));
+            return Err(self.err("", 0, "name", "use letters, digits, - and _ only (it names a folder)"));
         }
         let m = self.string("mode")?;
         let mode = Mode::from_name(&m).ok_or_else(|| self.err("", 0, "mode", format!("`{m}` is not interior or prism")))?;
@@ -355,7 +355,7 @@ impl<'a> FileParser<'a> {
     }
 
     fn figures(&self) -> Result<Vec<String>> {
-        let bad = || self.err("", 0, "figures", "must be a list of strings".into());
+        let bad = || self.err("", 0, "figures", "must be a list of strings");
         match self.root.get("figures") {
             None => Ok(Vec::new()),
             Some(Value::Array(a)) => a.iter().map(|v| v.as_str().map(str::to_string).ok_or_else(bad)).collect(),
@@ -367,7 +367,7 @@ impl<'a> FileParser<'a> {
         match self.quick.get("repeats").or(self.root.get("repeats")) {
             None => Ok(1),
             Some(Value::Integer(n)) if (1..=1000).contains(n) => Ok(*n as u32),
-            Some(_) => Err(self.err("", 0, "repeats", "must be a whole number from 1 to 1000".into())),
+            Some(_) => Err(self.err("", 0, "repeats", "must be a whole number from 1 to 1000")),
         }
     }
 
@@ -376,7 +376,7 @@ impl<'a> FileParser<'a> {
             None => Ok(0.0),
             Some(v) => match v.as_float().or(v.as_integer().map(|i| i as f64)) {
                 Some(t) if (0.0..=60.0).contains(&t) => Ok(t),
-                _ => Err(self.err("", 0, "min_time", "must be a number of seconds from 0 to 60".into())),
+                _ => Err(self.err("", 0, "min_time", "must be a number of seconds from 0 to 60")),
             },
         }
     }
@@ -390,7 +390,7 @@ impl<'a> FileParser<'a> {
             let values = match &v {
                 Value::Array(a) if !a.is_empty() => a.clone(),
                 Value::Table(t) => range(t).map_err(|m| self.err("sweep", 0, &k, m))?,
-                _ => return Err(self.err("sweep", 0, &k, "must be a non-empty list or { from, to, step }".into())),
+                _ => return Err(self.err("sweep", 0, &k, "must be a non-empty list or { from, to, step }")),
             };
             let values = values.iter().map(|x| mode.check(&k, x, self.base()).map_err(|m| self.err("sweep", 0, &k, m))).collect::<Result<Vec<_>>>()?;
             sweep.push((k, values));
@@ -402,7 +402,7 @@ impl<'a> FileParser<'a> {
     /// under a sweep axis's name narrows that axis).
     fn cases(&self, mode: Mode, sweep: &[(String, Vec<Value>)]) -> Result<Vec<Case>> {
         let Some(c) = self.root.get("case") else { return Ok(Vec::new()) };
-        let bad = || self.err("", 0, "case", "write cases as [[case]] tables".into());
+        let bad = || self.err("", 0, "case", "write cases as [[case]] tables");
         let Value::Array(list) = c else { return Err(bad()) };
         let mut cases = Vec::new();
         for (i, item) in list.iter().enumerate() {
@@ -410,7 +410,7 @@ impl<'a> FileParser<'a> {
             let name = t.get("name").and_then(Value::as_str).ok_or_else(|| self.err("case", i, "name", format!("case {} needs a name", i + 1)))?.to_string();
             let case_mode = match t.get("mode") {
                 None => mode,
-                Some(m) => m.as_str().and_then(Mode::from_name).ok_or_else(|| self.err("case", i, "mode", "must be interior or prism".into()))?,
+                Some(m) => m.as_str().and_then(Mode::from_name).ok_or_else(|| self.err("case", i, "mode", "must be interior or prism"))?,
             };
             let mut set = Vec::new();
             for (k, v) in t.iter().filter(|(k, _)| k.as_str() != "name" && k.as_str() != "mode") {
@@ -428,7 +428,7 @@ impl<'a> FileParser<'a> {
 
     fn plots(&self, outputs: &Table) -> Result<Vec<PlotSpec>> {
         let Some(p) = outputs.get("plot") else { return Ok(Vec::new()) };
-        let bad = || self.err("outputs", 0, "plot", "write plots as [[outputs.plot]] tables".into());
+        let bad = || self.err("outputs", 0, "plot", "write plots as [[outputs.plot]] tables");
         let Value::Array(list) = p else { return Err(bad()) };
         list.iter().enumerate().map(|(i, item)| if let Value::Table(t) = item { self.plot(i, t) } else { Err(bad()) }).collect()
     }

@@ -80,7 +80,7 @@ impl SceneFile {
                 None => {}
                 Some(Value::Table(t)) => {
                     for (k, v) in t {
-                        let v = mode.check(k, v, base).map_err(|m| err(section, k, m))?;
+                        let v = mode.check(k, v, base).map_err(|m| err(section, k, m.to_string()))?;
                         params.retain(|(p, _)| p != k);
                         params.push((k.clone(), v));
                         from.retain(|(p, _)| p != k);
@@ -100,7 +100,7 @@ impl SceneFile {
                 Some(v) => {
                     let mut close = super::close_up::parse(v).map_err(|m| anyhow!("{file}:{}: `close_up`: {m}", line_of(text, "", 0, "close_up")))?;
                     for (k, v) in &mut close.params {
-                        *v = mode.check(k, v, base).map_err(|m| err("close_up.params", k, m))?;
+                        *v = mode.check(k, v, base).map_err(|m| err("close_up.params", k, m.to_string()))?;
                     }
                     Some(close)
                 }
@@ -193,7 +193,10 @@ impl SceneFile {
         for o in overrides {
             let (k, v) = o.split_once('=').ok_or_else(|| anyhow!("--set: `{o}` is not KEY=VALUE"))?;
             let k = k.trim().replace('-', "_");
-            let value = self.mode.parse_text(&k, v).map_err(|e| anyhow!("--set {e}"))?;
+            let value = self.mode.parse_text(&k, v).map_err(|e| match e {
+                crate::params::KeyError::Unknown { .. } => anyhow!("--set `{k}`: {e}"),
+                crate::params::KeyError::Value(_) => anyhow!("--set {k}: {e}"),
+            })?;
             self.params.retain(|(p, _)| *p != k);
             self.params.push((k, value.to_toml()));
         }

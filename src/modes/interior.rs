@@ -27,7 +27,7 @@ impl ModeKind for Interior {
     }
 
     fn validate(cfg: &InteriorConfig) -> Result<()> {
-        params::check_threads(cfg.threads).map_err(anyhow::Error::msg)
+        params::check_threads(cfg.threads).map_err(|e| anyhow::anyhow!("--threads: {e}"))
     }
 
     fn mesh_file(cfg: &InteriorConfig, key: &str) -> Option<PathBuf> {

@@ -203,7 +203,7 @@ pub fn render_world(cfg: &SpectralConfig, scene: &crate::world::World, progress:
     } else {
         format!("--photons {} and --size {}x{}", cfg.photons, cfg.scene.width, cfg.scene.height)
     };
-    crate::data::check_memory(need, &what).map_err(anyhow::Error::msg)?;
+    crate::data::check_memory(need, &what)?;
     // Progressive passes start from one pixel's footprint (the radius
     // then shrinks pass by pass); one pass gathers over two.
     let radius = cfg.radius.unwrap_or_else(|| default_radius(scene) / if cfg.passes > 1 { 2.0 } else { 1.0 });
