@@ -76,7 +76,7 @@ fn run_of(cfg: &InteriorConfig, mut r: RunReport) -> Run {
 
 /// Checks the timing CSV a run would append to, before any work.
 pub fn check_timing_csv(path: &Path) -> Result<()> {
-    crate::timing::check_header::<TimingRow>(path)
+    Ok(crate::timing::check_header::<TimingRow>(path)?)
 }
 
 /// A run of the command line: renders `cfg`, writes its image to `cfg.out`

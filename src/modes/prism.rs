@@ -27,7 +27,7 @@ impl ModeKind for Prism {
 
     fn validate(cfg: &SpectralConfig) -> Result<()> {
         params::check_threads(cfg.threads).map_err(|e| anyhow::anyhow!("--threads: {e}"))?;
-        cfg.validate()
+        Ok(cfg.validate()?)
     }
 
     fn mesh_file(cfg: &SpectralConfig, key: &str) -> Option<PathBuf> {

@@ -24,7 +24,7 @@ use crate::progress::Progress;
 use crate::scenes::SceneOptions;
 use crate::spectrum::cie::GamutMap;
 use crate::timing::Real;
-use anyhow::{bail, Result};
+use anyhow::Result;
 use options::{EyeMode, RenderOptions};
 use render::SpectralRender;
 use std::path::PathBuf;
@@ -99,19 +99,32 @@ impl SpectralConfig {
 
     /// Rejects impossible combinations, naming the flags. (Each value's
     /// own range is checked where it is parsed, by `params::prism`.)
-    pub fn validate(&self) -> Result<()> {
+    pub fn validate(&self) -> std::result::Result<(), ConfigError> {
         if self.passes > 1 && self.k.is_some() {
-            bail!("--passes needs a gather radius: progressive photon mapping shrinks it, and --k has none");
+            return Err(ConfigError::PassesWithK);
         }
         match self.k {
-            Some(k) if k < 4 => bail!(
-                "--k {k}: below 4 the k-nearest estimate (k - 1) / (pi r^2) counts too few photons (at --k 2 one, with infinite variance: it reads about 3 % low); use --k 4 or more"
-            ),
-            Some(_) if self.map != MapKind::Kdtree => bail!("--k needs --map kdtree: the buffer and the film hold texels and pixels, not photons"),
-            Some(_) if self.radius.is_some() => bail!("--k and --radius exclude each other"),
+            Some(k) if k < 4 => Err(ConfigError::FewNeighbours(k)),
+            Some(_) if self.map != MapKind::Kdtree => Err(ConfigError::KWithoutKdtree),
+            Some(_) if self.radius.is_some() => Err(ConfigError::KWithRadius),
             _ => Ok(()),
         }
     }
+}
+
+/// A combination of spectral parameters that makes no run.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ConfigError {
+    #[error("--passes needs a gather radius: progressive photon mapping shrinks it, and --k has none")]
+    PassesWithK,
+    #[error(
+        "--k {0}: below 4 the k-nearest estimate (k - 1) / (pi r^2) counts too few photons (at --k 2 one, with infinite variance: it reads about 3 % low); use --k 4 or more"
+    )]
+    FewNeighbours(usize),
+    #[error("--k needs --map kdtree: the buffer and the film hold texels and pixels, not photons")]
+    KWithoutKdtree,
+    #[error("--k and --radius exclude each other")]
+    KWithRadius,
 }
 
 /// Everything a run measured.
