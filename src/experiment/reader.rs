@@ -37,39 +37,13 @@
 //! Parameter names are the mode's flag names with `_` for `-`. Errors name
 //! the key and its line.
 
+use super::key_lines::KeyLines;
 use super::spec::{fnv1a, Case, Experiment, PlotKind, PlotSpec, MAX_RUNS};
 use crate::modes::Mode;
 use crate::names::Named;
 use anyhow::{anyhow, Result};
 use std::path::Path;
 use toml::{Table, Value};
-
-/// The line of `key` inside `[section]` (the `nth` such section for arrays
-/// of tables); 1 when it cannot be found.
-pub fn line_of(text: &str, section: &str, nth: usize, key: &str) -> usize {
-    let mut current = String::new();
-    let mut seen = 0usize;
-    for (i, raw) in text.lines().enumerate() {
-        let l = raw.trim();
-        if l.starts_with('[') {
-            current = l.trim_matches(|c| c == '[' || c == ']').trim().to_string();
-            if current == section {
-                seen += 1;
-            }
-            continue;
-        }
-        let in_section = current == section && (seen == nth + 1 || section.is_empty());
-        if in_section || (section.is_empty() && current.is_empty()) {
-            if let Some((k, _)) = l.split_once('=') {
-                if k.trim().trim_matches('"') == key {
-                    return i + 1;
-                }
-            }
-        }
-    }
-    // An inline table (`fixed = { ... }`) or a dotted key: search anywhere.
-    text.lines().position(|l| l.contains(key)).map_or(1, |i| i + 1)
-}
 
 /// Parses TOML text; a syntax error names `file` and its line.
 pub fn parse_toml(text: &str, file: &str) -> Result<Table> {
@@ -272,7 +246,7 @@ const PLOT_KEYS: [&str; 13] = ["x", "y", "series", "log_x", "log_y", "fit", "tit
 /// An experiment file being read: its text (for line numbers), its table,
 /// and the [quick] overrides in force.
 struct FileParser<'a> {
-    text: &'a str,
+    keys: KeyLines<'a>,
     file: &'a str,
     root: Table,
     quick: Table,
@@ -281,7 +255,7 @@ struct FileParser<'a> {
 impl<'a> FileParser<'a> {
     fn new(text: &'a str, file: &'a str, quick: bool) -> Result<FileParser<'a>> {
         let root = parse_toml(text, file)?;
-        let mut p = FileParser { text, file, root, quick: Table::new() };
+        let mut p = FileParser { keys: KeyLines::new(text), file, root, quick: Table::new() };
         for k in p.root.keys() {
             if !TOP_KEYS.contains(&k.as_str()) {
                 return Err(p.err("", 0, k, format!("unknown key; expected {}", TOP_KEYS.join(", "))));
@@ -305,9 +279,12 @@ impl<'a> FileParser<'a> {
         Path::new(self.file).parent().unwrap_or(Path::new(""))
     }
 
-    /// An error at `key` of the `nth` `[section]`, with its line.
+    /// An error at `key` of the `nth` `[section]`, with its line (under
+    /// --quick, the line of `[quick.section]`'s key where that overrides it).
     fn err(&self, section: &str, nth: usize, key: &str, msg: impl std::fmt::Display) -> anyhow::Error {
-        anyhow!("{}:{}: `{key}`: {msg}", self.file, line_of(self.text, section, nth, key))
+        let quick = format!("quick.{section}");
+        let section = if self.quick.contains_key(section) && self.keys.offset(&quick, nth, key).is_some() { quick.as_str() } else { section };
+        anyhow!("{}:{}: `{key}`: {msg}", self.file, self.keys.line(section, nth, key))
     }
 
     fn table(&self, key: &str) -> Result<Table> {
@@ -384,7 +361,7 @@ impl<'a> FileParser<'a> {
     /// The sweep axes, in the file's order (toml::Table sorts by key).
     fn sweep(&self, mode: Mode) -> Result<Vec<(String, Vec<Value>)>> {
         let mut axes: Vec<(String, Value)> = self.merged("sweep")?.into_iter().collect();
-        axes.sort_by_key(|(k, _)| self.text.find(&format!("\n{k}")).or_else(|| self.text.find(k.as_str())).unwrap_or(usize::MAX));
+        axes.sort_by_key(|(k, _)| self.keys.offset("sweep", 0, k).or_else(|| self.keys.offset("quick.sweep", 0, k)).unwrap_or(usize::MAX));
         let mut sweep = Vec::new();
         for (k, v) in axes {
             let values = match &v {

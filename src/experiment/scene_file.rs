@@ -22,7 +22,8 @@
 //! at = [0.8, 0.2]
 //! ```
 
-use super::reader::{line_of, parse_toml};
+use super::key_lines::KeyLines;
+use super::reader::parse_toml;
 use crate::modes::Mode;
 use crate::names::Named;
 use crate::progress::Progress;
@@ -52,7 +53,8 @@ impl SceneFile {
         let root = parse_toml(text, file)?;
         // Paths in the file are resolved from its folder.
         let base = Path::new(file).parent().unwrap_or(Path::new(""));
-        let err = |section: &str, key: &str, msg: String| anyhow!("{file}:{}: `{key}`: {msg}", line_of(text, section, 0, key));
+        let keys = KeyLines::new(text);
+        let err = |section: &str, key: &str, msg: String| anyhow!("{file}:{}: `{key}`: {msg}", keys.line(section, 0, key));
         for k in root.keys() {
             if !["id", "report", "caption", "mode", "params", "quick", "close_up", "label"].contains(&k.as_str()) {
                 return Err(err("", k, "unknown key; expected id, report, caption, mode, params, quick, close_up or label".into()));
@@ -98,7 +100,7 @@ impl SceneFile {
             params,
             close_up: match root.get("close_up") {
                 Some(v) => {
-                    let mut close = super::close_up::parse(v).map_err(|m| anyhow!("{file}:{}: `close_up`: {m}", line_of(text, "", 0, "close_up")))?;
+                    let mut close = super::close_up::parse(v).map_err(|m| anyhow!("{file}:{}: `close_up`: {m}", keys.line("", 0, "close_up")))?;
                     for (k, v) in &mut close.params {
                         *v = mode.check(k, v, base).map_err(|m| err("close_up.params", k, m.to_string()))?;
                     }
@@ -107,7 +109,7 @@ impl SceneFile {
                 None => None,
             },
             labels: match root.get("label") {
-                Some(v) => super::labels::parse(v).map_err(|m| anyhow!("{file}:{}: `label`: {m}", line_of(text, "", 0, "label")))?,
+                Some(v) => super::labels::parse(v).map_err(|m| anyhow!("{file}:{}: `label`: {m}", keys.line("", 0, "label")))?,
                 None => Vec::new(),
             },
         };
