@@ -125,8 +125,17 @@ pub struct Grid {
     classes: Vec<std::sync::atomic::AtomicI64>,
 }
 
+/// Map slot `slot` of `scene` at texels `texel` metres wide (times the
+/// slot's `slot_scale`): its size in metres and its texels across and up
+/// (`map::texels`); `None` where its face is no parallelogram.
+pub fn slot_texels(scene: &World, slot: usize, texel: f64) -> Option<(DVec2, [usize; 2])> {
+    let (_, eu, ev) = scene.faces[scene.slot_face(slot)].frame?;
+    let size = DVec2::new(eu.length(), ev.length());
+    Some((size, super::map::texels(size, texel * scene.slot_scale(slot))))
+}
+
 impl Grids {
-    /// Texels `texel` metres wide (at most 4096 a side) on every matte
+    /// Texels `texel` metres wide (`slot_texels`) on every matte
     /// surface of the scene (times `slot_scale` for the second set of split
     /// maps), for at most `max_flux` of XYZ flux in all; none for the
     /// slots `unused` names (photons landing there are not kept, and their
@@ -136,16 +145,12 @@ impl Grids {
     pub fn new(scene: &World, texel: f64, max_flux: f64, spectral: bool, unused: impl Fn(usize) -> bool) -> Grids {
         let sizes: Vec<(DVec2, usize, usize)> = (0..scene.map_slots())
             .map(|slot| {
-                let f = scene.slot_face(slot);
-                let texel = texel * scene.slot_scale(slot);
-                let (_, eu, ev) = scene.faces[f].frame.expect("matte surfaces are parallelograms");
-                let size = DVec2::new(eu.length(), ev.length());
+                let (size, [nu, nv]) = slot_texels(scene, slot, texel).expect("matte surfaces are parallelograms");
                 if unused(slot) {
-                    return (size, 0, 0);
+                    (size, 0, 0)
+                } else {
+                    (size, nu, nv)
                 }
-                let nu = ((size.x / texel).ceil() as usize).clamp(1, 4096);
-                let nv = ((size.y / texel).ceil() as usize).clamp(1, 4096);
-                (size, nu, nv)
             })
             .collect();
         let copies = sum_copies(sizes.iter().map(|&(_, nu, nv)| (nu * nv) as u64).sum(), rayon::current_num_threads());
@@ -646,6 +651,28 @@ mod tests {
     use super::*;
     use crate::spectrum::Spectrum;
     use crate::world::{Face, Light, Medium};
+
+    /// The light pass's grids, the buffer maps built from photons and the
+    /// memory check (`slot_texels`) size a surface's texels alike: a
+    /// 4096-a-side cap, a texel a side at least, whole texels rounded up.
+    #[test]
+    fn grids_and_maps_share_one_texel_sizing() {
+        let scene = crate::scenes::build(&crate::scenes::SceneOptions::new(crate::scenes::SceneKind::CornellPointlight)).unwrap();
+        for texel in [0.003, 0.05, 10.0] {
+            let grids = Grids::new(&scene, texel, 1.0, false, |_| false);
+            assert_eq!(grids.grids.len(), scene.map_slots());
+            for (slot, g) in grids.grids.iter().enumerate() {
+                let (size, [nu, nv]) = slot_texels(&scene, slot, texel).unwrap();
+                assert_eq!((g.size, g.nu, g.nv), (size, nu, nv), "slot {slot} at {texel} m");
+                assert!((1..=crate::photon::map::MAX_TEXELS).contains(&nu) && (1..=crate::photon::map::MAX_TEXELS).contains(&nv));
+                let built = crate::photon::map::SurfaceMap::build(crate::photon::map::MapKind::Buffer, size, Vec::new(), texel * scene.slot_scale(slot));
+                let crate::photon::map::SurfaceMap::Buffer { nu: bu, nv: bv, .. } = built else { panic!("a buffer map") };
+                assert_eq!((bu, bv), (nu, nv));
+            }
+        }
+        assert_eq!(crate::photon::map::texels(glam::DVec2::new(1.0, 0.25), 0.1), [10, 3]);
+        assert_eq!(crate::photon::map::texels(glam::DVec2::new(1.0, 1e-9), 1e-5), [4096, 1]);
+    }
 
     /// Wavelengths drawn by importance (spectrum x colour weight) and
     /// weighted back carry, on average, exactly the light's XYZ: for D65,
