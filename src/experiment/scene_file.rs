@@ -27,6 +27,7 @@ use super::reader::parse_toml;
 use crate::modes::Mode;
 use crate::names::Named;
 use crate::progress::Progress;
+use crate::scenes::SceneError;
 use anyhow::{anyhow, Result};
 use std::path::Path;
 use toml::Value;
@@ -92,7 +93,7 @@ impl SceneFile {
                 Some(_) => return Err(err("", section, "must be a table".into())),
             }
         }
-        let file = SceneFile {
+        let scene = SceneFile {
             id,
             report: root.get("report").and_then(Value::as_str).unwrap_or_default().into(),
             caption: root.get("caption").and_then(Value::as_str).unwrap_or_default().into(),
@@ -113,11 +114,21 @@ impl SceneFile {
                 None => Vec::new(),
             },
         };
-        if let Some((key, why)) = file.ignored()? {
+        if let Some((key, why)) = scene.ignored()? {
             let section = from.iter().find(|(k, _)| *k == key).map_or("params", |(_, s)| *s);
             return Err(err(section, &key, why));
         }
-        Ok(file)
+        // A value the scene cannot use (haze on a scene with no beam, an
+        // incidence the prism reflects totally): refused now, on its line.
+        match mode.scene_error(&scene.params) {
+            None => {}
+            Some(SceneError::Param { key, why }) => match from.iter().find(|(k, _)| mode.canonical(k) == Some(key)) {
+                Some((k, section)) => return Err(err(section, k, why)),
+                None => return Err(anyhow!("{file}: `{key}`: {why}")),
+            },
+            Some(e) => return Err(anyhow!("{file}: {e}")),
+        }
+        Ok(scene)
     }
 
     /// A parameter the run would ignore (the scene has no use for it), and

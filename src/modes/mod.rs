@@ -190,6 +190,18 @@ impl Mode {
         })
     }
 
+    /// Why the scene of the run `given` describes cannot be built (the
+    /// prism mode's scenes; the interior mode's mesh is checked where it is
+    /// named), so a file can refuse it on the key's line before any work.
+    /// `None` where it builds, or where the configuration itself is
+    /// refused, which the run reports.
+    pub fn scene_error(self, given: &[(String, Value)]) -> Option<crate::scenes::SceneError> {
+        match self {
+            Mode::Prism => crate::scenes::build(&config::<prism::Prism>(given).ok()?.scene).err(),
+            Mode::Interior => None,
+        }
+    }
+
     /// The image formats the mode writes.
     pub fn formats(self) -> &'static [ImageFormat] {
         with_mode!(self, M => M::FORMATS)
