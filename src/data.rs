@@ -101,35 +101,52 @@ fn cgroup_room() -> Option<(u64, String)> {
     best
 }
 
+/// A run that would need more memory than the machine has free.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("{what} would need about {} of memory; {}", size_text(*.need), .limit.replace("{}", &size_text(*.free)))]
+pub struct MemoryError {
+    /// What takes the memory, as a flag or a file's key would name it.
+    pub what: String,
+    pub need: u64,
+    pub free: u64,
+    /// Which limit, with `{}` where the free bytes go.
+    pub limit: String,
+}
+
+/// Bytes as MiB or, from 100 MiB, GiB, to one decimal.
+fn size_text(b: u64) -> String {
+    if b >= 100 << 20 {
+        format!("{:.1} GiB", b as f64 / (1u64 << 30) as f64)
+    } else {
+        format!("{:.1} MiB", b as f64 / (1u64 << 20) as f64)
+    }
+}
+
 /// Refuses, before any work, a run whose estimated `need` (bytes) is more
 /// than the machine has free; `what` says what takes the memory, as a
 /// flag would name it.
-pub fn check_memory(need: u64, what: &str) -> Result<(), String> {
+pub fn check_memory(need: u64, what: &str) -> Result<(), MemoryError> {
     check_memory_against(need, available_memory(), what)
 }
 
-fn check_memory_against(need: u64, free: Option<(u64, String)>, what: &str) -> Result<(), String> {
+fn check_memory_against(need: u64, free: Option<(u64, String)>, what: &str) -> Result<(), MemoryError> {
     match free {
-        Some((free, limit)) if need > free => {
-            let size = |b: u64| {
-                if b >= 100 << 20 {
-                    format!("{:.1} GiB", b as f64 / (1u64 << 30) as f64)
-                } else {
-                    format!("{:.1} MiB", b as f64 / (1u64 << 20) as f64)
-                }
-            };
-            Err(format!("{what} would need about {} of memory; {}", size(need), limit.replace("{}", &size(free))))
-        }
+        Some((free, limit)) if need > free => Err(MemoryError { what: what.to_string(), need, free, limit }),
         _ => Ok(()),
     }
 }
 
+/// An output path where something other than a regular file stands.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("{} is not a regular file (a folder, link, device or FIFO); refract replaces only regular files", .0.display())]
+pub struct NotRegularFile(pub std::path::PathBuf);
+
 /// Checks, before any work, that an output `path` is absent or a regular
 /// file: an output replaces only regular files, never a folder, a link, a
 /// device or a FIFO (the outputs' side of `read_input`).
-pub fn check_regular(path: &std::path::Path) -> Result<(), String> {
+pub fn check_regular(path: &std::path::Path) -> Result<(), NotRegularFile> {
     if std::fs::symlink_metadata(path).is_ok_and(|m| !m.is_file()) {
-        return Err(format!("{} is not a regular file (a folder, link, device or FIFO); refract replaces only regular files", path.display()));
+        return Err(NotRegularFile(path.to_path_buf()));
     }
     Ok(())
 }
@@ -230,8 +247,8 @@ mod memory_tests {
     fn a_run_bigger_than_free_memory_is_refused_by_name() {
         let free = |b: u64| Some((b, "this machine has {} free (MemAvailable)".to_string()));
         assert_eq!(
-            check_memory_against(40 << 30, free(20 << 30), "--photons 2000000000"),
-            Err("--photons 2000000000 would need about 40.0 GiB of memory; this machine has 20.0 GiB free (MemAvailable)".into())
+            check_memory_against(40 << 30, free(20 << 30), "--photons 2000000000").unwrap_err().to_string(),
+            "--photons 2000000000 would need about 40.0 GiB of memory; this machine has 20.0 GiB free (MemAvailable)"
         );
         assert!(check_memory_against(1 << 30, free(20 << 30), "x").is_ok());
         assert!(check_memory_against(u64::MAX, None, "x").is_ok());

@@ -3,10 +3,37 @@
 //! row flushed, so the rows of an interrupted run survive. And the calling
 //! thread's CPU time, for per-thread rates.
 
-use anyhow::{bail, Context, Result};
 use serde::Serialize;
 use std::io::{Read, Seek, Write};
-use std::path::Path;
+use std::path::{Path, PathBuf};
+
+/// Why a timing file is refused or could not be written.
+#[derive(Debug, thiserror::Error)]
+pub enum TimingError {
+    #[error(transparent)]
+    NotRegular(#[from] crate::data::NotRegularFile),
+    #[error("folder {} does not exist", .0.display())]
+    NoFolder(PathBuf),
+    #[error("{}: its columns `{found}` are not this mode's `{header}`; use another file", .path.display())]
+    Columns { path: PathBuf, found: String, header: String },
+    #[error("cannot {what} timing file {}: {source}", .path.display())]
+    Io { what: &'static str, path: PathBuf, source: std::io::Error },
+    #[error("a timing row: {0}")]
+    Csv(#[from] csv::Error),
+}
+
+type Result<T> = std::result::Result<T, TimingError>;
+
+/// An I/O error on the timing file at `path` while doing `what`.
+fn io(what: &'static str, path: &Path) -> impl FnOnce(std::io::Error) -> TimingError {
+    let path = path.to_path_buf();
+    move |source| TimingError::Io { what, path, source }
+}
+
+/// A finished CSV writer's bytes.
+fn bytes_of(w: csv::Writer<Vec<u8>>) -> Result<Vec<u8>> {
+    w.into_inner().map_err(|e| TimingError::Csv(e.into_error().into()))
+}
 
 /// A measured number in a CSV cell: six decimals, and an empty cell (no
 /// value) for a NaN or an infinity, which never reach a CSV.
@@ -14,7 +41,7 @@ use std::path::Path;
 pub struct Real(pub f64);
 
 impl Serialize for Real {
-    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
         s.serialize_str(&cell(self.0))
     }
 }
@@ -23,7 +50,7 @@ impl Serialize for Real {
 pub fn header_of<T: Serialize + Default>() -> Result<String> {
     let mut w = csv::Writer::from_writer(Vec::new());
     w.serialize(T::default())?;
-    let bytes = w.into_inner().map_err(|e| anyhow::anyhow!("{e}"))?;
+    let bytes = bytes_of(w)?;
     Ok(String::from_utf8_lossy(&bytes).lines().next().unwrap_or_default().to_string())
 }
 
@@ -42,9 +69,9 @@ pub fn cell(v: f64) -> String {
 /// exists and is absent, or a regular file that is empty or has exactly
 /// the columns of record type `T` (a FIFO or device is never read).
 pub fn check_header<T: Serialize + Default>(path: &Path) -> Result<()> {
-    crate::data::check_regular(path).map_err(anyhow::Error::msg)?;
+    crate::data::check_regular(path)?;
     if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty() && !d.is_dir()) {
-        bail!("folder {} does not exist", dir.display());
+        return Err(TimingError::NoFolder(dir.to_path_buf()));
     }
     check_line(path, &header_of::<T>()?)
 }
@@ -54,12 +81,12 @@ fn check_line(path: &Path, header: &str) -> Result<()> {
         Ok(text) => {
             let first = text.lines().next().unwrap_or("");
             if !text.trim().is_empty() && first != header {
-                bail!("{}: its columns `{first}` are not this mode's `{header}`; use another file", path.display());
+                return Err(TimingError::Columns { path: path.to_path_buf(), found: first.to_string(), header: header.to_string() });
             }
             Ok(())
         }
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(()),
-        Err(e) => Err(e).with_context(|| format!("cannot read timing file {}", path.display())),
+        Err(e) => Err(io("read", path)(e)),
     }
 }
 
@@ -67,20 +94,19 @@ fn check_line(path: &Path, header: &str) -> Result<()> {
 /// empty); refuses a file whose header differs.
 pub fn append<T: Serialize + Default>(path: &Path, record: &T) -> Result<()> {
     let header = header_of::<T>()?;
-    let mut file =
-        std::fs::OpenOptions::new().create(true).read(true).append(true).open(path).with_context(|| format!("cannot open timing file {}", path.display()))?;
+    let mut file = std::fs::OpenOptions::new().create(true).read(true).append(true).open(path).map_err(io("open", path))?;
     let mut existing = String::new();
-    file.read_to_string(&mut existing).with_context(|| format!("cannot read timing file {}", path.display()))?;
+    file.read_to_string(&mut existing).map_err(io("read", path))?;
     check_line(path, &header)?;
     let mut w = csv::WriterBuilder::new().has_headers(existing.trim().is_empty()).from_writer(Vec::new());
     w.serialize(record)?;
-    let mut bytes = w.into_inner().map_err(|e| anyhow::anyhow!("{e}"))?;
+    let mut bytes = bytes_of(w)?;
     if !existing.is_empty() && !existing.ends_with('\n') {
         bytes.insert(0, b'\n');
     }
-    file.seek(std::io::SeekFrom::End(0))?;
-    file.write_all(&bytes)?;
-    file.flush()?;
+    file.seek(std::io::SeekFrom::End(0)).map_err(io("write", path))?;
+    file.write_all(&bytes).map_err(io("write", path))?;
+    file.flush().map_err(io("write", path))?;
     Ok(())
 }
 

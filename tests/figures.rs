@@ -66,6 +66,13 @@ fn render_takes_a_scene_file_and_names_a_bad_line() {
     std::fs::write(&bad, "id = \"b\"\nmode = \"interior\"\n[params]\nseed = 3\n").unwrap();
     let o = run(&["render", bad.to_str().unwrap()], "", dir.path());
     assert_clean_failure(&o, "bad.toml:4: `seed`: one sample a pixel looks through its centre");
+    // A value the scene builder refuses names the key's line, not a flag.
+    std::fs::write(&bad, "id = \"b\"\nmode = \"prism\"\n[params]\nscene = \"sphere-metal\"\n[quick]\nhaze = 0.2\n").unwrap();
+    let o = run(&["render", bad.to_str().unwrap(), "--quick"], "", dir.path());
+    assert_clean_failure(&o, "bad.toml:6: `haze`: the sphere-metal scene has no collimated beam, and haze shows only beams");
+    std::fs::write(&bad, "id = \"b\"\nmode = \"prism\"\n[params]\nscene = \"single-prism\"\nincidence = 10\n").unwrap();
+    let o = run(&["render", bad.to_str().unwrap()], "", dir.path());
+    assert_clean_failure(&o, "bad.toml:5: `incidence`: at 10.000 degrees the d line is totally reflected inside the prism");
 }
 
 /// `render --set KEY=VALUE` overrides a scene file's parameters through the

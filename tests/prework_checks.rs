@@ -104,6 +104,12 @@ fn experiment_files_are_checked_whole() {
         assert!(!dir.path().join("o").exists(), "{needle}: nothing written");
     };
     refused("[quick]\nfixed = { size = [-1, 8] }\n", "width and height must be whole numbers from 1 to 16384 (in the file's [quick] version)");
+    // The line of the key itself, from the parser's spans: not the comment
+    // that names it first, nor [fixed], which [quick] overrides.
+    refused(
+        "[quick]\n# opacity as the report has it\nfixed = { trace = 1,\n  opacity = 120 }\n",
+        "e.toml:9: `opacity`: 120 is not between 0 and 100 (in the file's [quick] version)",
+    );
     refused("[[case]]\nname = \"a\"\nior = 1.2\n[[case]]\nname = \"a\"\nior = 1.4\n", "e.toml:10: `name`: `a` is also case 1's name; each case needs its own");
     refused(
         "[sweep]\ntrace = [0, 1]\n[[outputs.plot]]\nx = \"param_trace\"\ny = \"rays\"\nfile = \"p\"\n[[outputs.plot]]\nx = \"param_trace\"\ny = \"render_s\"\nfile = \"p\"\n",

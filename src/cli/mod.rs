@@ -558,7 +558,7 @@ fn run_interior(args: InteriorArgs) -> Result<()> {
         known.max_trace = known.max_trace.max(1);
     }
     args.params.check_used(&known).map_err(anyhow::Error::msg)?;
-    crate::params::check_threads(args.params.config().threads).map_err(anyhow::Error::msg)?;
+    crate::params::check_threads(args.params.config().threads).map_err(|e| anyhow::anyhow!("--threads: {e}"))?;
     if let Some(path) = &args.timing_csv {
         modes::interior::check_timing_csv(path).context("--timing-csv")?;
     }

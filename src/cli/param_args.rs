@@ -191,10 +191,11 @@ struct Choices<F> {
     parse: F,
 }
 
-impl<T, F> TypedValueParser for Choices<F>
+impl<T, E, F> TypedValueParser for Choices<F>
 where
     T: Clone + Send + Sync + 'static,
-    F: Fn(&str) -> Result<T, String> + Clone + Send + Sync + 'static,
+    E: Into<Box<dyn std::error::Error + Send + Sync + 'static>>,
+    F: Fn(&str) -> Result<T, E> + Clone + Send + Sync + 'static,
 {
     type Value = T;
 

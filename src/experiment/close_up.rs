@@ -31,36 +31,58 @@ pub struct CloseUp {
     pub label: Option<String>,
 }
 
+/// Why a `[close_up]` table is refused, naming the key (the caller adds
+/// the file and line).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum CloseUpError {
+    #[error("must be a table ([close_up])")]
+    NotTable,
+    #[error("unknown key `{0}`; expected at, width, aspect, label and params")]
+    UnknownKey(String),
+    #[error("`at` must be two fractions of the figure, each from 0 to under 1")]
+    AtRange,
+    #[error("`at` must be [x, y], the top-left corner as fractions of the figure")]
+    At,
+    #[error("`width` must be a fraction of the figure's width above 0.05 that keeps the close-up inside it")]
+    Width,
+    #[error("`aspect` (width over height) must be from 0.2 to 10")]
+    Aspect,
+    #[error("`label` must be a string of 1 to 40 characters")]
+    Label,
+    #[error("`params` must be a table of what differs from the figure ([close_up.params]), not empty")]
+    Params,
+}
+
 /// Reads a scene file's `[close_up]` table; the error names the key.
-pub fn parse(v: &Value) -> Result<CloseUp, String> {
-    let Value::Table(t) = v else { return Err("must be a table ([close_up])".into()) };
+pub fn parse(v: &Value) -> Result<CloseUp, CloseUpError> {
+    let Value::Table(t) = v else { return Err(CloseUpError::NotTable) };
     if let Some(k) = t.keys().find(|k| !["at", "width", "aspect", "label", "params"].contains(&k.as_str())) {
-        return Err(format!("unknown key `{k}`; expected at, width, aspect, label and params"));
+        return Err(CloseUpError::UnknownKey(k.clone()));
     }
     let at = match t.get("at") {
         Some(Value::Array(a)) if a.len() == 2 => match (number(a.first()), number(a.get(1))) {
             (Some(x), Some(y)) if (0.0..1.0).contains(&x) && (0.0..1.0).contains(&y) => [x, y],
-            _ => return Err("`at` must be two fractions of the figure, each from 0 to under 1".into()),
+            _ => return Err(CloseUpError::AtRange),
         },
-        _ => return Err("`at` must be [x, y], the top-left corner as fractions of the figure".into()),
+        _ => return Err(CloseUpError::At),
     };
     let width = match number(t.get("width")) {
         Some(w) if w > 0.05 && at[0] + w <= 1.0 => w,
-        _ => return Err("`width` must be a fraction of the figure's width above 0.05 that keeps the close-up inside it".into()),
+        _ => return Err(CloseUpError::Width),
     };
     let aspect = match number(t.get("aspect")) {
         Some(a) if (0.2..=10.0).contains(&a) => a,
         None => 16.0 / 9.0,
-        _ => return Err("`aspect` (width over height) must be from 0.2 to 10".into()),
+        _ => return Err(CloseUpError::Aspect),
     };
     let label = match t.get("label") {
         None => None,
         Some(Value::String(s)) if !s.trim().is_empty() && s.len() <= 40 => Some(s.clone()),
-        _ => return Err("`label` must be a string of 1 to 40 characters".into()),
+        _ => return Err(CloseUpError::Label),
     };
     let params = match t.get("params") {
         Some(Value::Table(p)) if !p.is_empty() => p.iter().map(|(k, v)| (k.clone(), v.clone())).collect(),
-        _ => return Err("`params` must be a table of what differs from the figure ([close_up.params]), not empty".into()),
+        _ => return Err(CloseUpError::Params),
     };
     Ok(CloseUp { params, at, width, aspect, label })
 }
@@ -120,7 +142,7 @@ mod tests {
             ("[close_up]\nat = [0, 0]\nwidth = 0.4\nzoom = 2\n[close_up.params]\nview = \"screen\"", "unknown key `zoom`"),
         ] {
             let v: Value = toml::from_str(bad).unwrap();
-            let e = parse(&v["close_up"]).unwrap_err();
+            let e = parse(&v["close_up"]).unwrap_err().to_string();
             assert!(e.contains(says), "{bad}: {e}");
         }
     }

@@ -589,7 +589,7 @@ fn draw(id: &str, png: &Path, quick: bool, scenes: &Path) -> Result<String> {
 }
 
 fn amici() -> Result<crate::world::World> {
-    build(&SceneOptions::new(SceneKind::AmiciScreen))
+    Ok(build(&SceneOptions::new(SceneKind::AmiciScreen))?)
 }
 
 /// Prism faces in the z < 0 cap plane as segments (top view).

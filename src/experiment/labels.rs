@@ -27,29 +27,49 @@ pub(super) fn number(v: Option<&Value>) -> Option<f64> {
     v.and_then(|v| v.as_float().or_else(|| v.as_integer().map(|i| i as f64)))
 }
 
+/// Why a scene file's labels are refused (the entry, counted from 1, and
+/// its key), or could not be drawn.
+#[derive(Debug, thiserror::Error)]
+pub enum LabelError {
+    #[error("must be an array of tables ([[label]])")]
+    NotArray,
+    #[error("entry {0} must be a table with `text` and `at`")]
+    NotTable(usize),
+    #[error("entry {0}: unknown key `{1}`; expected text and at")]
+    UnknownKey(usize, String),
+    #[error("entry {0}: `text` must be a string of 1 to 40 characters")]
+    Text(usize),
+    #[error("entry {0}: `at` must be two fractions of the image, each from 0 to 1")]
+    AtRange(usize),
+    #[error("entry {0}: `at` must be [x, y], fractions of the width and height")]
+    At(usize),
+    #[error(transparent)]
+    Draw(#[from] DrawingAreaErrorKind<<BitMapBackend<'static> as plotters::backend::DrawingBackend>::ErrorType>),
+}
+
 /// Reads the `label` array of a scene file; the error names the entry and
 /// its key.
-pub fn parse(v: &Value) -> Result<Vec<Label>, String> {
-    let Value::Array(items) = v else { return Err("must be an array of tables ([[label]])".into()) };
+pub fn parse(v: &Value) -> Result<Vec<Label>, LabelError> {
+    let Value::Array(items) = v else { return Err(LabelError::NotArray) };
     items
         .iter()
         .enumerate()
         .map(|(i, item)| {
             let n = i + 1;
-            let Value::Table(t) = item else { return Err(format!("entry {n} must be a table with `text` and `at`")) };
+            let Value::Table(t) = item else { return Err(LabelError::NotTable(n)) };
             if let Some(k) = t.keys().find(|k| !["text", "at"].contains(&k.as_str())) {
-                return Err(format!("entry {n}: unknown key `{k}`; expected text and at"));
+                return Err(LabelError::UnknownKey(n, k.clone()));
             }
             let text = match t.get("text") {
                 Some(Value::String(s)) if !s.trim().is_empty() && s.len() <= 40 => s.clone(),
-                _ => return Err(format!("entry {n}: `text` must be a string of 1 to 40 characters")),
+                _ => return Err(LabelError::Text(n)),
             };
             let at = match t.get("at") {
                 Some(Value::Array(a)) if a.len() == 2 => match (number(a.first()), number(a.get(1))) {
                     (Some(x), Some(y)) if (0.0..=1.0).contains(&x) && (0.0..=1.0).contains(&y) => [x, y],
-                    _ => return Err(format!("entry {n}: `at` must be two fractions of the image, each from 0 to 1")),
+                    _ => return Err(LabelError::AtRange(n)),
                 },
-                _ => return Err(format!("entry {n}: `at` must be [x, y], fractions of the width and height")),
+                _ => return Err(LabelError::At(n)),
             };
             Ok(Label { text, at })
         })
@@ -57,7 +77,7 @@ pub fn parse(v: &Value) -> Result<Vec<Label>, String> {
 }
 
 /// Draws `labels` on the 8-bit RGB image `buf` (`w` x `h`).
-pub fn draw(buf: &mut [u8], w: usize, h: usize, labels: &[Label]) -> Result<(), String> {
+pub fn draw(buf: &mut [u8], w: usize, h: usize, labels: &[Label]) -> Result<(), LabelError> {
     register();
     let size = (h as f64 / 14.0).clamp(11.0, 22.0);
     let root = BitMapBackend::with_buffer(buf, (w as u32, h as u32)).into_drawing_area();
@@ -67,11 +87,11 @@ pub fn draw(buf: &mut [u8], w: usize, h: usize, labels: &[Label]) -> Result<(), 
         let style = |c: &RGBColor| ("sans-serif", size).into_font().color(c).pos(centre);
         // A dark outline one pixel wide, then the text.
         for (dx, dy) in [(-1, 0), (1, 0), (0, -1), (0, 1), (-1, -1), (1, 1), (-1, 1), (1, -1)] {
-            root.draw(&Text::new(l.text.as_str(), (x + dx, y + dy), style(&RGBColor(10, 10, 10)))).map_err(|e| e.to_string())?;
+            root.draw(&Text::new(l.text.as_str(), (x + dx, y + dy), style(&RGBColor(10, 10, 10))))?;
         }
-        root.draw(&Text::new(l.text.as_str(), (x, y), style(&RGBColor(235, 235, 235)))).map_err(|e| e.to_string())?;
+        root.draw(&Text::new(l.text.as_str(), (x, y), style(&RGBColor(235, 235, 235))))?;
     }
-    root.present().map_err(|e| e.to_string())
+    Ok(root.present()?)
 }
 
 #[cfg(test)]
@@ -89,7 +109,7 @@ mod tests {
             ("label = 3", "array of tables"),
         ] {
             let v: Value = toml::from_str(bad).unwrap();
-            let e = parse(&v["label"]).unwrap_err();
+            let e = parse(&v["label"]).unwrap_err().to_string();
             assert!(e.contains(says), "{bad}: {e}");
         }
     }

@@ -6,6 +6,7 @@ pub mod display;
 pub mod figures;
 pub mod grid;
 pub mod interrupt;
+pub mod key_lines;
 pub mod labels;
 pub mod lock;
 pub mod metrics;

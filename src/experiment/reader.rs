@@ -37,39 +37,13 @@
 //! Parameter names are the mode's flag names with `_` for `-`. Errors name
 //! the key and its line.
 
+use super::key_lines::KeyLines;
 use super::spec::{fnv1a, Case, Experiment, PlotKind, PlotSpec, MAX_RUNS};
 use crate::modes::Mode;
 use crate::names::Named;
 use anyhow::{anyhow, Result};
 use std::path::Path;
 use toml::{Table, Value};
-
-/// The line of `key` inside `[section]` (the `nth` such section for arrays
-/// of tables); 1 when it cannot be found.
-pub fn line_of(text: &str, section: &str, nth: usize, key: &str) -> usize {
-    let mut current = String::new();
-    let mut seen = 0usize;
-    for (i, raw) in text.lines().enumerate() {
-        let l = raw.trim();
-        if l.starts_with('[') {
-            current = l.trim_matches(|c| c == '[' || c == ']').trim().to_string();
-            if current == section {
-                seen += 1;
-            }
-            continue;
-        }
-        let in_section = current == section && (seen == nth + 1 || section.is_empty());
-        if in_section || (section.is_empty() && current.is_empty()) {
-            if let Some((k, _)) = l.split_once('=') {
-                if k.trim().trim_matches('"') == key {
-                    return i + 1;
-                }
-            }
-        }
-    }
-    // An inline table (`fixed = { ... }`) or a dotted key: search anywhere.
-    text.lines().position(|l| l.contains(key)).map_or(1, |i| i + 1)
-}
 
 /// Parses TOML text; a syntax error names `file` and its line.
 pub fn parse_toml(text: &str, file: &str) -> Result<Table> {
@@ -105,7 +79,7 @@ impl Experiment {
         let images = match outputs.get("images") {
             None => false,
             Some(Value::Boolean(b)) => *b,
-            Some(_) => return Err(p.err("outputs", 0, "images", "must be true or false".into())),
+            Some(_) => return Err(p.err("outputs", 0, "images", "must be true or false")),
         };
         let fingerprint = format!("{name}@{:016x}{}", fnv1a(text.as_bytes()), if quick { "-quick" } else { "" });
         let e = Experiment {
@@ -121,7 +95,7 @@ impl Experiment {
             reference: match p.root.get("reference") {
                 None => None,
                 Some(Value::Table(_)) => Some(p.checked(mode, "reference")?),
-                Some(_) => return Err(p.err("", 0, "reference", "must be a table".into())),
+                Some(_) => return Err(p.err("", 0, "reference", "must be a table")),
             },
             images,
             plots: p.plots(&outputs)?,
@@ -272,7 +246,7 @@ const PLOT_KEYS: [&str; 13] = ["x", "y", "series", "log_x", "log_y", "fit", "tit
 /// An experiment file being read: its text (for line numbers), its table,
 /// and the [quick] overrides in force.
 struct FileParser<'a> {
-    text: &'a str,
+    keys: KeyLines<'a>,
     file: &'a str,
     root: Table,
     quick: Table,
@@ -281,7 +255,7 @@ struct FileParser<'a> {
 impl<'a> FileParser<'a> {
     fn new(text: &'a str, file: &'a str, quick: bool) -> Result<FileParser<'a>> {
         let root = parse_toml(text, file)?;
-        let mut p = FileParser { text, file, root, quick: Table::new() };
+        let mut p = FileParser { keys: KeyLines::new(text), file, root, quick: Table::new() };
         for k in p.root.keys() {
             if !TOP_KEYS.contains(&k.as_str()) {
                 return Err(p.err("", 0, k, format!("unknown key; expected {}", TOP_KEYS.join(", "))));
@@ -291,7 +265,7 @@ impl<'a> FileParser<'a> {
         let quick_all = p.table("quick")?;
         for k in quick_all.keys() {
             if !["fixed", "sweep", "repeats", "min_time", "reference"].contains(&k.as_str()) {
-                return Err(p.err("quick", 0, k, "unknown key in [quick]; expected fixed, sweep, repeats, min_time or reference".into()));
+                return Err(p.err("quick", 0, k, "unknown key in [quick]; expected fixed, sweep, repeats, min_time or reference"));
             }
         }
         if quick {
@@ -305,16 +279,19 @@ impl<'a> FileParser<'a> {
         Path::new(self.file).parent().unwrap_or(Path::new(""))
     }
 
-    /// An error at `key` of the `nth` `[section]`, with its line.
-    fn err(&self, section: &str, nth: usize, key: &str, msg: String) -> anyhow::Error {
-        anyhow!("{}:{}: `{key}`: {msg}", self.file, line_of(self.text, section, nth, key))
+    /// An error at `key` of the `nth` `[section]`, with its line (under
+    /// --quick, the line of `[quick.section]`'s key where that overrides it).
+    fn err(&self, section: &str, nth: usize, key: &str, msg: impl std::fmt::Display) -> anyhow::Error {
+        let quick = format!("quick.{section}");
+        let section = if self.quick.contains_key(section) && self.keys.offset(&quick, nth, key).is_some() { quick.as_str() } else { section };
+        anyhow!("{}:{}: `{key}`: {msg}", self.file, self.keys.line(section, nth, key))
     }
 
     fn table(&self, key: &str) -> Result<Table> {
         match self.root.get(key) {
             None => Ok(Table::new()),
             Some(Value::Table(t)) => Ok(t.clone()),
-            Some(_) => Err(self.err("", 0, key, "must be a table".into())),
+            Some(_) => Err(self.err("", 0, key, "must be a table")),
         }
     }
 
@@ -322,7 +299,7 @@ impl<'a> FileParser<'a> {
     fn merged(&self, key: &str) -> Result<Table> {
         let mut t = self.table(key)?;
         if let Some(q) = self.quick.get(key) {
-            let Value::Table(q) = q else { return Err(self.err("quick", 0, key, "must be a table".into())) };
+            let Value::Table(q) = q else { return Err(self.err("quick", 0, key, "must be a table")) };
             t.extend(q.iter().map(|(k, v)| (k.clone(), v.clone())));
         }
         Ok(t)
@@ -339,7 +316,7 @@ impl<'a> FileParser<'a> {
     fn string(&self, key: &str) -> Result<String> {
         match self.root.get(key) {
             Some(Value::String(s)) => Ok(s.clone()),
-            Some(_) => Err(self.err("", 0, key, "must be a string".into())),
+            Some(_) => Err(self.err("", 0, key, "must be a string")),
             None => Err(anyhow!("{}: missing `{key}`", self.file)),
         }
     }
@@ -347,7 +324,7 @@ impl<'a> FileParser<'a> {
     fn name_and_mode(&self) -> Result<(String, Mode)> {
         let name = self.string("name")?;
         if name.is_empty() || !name.chars().all(|c| c.is_ascii_alphanumeric() || c == '-' || c == '_') {
-            return Err(self.err("", 0, "name", "use letters, digits, - and _ only (it names a folder)".into()));
+            return Err(self.err("", 0, "name", "use letters, digits, - and _ only (it names a folder)"));
         }
         let m = self.string("mode")?;
         let mode = Mode::from_name(&m).ok_or_else(|| self.err("", 0, "mode", format!("`{m}` is not interior or prism")))?;
@@ -355,7 +332,7 @@ impl<'a> FileParser<'a> {
     }
 
     fn figures(&self) -> Result<Vec<String>> {
-        let bad = || self.err("", 0, "figures", "must be a list of strings".into());
+        let bad = || self.err("", 0, "figures", "must be a list of strings");
         match self.root.get("figures") {
             None => Ok(Vec::new()),
             Some(Value::Array(a)) => a.iter().map(|v| v.as_str().map(str::to_string).ok_or_else(bad)).collect(),
@@ -367,7 +344,7 @@ impl<'a> FileParser<'a> {
         match self.quick.get("repeats").or(self.root.get("repeats")) {
             None => Ok(1),
             Some(Value::Integer(n)) if (1..=1000).contains(n) => Ok(*n as u32),
-            Some(_) => Err(self.err("", 0, "repeats", "must be a whole number from 1 to 1000".into())),
+            Some(_) => Err(self.err("", 0, "repeats", "must be a whole number from 1 to 1000")),
         }
     }
 
@@ -376,7 +353,7 @@ impl<'a> FileParser<'a> {
             None => Ok(0.0),
             Some(v) => match v.as_float().or(v.as_integer().map(|i| i as f64)) {
                 Some(t) if (0.0..=60.0).contains(&t) => Ok(t),
-                _ => Err(self.err("", 0, "min_time", "must be a number of seconds from 0 to 60".into())),
+                _ => Err(self.err("", 0, "min_time", "must be a number of seconds from 0 to 60")),
             },
         }
     }
@@ -384,13 +361,13 @@ impl<'a> FileParser<'a> {
     /// The sweep axes, in the file's order (toml::Table sorts by key).
     fn sweep(&self, mode: Mode) -> Result<Vec<(String, Vec<Value>)>> {
         let mut axes: Vec<(String, Value)> = self.merged("sweep")?.into_iter().collect();
-        axes.sort_by_key(|(k, _)| self.text.find(&format!("\n{k}")).or_else(|| self.text.find(k.as_str())).unwrap_or(usize::MAX));
+        axes.sort_by_key(|(k, _)| self.keys.offset("sweep", 0, k).or_else(|| self.keys.offset("quick.sweep", 0, k)).unwrap_or(usize::MAX));
         let mut sweep = Vec::new();
         for (k, v) in axes {
             let values = match &v {
                 Value::Array(a) if !a.is_empty() => a.clone(),
                 Value::Table(t) => range(t).map_err(|m| self.err("sweep", 0, &k, m))?,
-                _ => return Err(self.err("sweep", 0, &k, "must be a non-empty list or { from, to, step }".into())),
+                _ => return Err(self.err("sweep", 0, &k, "must be a non-empty list or { from, to, step }")),
             };
             let values = values.iter().map(|x| mode.check(&k, x, self.base()).map_err(|m| self.err("sweep", 0, &k, m))).collect::<Result<Vec<_>>>()?;
             sweep.push((k, values));
@@ -402,7 +379,7 @@ impl<'a> FileParser<'a> {
     /// under a sweep axis's name narrows that axis).
     fn cases(&self, mode: Mode, sweep: &[(String, Vec<Value>)]) -> Result<Vec<Case>> {
         let Some(c) = self.root.get("case") else { return Ok(Vec::new()) };
-        let bad = || self.err("", 0, "case", "write cases as [[case]] tables".into());
+        let bad = || self.err("", 0, "case", "write cases as [[case]] tables");
         let Value::Array(list) = c else { return Err(bad()) };
         let mut cases = Vec::new();
         for (i, item) in list.iter().enumerate() {
@@ -410,7 +387,7 @@ impl<'a> FileParser<'a> {
             let name = t.get("name").and_then(Value::as_str).ok_or_else(|| self.err("case", i, "name", format!("case {} needs a name", i + 1)))?.to_string();
             let case_mode = match t.get("mode") {
                 None => mode,
-                Some(m) => m.as_str().and_then(Mode::from_name).ok_or_else(|| self.err("case", i, "mode", "must be interior or prism".into()))?,
+                Some(m) => m.as_str().and_then(Mode::from_name).ok_or_else(|| self.err("case", i, "mode", "must be interior or prism"))?,
             };
             let mut set = Vec::new();
             for (k, v) in t.iter().filter(|(k, _)| k.as_str() != "name" && k.as_str() != "mode") {
@@ -428,7 +405,7 @@ impl<'a> FileParser<'a> {
 
     fn plots(&self, outputs: &Table) -> Result<Vec<PlotSpec>> {
         let Some(p) = outputs.get("plot") else { return Ok(Vec::new()) };
-        let bad = || self.err("outputs", 0, "plot", "write plots as [[outputs.plot]] tables".into());
+        let bad = || self.err("outputs", 0, "plot", "write plots as [[outputs.plot]] tables");
         let Value::Array(list) = p else { return Err(bad()) };
         list.iter().enumerate().map(|(i, item)| if let Value::Table(t) = item { self.plot(i, t) } else { Err(bad()) }).collect()
     }

@@ -22,10 +22,12 @@
 //! at = [0.8, 0.2]
 //! ```
 
-use super::reader::{line_of, parse_toml};
+use super::key_lines::KeyLines;
+use super::reader::parse_toml;
 use crate::modes::Mode;
 use crate::names::Named;
 use crate::progress::Progress;
+use crate::scenes::SceneError;
 use anyhow::{anyhow, Result};
 use std::path::Path;
 use toml::Value;
@@ -52,7 +54,8 @@ impl SceneFile {
         let root = parse_toml(text, file)?;
         // Paths in the file are resolved from its folder.
         let base = Path::new(file).parent().unwrap_or(Path::new(""));
-        let err = |section: &str, key: &str, msg: String| anyhow!("{file}:{}: `{key}`: {msg}", line_of(text, section, 0, key));
+        let keys = KeyLines::new(text);
+        let err = |section: &str, key: &str, msg: String| anyhow!("{file}:{}: `{key}`: {msg}", keys.line(section, 0, key));
         for k in root.keys() {
             if !["id", "report", "caption", "mode", "params", "quick", "close_up", "label"].contains(&k.as_str()) {
                 return Err(err("", k, "unknown key; expected id, report, caption, mode, params, quick, close_up or label".into()));
@@ -80,7 +83,7 @@ impl SceneFile {
                 None => {}
                 Some(Value::Table(t)) => {
                     for (k, v) in t {
-                        let v = mode.check(k, v, base).map_err(|m| err(section, k, m))?;
+                        let v = mode.check(k, v, base).map_err(|m| err(section, k, m.to_string()))?;
                         params.retain(|(p, _)| p != k);
                         params.push((k.clone(), v));
                         from.retain(|(p, _)| p != k);
@@ -90,7 +93,7 @@ impl SceneFile {
                 Some(_) => return Err(err("", section, "must be a table".into())),
             }
         }
-        let file = SceneFile {
+        let scene = SceneFile {
             id,
             report: root.get("report").and_then(Value::as_str).unwrap_or_default().into(),
             caption: root.get("caption").and_then(Value::as_str).unwrap_or_default().into(),
@@ -98,24 +101,34 @@ impl SceneFile {
             params,
             close_up: match root.get("close_up") {
                 Some(v) => {
-                    let mut close = super::close_up::parse(v).map_err(|m| anyhow!("{file}:{}: `close_up`: {m}", line_of(text, "", 0, "close_up")))?;
+                    let mut close = super::close_up::parse(v).map_err(|m| anyhow!("{file}:{}: `close_up`: {m}", keys.line("", 0, "close_up")))?;
                     for (k, v) in &mut close.params {
-                        *v = mode.check(k, v, base).map_err(|m| err("close_up.params", k, m))?;
+                        *v = mode.check(k, v, base).map_err(|m| err("close_up.params", k, m.to_string()))?;
                     }
                     Some(close)
                 }
                 None => None,
             },
             labels: match root.get("label") {
-                Some(v) => super::labels::parse(v).map_err(|m| anyhow!("{file}:{}: `label`: {m}", line_of(text, "", 0, "label")))?,
+                Some(v) => super::labels::parse(v).map_err(|m| anyhow!("{file}:{}: `label`: {m}", keys.line("", 0, "label")))?,
                 None => Vec::new(),
             },
         };
-        if let Some((key, why)) = file.ignored()? {
+        if let Some((key, why)) = scene.ignored()? {
             let section = from.iter().find(|(k, _)| *k == key).map_or("params", |(_, s)| *s);
             return Err(err(section, &key, why));
         }
-        Ok(file)
+        // A value the scene cannot use (haze on a scene with no beam, an
+        // incidence the prism reflects totally): refused now, on its line.
+        match mode.scene_error(&scene.params) {
+            None => {}
+            Some(SceneError::Param { key, why }) => match from.iter().find(|(k, _)| mode.canonical(k) == Some(key)) {
+                Some((k, section)) => return Err(err(section, k, why)),
+                None => return Err(anyhow!("{file}: `{key}`: {why}")),
+            },
+            Some(e) => return Err(anyhow!("{file}: {e}")),
+        }
+        Ok(scene)
     }
 
     /// A parameter the run would ignore (the scene has no use for it), and
@@ -193,7 +206,10 @@ impl SceneFile {
         for o in overrides {
             let (k, v) = o.split_once('=').ok_or_else(|| anyhow!("--set: `{o}` is not KEY=VALUE"))?;
             let k = k.trim().replace('-', "_");
-            let value = self.mode.parse_text(&k, v).map_err(|e| anyhow!("--set {e}"))?;
+            let value = self.mode.parse_text(&k, v).map_err(|e| match e {
+                crate::params::KeyError::Unknown { .. } => anyhow!("--set `{k}`: {e}"),
+                crate::params::KeyError::Value(_) => anyhow!("--set {k}: {e}"),
+            })?;
             self.params.retain(|(p, _)| *p != k);
             self.params.push((k, value.to_toml()));
         }

@@ -3,14 +3,14 @@
 
 pub mod aabb;
 pub mod accel;
-pub mod bvh;
 #[cfg(feature = "embree")]
 pub mod embree;
+pub mod mesh_bvh;
 pub mod ray;
 pub mod triangle;
 
 pub use aabb::Aabb;
 pub use accel::{Accel, AccelKind};
-pub use bvh::Bvh;
+pub use mesh_bvh::Bvh;
 pub use ray::Ray;
 pub use triangle::{Hit, Triangle};

@@ -47,32 +47,52 @@ crate::named_enum! {
     }
 }
 
-/// Checks an output path before any work is done (the reason is one line,
-/// for the caller to prefix with the flag or prompt): an extension among `allowed`, a folder that exists,
-/// and at the path nothing yet or a regular file (the output replaces
-/// only regular files: never a folder, a device, a FIFO or a link).
-pub fn check_output(path: &Path, allowed: &[ImageFormat]) -> Result<ImageFormat, String> {
+/// Why an output path is refused, before any work (one line, for the
+/// caller to prefix with the flag, the file's line or the prompt).
+#[derive(Debug, thiserror::Error)]
+pub enum OutputError {
+    #[error("the file name is empty")]
+    Unnamed,
+    #[error("{} is a folder; name an image file in it", .0.display())]
+    Folder(PathBuf),
+    #[error("{} is a symbolic link; name the file itself", .0.display())]
+    Link(PathBuf),
+    #[error("{} is not a regular file (a device, FIFO or socket); refract replaces only regular files", .0.display())]
+    NotRegular(PathBuf),
+    /// The extensions allowed, written `.png, .ppm`.
+    #[error("`{}` does not end in an image extension refract writes here ({allowed})", .path.display())]
+    Extension { path: PathBuf, allowed: String },
+    #[error("folder {} does not exist", .0.display())]
+    NoFolder(PathBuf),
+    #[error("cannot write in the folder {}: {source}", .dir.display())]
+    NotWritable { dir: PathBuf, source: std::io::Error },
+}
+
+/// Checks an output path before any work is done: an extension among
+/// `allowed`, a folder that exists, and at the path nothing yet or a
+/// regular file (the output replaces only regular files: never a folder,
+/// a device, a FIFO or a link).
+pub fn check_output(path: &Path, allowed: &[ImageFormat]) -> Result<ImageFormat, OutputError> {
     use crate::names::Named;
-    let shown = path.display();
     let names = || allowed.iter().map(|f| format!(".{}", f.name())).collect::<Vec<_>>().join(", ");
     let ext = path.extension().map(|e| e.to_string_lossy().to_ascii_lowercase()).unwrap_or_default();
     let format = ImageFormat::from_name(&ext).filter(|f| allowed.contains(f));
     match std::fs::symlink_metadata(path) {
-        Ok(m) if m.is_dir() => return Err(format!("{shown} is a folder; name an image file in it")),
-        Ok(m) if m.file_type().is_symlink() => return Err(format!("{shown} is a symbolic link; name the file itself")),
-        Ok(m) if !m.is_file() => return Err(format!("{shown} is not a regular file (a device, FIFO or socket); refract replaces only regular files")),
+        Ok(m) if m.is_dir() => return Err(OutputError::Folder(path.into())),
+        Ok(m) if m.file_type().is_symlink() => return Err(OutputError::Link(path.into())),
+        Ok(m) if !m.is_file() => return Err(OutputError::NotRegular(path.into())),
         _ => {}
     }
-    let Some(format) = format else { return Err(format!("`{shown}` does not end in an image extension refract writes here ({})", names())) };
+    let Some(format) = format else { return Err(OutputError::Extension { path: path.into(), allowed: names() }) };
     match path.parent().filter(|d| !d.as_os_str().is_empty()) {
-        Some(dir) if !dir.is_dir() => Err(format!("folder {} does not exist", dir.display())),
+        Some(dir) if !dir.is_dir() => Err(OutputError::NoFolder(dir.into())),
         _ => check_writable(path).map(|_| format),
     }
 }
 
 /// Checks, before any work, that the folder of `path` takes a new file: the
 /// temporary file the output would be written to is made and removed.
-pub fn check_writable(path: &Path) -> Result<(), String> {
+pub fn check_writable(path: &Path) -> Result<(), OutputError> {
     let tmp = temp_sibling(path);
     let dir = path.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
     match std::fs::OpenOptions::new().write(true).create_new(true).open(&tmp) {
@@ -80,7 +100,7 @@ pub fn check_writable(path: &Path) -> Result<(), String> {
             let _ = std::fs::remove_file(&tmp);
             Ok(())
         }
-        Err(e) => Err(format!("cannot write in the folder {}: {e}", dir.display())),
+        Err(source) => Err(OutputError::NotWritable { dir: dir.into(), source }),
     }
 }
 

@@ -40,7 +40,7 @@ pub struct RunReport {
 pub fn run(cfg: &InteriorConfig) -> Result<RunReport> {
     // Before the mesh is read: the image (RGB f32 and 8-bit) must fit.
     let image_bytes = (cfg.width as u64).saturating_mul(cfg.height as u64).saturating_mul(12 + 3);
-    crate::data::check_memory(image_bytes, &format!("--size {}x{}", cfg.width, cfg.height)).map_err(anyhow::Error::msg)?;
+    crate::data::check_memory(image_bytes, &format!("--size {}x{}", cfg.width, cfg.height))?;
     let t0 = Instant::now();
     let mesh = cfg.off.load()?;
     let load_s = t0.elapsed().as_secs_f64();
@@ -54,7 +54,7 @@ pub fn run(cfg: &InteriorConfig) -> Result<RunReport> {
 pub fn render_mesh(mesh: Mesh, cfg: &InteriorConfig) -> Result<RunReport> {
     // The image, and the BVH over the mesh (about 100 bytes a triangle).
     let need = (cfg.width as u64).saturating_mul(cfg.height as u64).saturating_mul(12 + 3).saturating_add(mesh.triangles.len() as u64 * 100);
-    crate::data::check_memory(need, &format!("--size {}x{} and {} triangles", cfg.width, cfg.height, mesh.triangles.len())).map_err(anyhow::Error::msg)?;
+    crate::data::check_memory(need, &format!("--size {}x{} and {} triangles", cfg.width, cfg.height, mesh.triangles.len()))?;
     let mut notes = Vec::new();
     if cfg.coff && mesh.colors == MeshColors::None {
         notes.push(format!("{} has no colours; using the object colour {:?}", cfg.off, cfg.color));

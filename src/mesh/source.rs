@@ -2,7 +2,7 @@
 //! sweeps over mesh size (`icosphere:S`, `torus:N`). Parsed once, where
 //! the user names it.
 
-use super::{generate, off::read_off, Mesh};
+use super::{generate, off::read_off, Mesh, MeshError};
 use std::fmt;
 use std::path::PathBuf;
 
@@ -16,32 +16,43 @@ pub enum MeshSource {
     Torus(u32),
 }
 
+/// Why a mesh's name is refused.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum SourceError {
+    #[error("the file name is empty")]
+    Empty,
+    #[error("`{0}`: icosphere subdivisions must be 0-8")]
+    Icosphere(String),
+    #[error("`{0}`: torus segments must be 3-4096")]
+    Torus(String),
+}
+
 impl MeshSource {
     /// `icosphere:S`, `torus:N`, or a file name.
-    pub fn parse(s: &str) -> Result<MeshSource, String> {
+    pub fn parse(s: &str) -> Result<MeshSource, SourceError> {
         let s = s.trim();
         if s.is_empty() {
-            return Err("the file name is empty".into());
+            return Err(SourceError::Empty);
         }
         if let Some(n) = s.strip_prefix("icosphere:") {
-            return n.parse().ok().filter(|n| *n <= 8).map(MeshSource::Icosphere).ok_or_else(|| format!("`{s}`: icosphere subdivisions must be 0-8"));
+            return n.parse().ok().filter(|n| *n <= 8).map(MeshSource::Icosphere).ok_or_else(|| SourceError::Icosphere(s.into()));
         }
         if let Some(n) = s.strip_prefix("torus:") {
-            return n.parse().ok().filter(|n| (3..=4096).contains(n)).map(MeshSource::Torus).ok_or_else(|| format!("`{s}`: torus segments must be 3-4096"));
+            return n.parse().ok().filter(|n| (3..=4096).contains(n)).map(MeshSource::Torus).ok_or_else(|| SourceError::Torus(s.into()));
         }
         Ok(MeshSource::File(PathBuf::from(s)))
     }
 
     /// The mesh, refused if it has no triangle to render (the OBJ reader
     /// and the prism's `--obj` refuse the same).
-    pub fn load(&self) -> anyhow::Result<Mesh> {
+    pub fn load(&self) -> Result<Mesh, MeshError> {
         Ok(match self {
             MeshSource::File(p) => {
                 let m = read_off(p)?;
                 if m.triangles.is_empty() {
                     let s = &m.stats;
                     let kind = super::MeshErrorKind::NoFaces { faces: s.faces, small: s.skipped_small, degenerate: s.skipped_degenerate };
-                    return Err(super::MeshError { path: p.display().to_string(), line: 0, kind }.into());
+                    return Err(MeshError { path: p.display().to_string(), line: 0, kind });
                 }
                 m
             }
@@ -70,7 +81,7 @@ mod tests {
         assert_eq!(MeshSource::parse("icosphere:3"), Ok(MeshSource::Icosphere(3)));
         assert_eq!(MeshSource::parse("torus:48"), Ok(MeshSource::Torus(48)));
         assert_eq!(MeshSource::parse("off/cube.off"), Ok(MeshSource::File("off/cube.off".into())));
-        assert!(MeshSource::parse("icosphere:9").unwrap_err().contains("0-8"));
+        assert!(MeshSource::parse("icosphere:9").unwrap_err().to_string().contains("0-8"));
         assert!(MeshSource::parse("torus:2").is_err() && MeshSource::parse(" ").is_err());
         assert_eq!(MeshSource::Icosphere(2).load().unwrap().triangles.len(), 320);
         assert_eq!(MeshSource::parse("icosphere:4").unwrap().to_string(), "icosphere:4");

@@ -27,7 +27,7 @@ impl ModeKind for Interior {
     }
 
     fn validate(cfg: &InteriorConfig) -> Result<()> {
-        params::check_threads(cfg.threads).map_err(anyhow::Error::msg)
+        params::check_threads(cfg.threads).map_err(|e| anyhow::anyhow!("--threads: {e}"))
     }
 
     fn mesh_file(cfg: &InteriorConfig, key: &str) -> Option<PathBuf> {
@@ -76,7 +76,7 @@ fn run_of(cfg: &InteriorConfig, mut r: RunReport) -> Run {
 
 /// Checks the timing CSV a run would append to, before any work.
 pub fn check_timing_csv(path: &Path) -> Result<()> {
-    crate::timing::check_header::<TimingRow>(path)
+    Ok(crate::timing::check_header::<TimingRow>(path)?)
 }
 
 /// A run of the command line: renders `cfg`, writes its image to `cfg.out`

@@ -22,7 +22,7 @@ use crate::params;
 use crate::progress::Progress;
 use anyhow::{anyhow, Result};
 pub use run::{Cost, Frame, MeshCache, ModeKind, Record, Report, Run};
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use toml::Value;
 
 crate::named_enum! {
@@ -51,15 +51,34 @@ macro_rules! with_mode {
     };
 }
 
+/// A file a scene or experiment file names that is not there.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ResolveError {
+    #[error("{}: no such file", .0.display())]
+    Missing(PathBuf),
+    #[error("{}: no such file in {} or any folder above it (paths in a file are from its own folder)", .path.display(), .folder.display())]
+    NotFound { path: PathBuf, folder: PathBuf },
+}
+
+/// Why one `key = value` of a scene or experiment file is refused (the
+/// caller adds the file and line).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum CheckError {
+    #[error(transparent)]
+    Key(#[from] params::KeyError),
+    #[error(transparent)]
+    File(#[from] ResolveError),
+}
+
 /// A file named by a scene or experiment file in folder `base`: a relative
 /// path is looked for in that folder, then in each folder above it in turn
 /// (so the shipped files' `off/cube.off` names the repository's `off/`
 /// wherever refract runs); the path found is written from `base` as given
 /// (`scenes/../off/cube.off` as `off/cube.off`). An absolute path is
 /// taken as it is. Not found: an error naming the path and the folder.
-pub fn resolve_from(base: &Path, path: &Path) -> Result<std::path::PathBuf, String> {
+pub fn resolve_from(base: &Path, path: &Path) -> Result<PathBuf, ResolveError> {
     if path.is_absolute() {
-        return if path.is_file() { Ok(path.to_path_buf()) } else { Err(format!("{}: no such file", path.display())) };
+        return if path.is_file() { Ok(path.to_path_buf()) } else { Err(ResolveError::Missing(path.into())) };
     }
     let mut up = base.to_path_buf();
     // As many folders up as `base` has above it (an absolute form counts them).
@@ -72,11 +91,11 @@ pub fn resolve_from(base: &Path, path: &Path) -> Result<std::path::PathBuf, Stri
         up.push("..");
     }
     let folder = if base.as_os_str().is_empty() { Path::new(".") } else { base };
-    Err(format!("{}: no such file in {} or any folder above it (paths in a file are from its own folder)", path.display(), folder.display()))
+    Err(ResolveError::NotFound { path: path.into(), folder: folder.into() })
 }
 
 /// `a/b/../c` as `a/c` and `./a` as `a` (lexically; a leading `..` stays).
-fn tidy(p: &Path) -> std::path::PathBuf {
+fn tidy(p: &Path) -> PathBuf {
     use std::path::Component;
     let mut out: Vec<Component> = Vec::new();
     for c in p.components() {
@@ -116,26 +135,27 @@ impl Mode {
     /// Checks one parameter of a scene or experiment file in folder `base`
     /// (on the mode's defaults) and gives it back with a mesh path it names
     /// resolved from that folder (`resolve_from`); the mesh must exist.
-    pub fn check(self, key: &str, v: &Value, base: &Path) -> Result<Value, String> {
+    pub fn check(self, key: &str, v: &Value, base: &Path) -> Result<Value, CheckError> {
         with_mode!(self, M => {
             let Some(_) = params::find(M::params(), key) else {
-                return Err(params::unknown_key(M::params(), key, self.name()));
+                return Err(params::unknown_key(M::params(), key, self.name()).into());
             };
             let mut cfg = M::defaults();
             params::apply_toml(M::params(), &mut cfg, key, v)?;
             match M::mesh_file(&cfg, key) {
-                Some(p) => resolve_from(base, &p).map(|found| Value::String(found.display().to_string())),
+                Some(p) => Ok(resolve_from(base, &p).map(|found| Value::String(found.display().to_string()))?),
                 None => Ok(v.clone()),
             }
         })
     }
 
     /// A value typed as text (`--set KEY=VALUE`), read by the key's row;
-    /// an unknown key names the nearest and every key.
-    pub fn parse_text(self, key: &str, text: &str) -> Result<params::Value, String> {
+    /// an unknown key names the nearest and every key (the caller names
+    /// the key).
+    pub fn parse_text(self, key: &str, text: &str) -> Result<params::Value, params::KeyError> {
         with_mode!(self, M => match params::find(M::params(), key) {
-            Some(p) => p.kind.parse_text(text).map_err(|e| format!("{key}: {e}")),
-            None => Err(format!("`{key}`: {}", params::unknown_key(M::params(), key, self.name()))),
+            Some(p) => Ok(p.kind.parse_text(text)?),
+            None => Err(params::unknown_key(M::params(), key, self.name())),
         })
     }
 
@@ -168,6 +188,18 @@ impl Mode {
             let cfg = config::<M>(given).ok()?;
             params::first_ignored(params::find(M::params(), key), &cfg).map(|(_, why)| why)
         })
+    }
+
+    /// Why the scene of the run `given` describes cannot be built (the
+    /// prism mode's scenes; the interior mode's mesh is checked where it is
+    /// named), so a file can refuse it on the key's line before any work.
+    /// `None` where it builds, or where the configuration itself is
+    /// refused, which the run reports.
+    pub fn scene_error(self, given: &[(String, Value)]) -> Option<crate::scenes::SceneError> {
+        match self {
+            Mode::Prism => crate::scenes::build(&config::<prism::Prism>(given).ok()?.scene).err(),
+            Mode::Interior => None,
+        }
     }
 
     /// The image formats the mode writes.

@@ -26,8 +26,8 @@ impl ModeKind for Prism {
     }
 
     fn validate(cfg: &SpectralConfig) -> Result<()> {
-        params::check_threads(cfg.threads).map_err(anyhow::Error::msg)?;
-        cfg.validate()
+        params::check_threads(cfg.threads).map_err(|e| anyhow::anyhow!("--threads: {e}"))?;
+        Ok(cfg.validate()?)
     }
 
     fn mesh_file(cfg: &SpectralConfig, key: &str) -> Option<PathBuf> {
@@ -92,7 +92,7 @@ pub fn quick(cfg: &mut SpectralConfig, given: impl Fn(&str) -> bool) {
 /// what it wrote.
 pub fn run_to_files(cfg: &SpectralConfig, timing_csv: Option<&Path>, progress: &dyn Progress, say: &mut dyn FnMut(String)) -> Result<()> {
     cfg.validate()?;
-    params::check_threads(cfg.threads).map_err(anyhow::Error::msg)?;
+    params::check_threads(cfg.threads).map_err(|e| anyhow::anyhow!("--threads: {e}"))?;
     // The default folder, results/, is made; any other must exist.
     if let Some(parent) = cfg.out.parent().filter(|p| !p.as_os_str().is_empty() && cfg.out.starts_with("results")) {
         crate::image_io::create_folder(parent)?;

@@ -2,14 +2,15 @@
 //! prompts, interior scene files and experiments): one row each. Defaults
 //! come from `InteriorConfig::with_defaults`.
 
-use super::{choices, never, pick, Kind, Param, Value};
+use super::{choices, never, pick, Kind, Param, Value, ValueError};
 use crate::geometry::AccelKind;
 use crate::interior::config::{InteriorConfig, SceneKind, SpecularOpacity};
 use crate::mesh::source::MeshSource;
 use std::path::PathBuf;
 
-fn mesh(s: &str) -> Result<(), String> {
-    MeshSource::parse(s).map(|_| ())
+fn mesh(s: &str) -> Result<(), ValueError> {
+    MeshSource::parse(s)?;
+    Ok(())
 }
 
 fn f32s(v: &Value) -> glam::Vec3 {

@@ -1,7 +1,7 @@
 //! The parameters of a spectral run (`refract prism`, prism scene files and
 //! experiments): one row each. Defaults come from `SpectralConfig::new`.
 
-use super::{choices, never, pick, End, Kind, Param, Value};
+use super::{choices, never, pick, End, Kind, Param, Value, ValueError};
 use crate::image_io::openexr::ExrSample;
 use crate::optics::glass;
 use crate::optics::ior::IorKind;
@@ -30,12 +30,14 @@ fn glass_of(v: &Value) -> &'static glass::Glass {
     }
 }
 
-fn inset_text(s: &str) -> Result<(), String> {
-    crate::spectral::inset::Inset::parse(s).map(|_| ())
+fn inset_text(s: &str) -> Result<(), ValueError> {
+    crate::spectral::inset::Inset::parse(s)?;
+    Ok(())
 }
 
-fn light_name(s: &str) -> Result<(), String> {
-    NamedSpectrum::parse(s).map(|_| ()).map_err(|e| e.to_string())
+fn light_name(s: &str) -> Result<(), ValueError> {
+    NamedSpectrum::parse(s)?;
+    Ok(())
 }
 
 fn glass_value(g: &glass::Glass) -> Value {

@@ -13,7 +13,7 @@
 //! file name holds no space, as with `cin >>`).
 
 use super::interior::PARAMS;
-use super::{channel, find, parse_real, Param};
+use super::{channel, find, parse_real, Param, ValueError};
 use crate::interior::config::InteriorConfig;
 use crate::mesh::source::MeshSource;
 use std::io::{BufRead, Write};
@@ -87,7 +87,7 @@ const MAX_ANSWER: u64 = 4096;
 
 /// Asks one prompt until `parse` accepts the answer (at a terminal), or
 /// once (from a pipe or file).
-fn ask<T>(p: &mut Prompter, prompt: &str, parse: impl Fn(&str) -> Result<T, String>) -> Result<T, PromptError> {
+fn ask<T, E: std::fmt::Display>(p: &mut Prompter, prompt: &str, parse: impl Fn(&str) -> Result<T, E>) -> Result<T, PromptError> {
     loop {
         write!(p.out, "{prompt}: ")?;
         p.out.flush()?;
@@ -105,7 +105,7 @@ fn ask<T>(p: &mut Prompter, prompt: &str, parse: impl Fn(&str) -> Result<T, Stri
             }
             Err(reason) => {
                 writeln!(p.out)?;
-                return Err(PromptError::BadAnswer { line: p.line, prompt: prompt.to_string(), answer: answer.to_string(), reason });
+                return Err(PromptError::BadAnswer { line: p.line, prompt: prompt.to_string(), answer: answer.to_string(), reason: reason.to_string() });
             }
         }
     }
@@ -125,18 +125,27 @@ fn ask_param(p: &mut Prompter, prompt: &str, key: &str, c: &mut InteriorConfig) 
 
 /// A mesh file that exists and reads as a mesh (read here, when it is
 /// named, so a wrong file is caught at its own question).
-fn mesh(s: &str) -> Result<MeshSource, String> {
+fn mesh(s: &str) -> Result<MeshSource, MeshAnswerError> {
     let source = super::in_path(s).map(MeshSource::File)?;
-    source.load().map_err(|e| format!("{e:#}"))?;
+    source.load()?;
     Ok(source)
 }
 
+/// Why a mesh named at its prompt is refused: no such file, or not a mesh.
+#[derive(Debug, thiserror::Error)]
+enum MeshAnswerError {
+    #[error(transparent)]
+    Name(#[from] ValueError),
+    #[error(transparent)]
+    Mesh(#[from] crate::mesh::MeshError),
+}
+
 /// The report's "0 = No, 1 = Yes".
-fn yes_no(s: &str) -> Result<bool, String> {
+fn yes_no(s: &str) -> Result<bool, ValueError> {
     match s.trim() {
         "0" => Ok(false),
         "1" => Ok(true),
-        o => Err(format!("`{o}` is not 0 (no) or 1 (yes)")),
+        o => Err(ValueError::NotYesNo(o.into())),
     }
 }
 

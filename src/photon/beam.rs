@@ -22,7 +22,7 @@
 //! from the beam's corners, and after it lane by lane. Where a photon is
 //! within the margin of an edge, it goes on alone.
 
-use super::emit::{store, Deposit, Emitted, LightStats};
+use super::landing::{store, Deposit, Emitted, LightStats};
 use super::lanes::Lanes;
 use super::train::{Start, Train, MEDIA};
 use crate::optics::glass::Glass;

@@ -17,6 +17,8 @@
 
 use super::bands::CLASSES;
 use super::beam::LANES;
+use super::landing::{store, Emitted, MAX_BOUNCES};
+pub use super::landing::{Deposit, LightStats};
 use super::map::Photon;
 use super::train::Start;
 use crate::progress::Progress;
@@ -27,51 +29,6 @@ use crate::world::interface::{cross_with, Polarisation};
 use crate::world::{Emission, Indices, Surface, World};
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
-
-/// Counts from the light pass.
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct LightStats {
-    pub emitted: u64,
-    pub stored: u64,
-    /// Photons that took a wavelength at a dispersive face.
-    pub dispersed: u64,
-    /// Total internal reflections met.
-    pub tir: u64,
-    /// Power emitted and stored, W.
-    pub emitted_power: f64,
-    pub stored_power: f64,
-}
-
-impl LightStats {
-    /// Adds another pass's counts.
-    pub fn add(&mut self, o: &LightStats) {
-        self.emitted += o.emitted;
-        self.stored += o.stored;
-        self.dispersed += o.dispersed;
-        self.tir += o.tir;
-        self.emitted_power += o.emitted_power;
-        self.stored_power += o.stored_power;
-    }
-}
-
-/// Where the light pass puts the photons it stores: kept one by one (for a
-/// kd-tree), or added straight into the buffer map's texels (`Grids`), so
-/// memory does not grow with the photon count.
-pub trait Deposit {
-    /// A photon lands at `pos` on map `map` carrying XYZ flux `xyz`, of
-    /// spectral class `class` (`bands::class`) and flux `sigma` (W for a
-    /// white photon; for one of wavelength l, `xyz` over the colour
-    /// weights at l).
-    fn deposit(&mut self, map: usize, pos: [f32; 2], xyz: [f32; 3], class: u8, sigma: f32);
-    /// Photon `index` of its light's sequence starts (before its deposits).
-    fn photon(&mut self, _index: u64) {}
-}
-
-impl Deposit for Vec<Vec<Photon>> {
-    fn deposit(&mut self, map: usize, pos: [f32; 2], xyz: [f32; 3], class: u8, _sigma: f32) {
-        self[map].push(Photon::with_class(pos, xyz, class));
-    }
-}
 
 /// The buffer map's texels of every matte surface, filled by the light
 /// pass as photons land. Sums are fixed-point integers (atomic adds), so
@@ -125,8 +82,17 @@ pub struct Grid {
     classes: Vec<std::sync::atomic::AtomicI64>,
 }
 
+/// Map slot `slot` of `scene` at texels `texel` metres wide (times the
+/// slot's `slot_scale`): its size in metres and its texels across and up
+/// (`map::texels`); `None` where its face is no parallelogram.
+pub fn slot_texels(scene: &World, slot: usize, texel: f64) -> Option<(DVec2, [usize; 2])> {
+    let (_, eu, ev) = scene.faces[scene.slot_face(slot)].frame?;
+    let size = DVec2::new(eu.length(), ev.length());
+    Some((size, super::map::texels(size, texel * scene.slot_scale(slot))))
+}
+
 impl Grids {
-    /// Texels `texel` metres wide (at most 4096 a side) on every matte
+    /// Texels `texel` metres wide (`slot_texels`) on every matte
     /// surface of the scene (times `slot_scale` for the second set of split
     /// maps), for at most `max_flux` of XYZ flux in all; none for the
     /// slots `unused` names (photons landing there are not kept, and their
@@ -136,16 +102,12 @@ impl Grids {
     pub fn new(scene: &World, texel: f64, max_flux: f64, spectral: bool, unused: impl Fn(usize) -> bool) -> Grids {
         let sizes: Vec<(DVec2, usize, usize)> = (0..scene.map_slots())
             .map(|slot| {
-                let f = scene.slot_face(slot);
-                let texel = texel * scene.slot_scale(slot);
-                let (_, eu, ev) = scene.faces[f].frame.expect("matte surfaces are parallelograms");
-                let size = DVec2::new(eu.length(), ev.length());
+                let (size, [nu, nv]) = slot_texels(scene, slot, texel).expect("matte surfaces are parallelograms");
                 if unused(slot) {
-                    return (size, 0, 0);
+                    (size, 0, 0)
+                } else {
+                    (size, nu, nv)
                 }
-                let nu = ((size.x / texel).ceil() as usize).clamp(1, 4096);
-                let nv = ((size.y / texel).ceil() as usize).clamp(1, 4096);
-                (size, nu, nv)
             })
             .collect();
         let copies = sum_copies(sizes.iter().map(|&(_, nu, nv)| (nu * nv) as u64).sum(), rayon::current_num_threads());
@@ -219,7 +181,6 @@ pub struct LightPass {
     pub stats: LightStats,
 }
 
-pub(super) const MAX_BOUNCES: usize = 100;
 const CHUNK: u64 = 8192;
 
 /// Traces `total` photons, shared among the lights by power. The result
@@ -458,78 +419,6 @@ pub fn concentric_disc(a: f64, b: f64) -> DVec2 {
     DVec2::new(r * t.cos(), r * t.sin())
 }
 
-/// What a photon leaves its light with: its power, the XYZ of one watt of
-/// the light's whole spectrum (and of what each matte surface reflects of
-/// it), and the light's wavelength sampler.
-#[derive(Clone, Copy)]
-pub(super) struct Emitted<'a> {
-    pub(super) power: f64,
-    /// The light's index in the scene (its white photons' class).
-    pub(super) light: usize,
-    /// The colour weights photons carry (`sigma` of a stored photon).
-    pub(super) colours: ColorMap,
-    pub(super) white: DVec3,
-    pub(super) reflected: &'a [DVec3],
-    sampler: &'a WavelengthSampler,
-    importance: &'a WavelengthSampler,
-    pub(super) polarisation: Option<Polarisation>,
-}
-
-impl Emitted<'_> {
-    /// A wavelength for `u` and the XYZ flux a photon of it carries.
-    pub(super) fn pick(&self, u: f64, colours: ColorMap) -> (f64, DVec3) {
-        let [p] = self.pick_many([u], colours);
-        p
-    }
-
-    /// `pick` of several numbers at once, the tables read for all of them
-    /// together (`WavelengthSampler::sample_many`).
-    #[inline]
-    pub(super) fn pick_many<const N: usize>(&self, u: [f64; N], colours: ColorMap) -> [(f64, DVec3); N] {
-        let drawn = self.importance.sample_many(u);
-        let w = drawn.map(|(l, q)| if q > 0.0 { self.sampler.pdf(l) / q } else { 0.0 });
-        std::array::from_fn(|j| (drawn[j].0, colours.xyz_weight(drawn[j].0) * (self.power * w[j])))
-    }
-}
-
-/// Stores a photon landing at `p` on matte face `id`, as the flux the
-/// surface reflects: at the photon's wavelength `nm` (its flux `xyz`), or
-/// over its light's whole spectrum; none where the eye pass computes this
-/// light directly (`direct`) or `p` lies off the face. A caustic (through
-/// glass, no matte bounce) keeps the first map of a split.
-#[allow(clippy::too_many_arguments)]
-#[inline]
-pub(super) fn store(
-    scene: &World,
-    id: usize,
-    p: DVec3,
-    nm: Option<f64>,
-    xyz: DVec3,
-    light: &Emitted,
-    direct: bool,
-    caustic: bool,
-    maps: &mut impl Deposit,
-    stats: &mut LightStats,
-) {
-    let face = &scene.faces[id];
-    let Surface::Diffuse { map, albedo } = face.surface else { return };
-    if let (Some(pos), false) = (face.chart_pos(p), direct) {
-        let pos = [pos.x as f32, pos.y as f32];
-        let (out, sigma) = match nm {
-            Some(l) => {
-                let out = xyz * albedo.at(l);
-                // Its XYZ is its flux times the colour weights at l.
-                let c = light.colours.xyz_weight(l);
-                (out, if c.length_squared() > 0.0 { out.dot(c) / c.length_squared() } else { 0.0 })
-            }
-            None => (light.reflected[map] * light.power, light.power),
-        };
-        let slot = if scene.split_maps() && !caustic { map + scene.maps.len() } else { map };
-        maps.deposit(slot, pos, [out.x as f32, out.y as f32, out.z as f32], super::bands::class(nm, light.light), sigma as f32);
-        stats.stored += 1;
-    }
-}
-
 #[allow(clippy::too_many_arguments)]
 fn trace_photon(
     scene: &World,
@@ -646,6 +535,28 @@ mod tests {
     use super::*;
     use crate::spectrum::Spectrum;
     use crate::world::{Face, Light, Medium};
+
+    /// The light pass's grids, the buffer maps built from photons and the
+    /// memory check (`slot_texels`) size a surface's texels alike: a
+    /// 4096-a-side cap, a texel a side at least, whole texels rounded up.
+    #[test]
+    fn grids_and_maps_share_one_texel_sizing() {
+        let scene = crate::scenes::build(&crate::scenes::SceneOptions::new(crate::scenes::SceneKind::CornellPointlight)).unwrap();
+        for texel in [0.003, 0.05, 10.0] {
+            let grids = Grids::new(&scene, texel, 1.0, false, |_| false);
+            assert_eq!(grids.grids.len(), scene.map_slots());
+            for (slot, g) in grids.grids.iter().enumerate() {
+                let (size, [nu, nv]) = slot_texels(&scene, slot, texel).unwrap();
+                assert_eq!((g.size, g.nu, g.nv), (size, nu, nv), "slot {slot} at {texel} m");
+                assert!((1..=crate::photon::map::MAX_TEXELS).contains(&nu) && (1..=crate::photon::map::MAX_TEXELS).contains(&nv));
+                let built = crate::photon::map::SurfaceMap::build(crate::photon::map::MapKind::Buffer, size, Vec::new(), texel * scene.slot_scale(slot));
+                let crate::photon::map::SurfaceMap::Buffer { nu: bu, nv: bv, .. } = built else { panic!("a buffer map") };
+                assert_eq!((bu, bv), (nu, nv));
+            }
+        }
+        assert_eq!(crate::photon::map::texels(glam::DVec2::new(1.0, 0.25), 0.1), [10, 3]);
+        assert_eq!(crate::photon::map::texels(glam::DVec2::new(1.0, 1e-9), 1e-5), [4096, 1]);
+    }
 
     /// Wavelengths drawn by importance (spectrum x colour weight) and
     /// weighted back carry, on average, exactly the light's XYZ: for D65,

@@ -147,6 +147,17 @@ pub enum SurfaceMap {
     Kd { size: DVec2, photons: Vec<Photon>, bounds: [f64; 4] },
 }
 
+/// The most texels a buffer map has along one side.
+pub const MAX_TEXELS: usize = 4096;
+
+/// A buffer map's texels across and up a surface of `size` metres, each
+/// `texel` metres wide (1 to `MAX_TEXELS` a side): the one sizing that the
+/// maps, the light pass's grids and the memory check share.
+pub fn texels(size: DVec2, texel: f64) -> [usize; 2] {
+    let across = |l: f64| ((l / texel).ceil() as usize).clamp(1, MAX_TEXELS);
+    [across(size.x), across(size.y)]
+}
+
 impl SurfaceMap {
     /// A buffer map of `nu` x `nv` texels of XYZ flux over `size` metres,
     /// with each texel's flux by spectral class (`CLASSES` a texel) or
@@ -157,15 +168,14 @@ impl SurfaceMap {
     }
 
     /// Builds a map of the surface of `size` (m) from its photons. The
-    /// buffer's texels are `texel` metres wide (at most 4096 per side);
+    /// buffer's texels are `texel` metres wide (`texels`);
     /// built this way it keeps no spectral classes (the light pass fills
     /// them as photons land, `emit::Grids`).
     pub fn build(kind: MapKind, size: DVec2, photons: Vec<Photon>, texel: f64) -> SurfaceMap {
         match kind {
             // The film's own map, for what is seen through glass, is a buffer.
             MapKind::Buffer | MapKind::Film => {
-                let nu = ((size.x / texel).ceil() as usize).clamp(1, 4096);
-                let nv = ((size.y / texel).ceil() as usize).clamp(1, 4096);
+                let [nu, nv] = texels(size, texel);
                 let mut flux = vec![[0f32; 3]; nu * nv];
                 for p in &photons {
                     let iu = ((p.pos[0] as f64 / size.x * nu as f64) as usize).min(nu - 1);

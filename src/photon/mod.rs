@@ -5,6 +5,7 @@ pub mod bands;
 mod beam;
 pub mod emit;
 pub mod gather;
+mod landing;
 mod lanes;
 pub mod map;
 mod train;

@@ -13,7 +13,7 @@
 //! crossing, the same random numbers in the same order, the same deposits
 //! and counts. A test traces both ways and compares every photon.
 
-use super::emit::{store, Deposit, Emitted, LightStats, MAX_BOUNCES};
+use super::landing::{store, Deposit, Emitted, LightStats, MAX_BOUNCES};
 use crate::sampling::Rng;
 use crate::spectrum::colormap::ColorMap;
 use crate::world::cells::{before, Entry, Region};

@@ -14,10 +14,10 @@
 //! 1 m away: one image of the tube per spectral line (Picture 1).
 
 use super::{glass_medium, light_spectrum, rotate_z, SceneKind, SceneOptions, View};
+use super::{Result, SceneError};
 use crate::optics::ior::IorKind;
 use crate::world::probe::{probe, probe_ray, ProbeRay};
 use crate::world::{Albedo, Camera, Emission, Face, Light, Medium, Surface, World};
-use anyhow::{bail, Result};
 use glam::{DVec2, DVec3};
 
 /// The d line (He, 587.5618 nm), the usual design wavelength.
@@ -74,15 +74,19 @@ pub fn build(o: &SceneOptions) -> Result<World> {
     let d_line = probe(&design, DESIGN_NM);
     if d_line.tir {
         match o.incidence_deg {
-            Some(_) => bail!("--incidence: at {:.3} degrees the d line is totally reflected inside the prism", prism.incidence.to_degrees()),
-            None => bail!(
-                "--glass {} / --flint {} / --flint-apex {}: the d line, entering along the design's axis ({:.3} degrees), is totally reflected inside the prism after {} faces (it meets a face beyond the critical angle)",
-                o.crown.name,
-                o.flint.name,
-                o.flint_apex_deg,
-                prism.incidence.to_degrees(),
-                d_line.faces
-            ),
+            Some(_) => {
+                return Err(SceneError::param("incidence", format!("at {:.3} degrees the d line is totally reflected inside the prism", prism.incidence.to_degrees())))
+            }
+            None => {
+                return Err(SceneError::design(
+                    o,
+                    format!(
+                        "the d line, entering along the design's axis ({:.3} degrees), is totally reflected inside the prism after {} faces (it meets a face beyond the critical angle)",
+                        prism.incidence.to_degrees(),
+                        d_line.faces
+                    ),
+                ))
+            }
         }
     }
     match o.kind {
@@ -117,16 +121,17 @@ impl AmiciPrism {
         // model the renderer then uses for its index.
         let (nc, nf) = (o.crown.sellmeier(DESIGN_NM), o.flint.sellmeier(DESIGN_NM));
         if !(0.0 < o.flint_apex_deg && o.flint_apex_deg < 180.0) {
-            bail!("--flint-apex: {} degrees is not between 0 and 180", o.flint_apex_deg);
+            return Err(SceneError::param("flint_apex", format!("{} degrees is not between 0 and 180", o.flint_apex_deg)));
         }
         let a2 = o.flint_apex_deg.to_radians();
         let Some(a1) = solve_crown_apex(nc, nf, a2) else {
-            bail!(
-                "--flint-apex: no crown apex makes {} / {} direct-vision with a {} degree flint (the cemented face would reflect totally)",
-                o.crown.name,
-                o.flint.name,
-                o.flint_apex_deg
-            );
+            return Err(SceneError::param(
+                "flint_apex",
+                format!(
+                    "no crown apex makes {} / {} direct-vision with a {} degree flint (the cemented face would reflect totally)",
+                    o.crown.name, o.flint.name, o.flint_apex_deg
+                ),
+            ));
         };
         // The bench's prism is larger (5 cm), as a photograph of it needs;
         // elsewhere 3 cm.
@@ -200,7 +205,8 @@ const WALL_HEIGHT: f64 = 0.6;
 /// (Pictures 4-6), the screen close up, or the whole bench from high above
 /// its side (Picture 3).
 fn add_bench(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism) -> Result<()> {
-    let Some(&screen) = scene.maps.first() else { bail!("the bench view needs the screen") };
+    // `add_screen` has just made the screen and the slit beam (`build`).
+    let screen = *scene.maps.first().expect("the bench view is built on the screen");
     let (corner, eu, ev) = scene.faces[screen].frame.expect("the screen is a parallelogram");
     let strip_centre = corner + (eu + ev) / 2.0;
     // The table top, just under the prism's base.
@@ -212,7 +218,7 @@ fn add_bench(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism) -> Result<
     scene.faces[screen] =
         Face::rect("screen", DVec3::new(strip_centre.x, strip_centre.y + sw / 2.0, z), DVec3::new(0.0, -sw, 0.0), DVec3::new(0.0, 0.0, sh), surface);
     // The slit: the beam 4 mm wide.
-    let Emission::Beam { centre: start, half, .. } = &mut scene.lights[0].emission else { bail!("the bench's first light is the slit beam") };
+    let Emission::Beam { centre: start, half, .. } = &mut scene.lights[0].emission else { unreachable!("the bench's first light is the slit beam") };
     *half = DVec2::new(0.002, half.y);
     let start = *start;
     // The camera of Pictures 4-6: behind the lamp and to its side, above
@@ -353,13 +359,8 @@ fn add_lamp(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism, design: &Wo
     let blue = lamp_image_angle(design, cam, x, 435.834);
     let (Some(blue), Some(red)) = (blue, lamp_image_angle(design, cam, x, 711.0)) else {
         match o.incidence_deg {
-            Some(_) => bail!("--incidence: the lamp cannot be seen through the prism at 436-711 nm"),
-            None => bail!(
-                "--glass {} / --flint {} / --flint-apex {}: the lamp cannot be seen through this prism at 436-711 nm",
-                o.crown.name,
-                o.flint.name,
-                o.flint_apex_deg
-            ),
+            Some(_) => return Err(SceneError::param("incidence", "the lamp cannot be seen through the prism at 436-711 nm")),
+            None => return Err(SceneError::design(o, "the lamp cannot be seen through this prism at 436-711 nm")),
         }
     };
     let look = rotate_z(DVec3::X, (blue + red) / 2.0);

@@ -8,11 +8,11 @@
 //!   standing on it, fanning into a spectrum, seen from above: the album
 //!   cover, with the prism level and its top edges glowing white.
 
+use super::Result;
 use super::{glass_medium, light_spectrum, matte, rotate_z, SceneKind, SceneOptions};
 use crate::spectrum::Spectrum;
 use crate::world::interface::Polarisation;
 use crate::world::{Camera, Emission, Face, Light, Surface, World};
-use anyhow::Result;
 use glam::{DVec2, DVec3};
 
 /// An equilateral prism's cross-section centred at `c`, turned so that

@@ -14,7 +14,35 @@ use crate::optics::ior::{IorKind, IorModel};
 use crate::spectrum::spectra::NamedSpectrum;
 use crate::spectrum::Spectrum;
 use crate::world::{Albedo, Emission, Face, Medium, Surface, World};
-use anyhow::{bail, Result};
+
+/// Why a scene cannot be built from its options: the parameter (by its
+/// key) or the glasses that make no scene, a mesh that makes no prism, a
+/// light spectrum that names none. Shown with the flag's spelling of the
+/// key; the key is kept for a caller that names it otherwise.
+#[derive(Debug, thiserror::Error)]
+pub enum SceneError {
+    #[error("--{}: {why}", .key.replace('_', "-"))]
+    Param { key: &'static str, why: String },
+    /// The glasses and the flint's apex together (the Amici designs).
+    #[error("--glass {crown} / --flint {flint} / --flint-apex {apex}: {why}")]
+    Design { crown: String, flint: String, apex: f64, why: String },
+    #[error(transparent)]
+    Mesh(#[from] crate::mesh::MeshError),
+    #[error(transparent)]
+    Light(#[from] crate::spectrum::spectra::UnknownSpectrum),
+}
+
+impl SceneError {
+    pub(crate) fn param(key: &'static str, why: impl Into<String>) -> SceneError {
+        SceneError::Param { key, why: why.into() }
+    }
+
+    pub(crate) fn design(o: &SceneOptions, why: impl Into<String>) -> SceneError {
+        SceneError::Design { crown: o.crown.name.clone(), flint: o.flint.name.clone(), apex: o.flint_apex_deg, why: why.into() }
+    }
+}
+
+type Result<T> = std::result::Result<T, SceneError>;
 use glam::DVec3;
 
 crate::named_enum! {
@@ -144,7 +172,7 @@ pub(crate) fn rotate_z(v: DVec3, angle: f64) -> DVec3 {
 /// Builds the scene the options describe.
 pub fn build(o: &SceneOptions) -> Result<World> {
     if o.width == 0 || o.height == 0 {
-        bail!("--size: width and height must be at least 1");
+        return Err(SceneError::param("size", "width and height must be at least 1"));
     }
     let mut scene = match o.kind {
         SceneKind::AmiciScreen | SceneKind::AmiciLamp | SceneKind::AmiciBench => amici::build(o)?,
@@ -157,7 +185,7 @@ pub fn build(o: &SceneOptions) -> Result<World> {
         // Haze shows beams only (`spectral::haze`): elsewhere it would
         // change nothing.
         if h > 0.0 && !scene.lights.iter().any(|l| matches!(l.emission, Emission::Beam { .. })) {
-            bail!("--haze: the {} scene has no collimated beam, and haze shows only beams", o.kind.name());
+            return Err(SceneError::param("haze", format!("the {} scene has no collimated beam, and haze shows only beams", o.kind.name())));
         }
         scene.haze = h;
     }
@@ -169,7 +197,7 @@ pub fn build(o: &SceneOptions) -> Result<World> {
         // where the built-in prism put them.
         let mesh = crate::mesh::obj::read_obj(path)?;
         if mesh.triangles.is_empty() {
-            bail!("--obj {}: no usable faces to make a prism of", path.display());
+            return Err(SceneError::param("obj", format!("{} has no usable faces to make a prism of", path.display())));
         }
         let keep: Vec<Face> = scene.faces.drain(..).filter(|f| !matches!(f.surface, Surface::Interface { .. })).collect();
         for (i, t) in mesh.triangles.iter().enumerate() {

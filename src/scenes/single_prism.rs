@@ -4,11 +4,11 @@
 //! Minimum deviation: docs/physics.md §3.
 
 use super::{glass_medium, light_spectrum, rotate_z, SceneOptions};
+use super::{Result, SceneError};
 use crate::optics::glass::lines;
 use crate::optics::ior::IorKind;
 use crate::world::probe::probe;
 use crate::world::{Albedo, Camera, Emission, Face, Light, Medium, Surface, World};
-use anyhow::{bail, Result};
 use glam::{DVec2, DVec3};
 
 pub fn build(o: &SceneOptions) -> Result<World> {
@@ -33,7 +33,7 @@ pub fn build(o: &SceneOptions) -> Result<World> {
     design.media[1] = glass_medium(o.crown, IorKind::Sellmeier, false);
     let d_line = probe(&design, lines::LD);
     if d_line.tir {
-        bail!("--incidence: at {:.3} degrees the d line is totally reflected inside the prism", incidence.to_degrees());
+        return Err(SceneError::param("incidence", format!("at {:.3} degrees the d line is totally reflected inside the prism", incidence.to_degrees())));
     }
     let out = d_line.exit_dir;
     let centre = d_line.exit_point + out * 4.0;

@@ -19,9 +19,9 @@
 //!   back a rainbow ring round the hole (one reflection inside;
 //!   docs/physics.md §21), and shows the card and ring inverted in itself.
 
+use super::Result;
 use super::{glass_medium, light_spectrum, matte, SceneKind, SceneOptions};
 use crate::world::{Camera, Emission, Face, Light, Sphere, Surface, World};
-use anyhow::Result;
 use glam::DVec3;
 
 /// A matte parallelogram with its own photon map.

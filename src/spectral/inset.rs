@@ -26,31 +26,46 @@ pub struct Inset {
     pub corner: Corner,
 }
 
+/// Why an inset's text is refused.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum InsetError {
+    #[error("`{0}`: expected x,y,w,h,zoom,corner (fractions of the frame, a magnification, tl/tr/bl/br)")]
+    Fields(String),
+    #[error("`{0}` is not a number")]
+    NotNumber(String),
+    #[error("`{0}`: the region must lie inside the frame (0 <= x, y and x + w, y + h <= 1)")]
+    Outside(String),
+    #[error("`{0}`: the magnification must be 1 to 16 and the enlarged region fit in the frame")]
+    Zoom(String),
+    #[error("`{0}`: the corner must be tl, tr, bl or br")]
+    Corner(String),
+}
+
 impl Inset {
     /// Parses `x,y,w,h,zoom,corner` (fractions of the frame; corner one of
     /// tl, tr, bl, br). The enlarged region must fit in the frame.
-    pub fn parse(s: &str) -> Result<Inset, String> {
+    pub fn parse(s: &str) -> Result<Inset, InsetError> {
         let parts: Vec<&str> = s.split(',').map(str::trim).collect();
         if parts.len() != 6 {
-            return Err(format!("`{s}`: expected x,y,w,h,zoom,corner (fractions of the frame, a magnification, tl/tr/bl/br)"));
+            return Err(InsetError::Fields(s.into()));
         }
         let mut v = [0.0; 5];
         for (k, p) in parts[..5].iter().enumerate() {
-            v[k] = p.parse::<f64>().ok().filter(|x| x.is_finite()).ok_or_else(|| format!("`{p}` is not a number"))?;
+            v[k] = p.parse::<f64>().ok().filter(|x| x.is_finite()).ok_or_else(|| InsetError::NotNumber(p.to_string()))?;
         }
         let [x, y, w, h, zoom] = v;
         if !(0.0..1.0).contains(&x) || !(0.0..1.0).contains(&y) || w <= 0.0 || h <= 0.0 || x + w > 1.0 || y + h > 1.0 {
-            return Err(format!("`{s}`: the region must lie inside the frame (0 <= x, y and x + w, y + h <= 1)"));
+            return Err(InsetError::Outside(s.into()));
         }
         if !(1.0..=16.0).contains(&zoom) || w * zoom > 0.95 || h * zoom > 0.95 {
-            return Err(format!("`{s}`: the magnification must be 1 to 16 and the enlarged region fit in the frame"));
+            return Err(InsetError::Zoom(s.into()));
         }
         let corner = match parts[5] {
             "tl" => Corner::TopLeft,
             "tr" => Corner::TopRight,
             "bl" => Corner::BottomLeft,
             "br" => Corner::BottomRight,
-            c => return Err(format!("`{c}`: the corner must be tl, tr, bl or br")),
+            c => return Err(InsetError::Corner(c.into())),
         };
         Ok(Inset { x, y, w, h, zoom, corner })
     }
@@ -131,7 +146,7 @@ mod tests {
             (0..h).flat_map(|y| (0..w).map(move |x| (x, y))).filter(|&(x, y)| px[(y * w + x) * 3] > 100 && px[(y * w + x) * 3 + 1] < 50).collect::<Vec<_>>();
         assert!(red.iter().any(|&(x, y)| (x, y) == (2 + 22, 2 + 22)), "{red:?}");
         assert!(red.len() >= 9, "{} red pixels", red.len());
-        assert!(Inset::parse("0.9,0.5,0.2,0.1,2,tl").unwrap_err().contains("inside the frame"));
-        assert!(Inset::parse("0.5,0.5,0.1,0.1,4,up").unwrap_err().contains("corner"));
+        assert!(Inset::parse("0.9,0.5,0.2,0.1,2,tl").unwrap_err().to_string().contains("inside the frame"));
+        assert!(Inset::parse("0.5,0.5,0.1,0.1,4,up").unwrap_err().to_string().contains("corner"));
     }
 }

@@ -24,7 +24,7 @@ use crate::progress::Progress;
 use crate::scenes::SceneOptions;
 use crate::spectrum::cie::GamutMap;
 use crate::timing::Real;
-use anyhow::{bail, Result};
+use anyhow::Result;
 use options::{EyeMode, RenderOptions};
 use render::SpectralRender;
 use std::path::PathBuf;
@@ -102,19 +102,32 @@ impl SpectralConfig {
 
     /// Rejects impossible combinations, naming the flags. (Each value's
     /// own range is checked where it is parsed, by `params::prism`.)
-    pub fn validate(&self) -> Result<()> {
+    pub fn validate(&self) -> std::result::Result<(), ConfigError> {
         if self.passes > 1 && self.k.is_some() {
-            bail!("--passes needs a gather radius: progressive photon mapping shrinks it, and --k has none");
+            return Err(ConfigError::PassesWithK);
         }
         match self.k {
-            Some(k) if k < 4 => bail!(
-                "--k {k}: below 4 the k-nearest estimate (k - 1) / (pi r^2) counts too few photons (at --k 2 one, with infinite variance: it reads about 3 % low); use --k 4 or more"
-            ),
-            Some(_) if self.map != MapKind::Kdtree => bail!("--k needs --map kdtree: the buffer and the film hold texels and pixels, not photons"),
-            Some(_) if self.radius.is_some() => bail!("--k and --radius exclude each other"),
+            Some(k) if k < 4 => Err(ConfigError::FewNeighbours(k)),
+            Some(_) if self.map != MapKind::Kdtree => Err(ConfigError::KWithoutKdtree),
+            Some(_) if self.radius.is_some() => Err(ConfigError::KWithRadius),
             _ => Ok(()),
         }
     }
+}
+
+/// A combination of spectral parameters that makes no run.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ConfigError {
+    #[error("--passes needs a gather radius: progressive photon mapping shrinks it, and --k has none")]
+    PassesWithK,
+    #[error(
+        "--k {0}: below 4 the k-nearest estimate (k - 1) / (pi r^2) counts too few photons (at --k 2 one, with infinite variance: it reads about 3 % low); use --k 4 or more"
+    )]
+    FewNeighbours(usize),
+    #[error("--k needs --map kdtree: the buffer and the film hold texels and pixels, not photons")]
+    KWithoutKdtree,
+    #[error("--k and --radius exclude each other")]
+    KWithRadius,
 }
 
 /// Everything a run measured.
@@ -150,26 +163,21 @@ pub fn render_config(cfg: &SpectralConfig, progress: &dyn Progress) -> Result<Sp
     render_world(cfg, &scene, progress)
 }
 
-/// Renders `scene` (built from `cfg.scene`, perhaps changed since) with
-/// `cfg`'s method and settings.
-pub fn render_world(cfg: &SpectralConfig, scene: &crate::world::World, progress: &dyn Progress) -> Result<SpectralReport> {
-    cfg.validate()?;
-    // Before any tracing: the photons (for the kd-tree: stored once per
-    // surface they land on, up to 1 + bounces times, 16 B each, and the map
-    // built from them) and the image (XYZ in f64, then 8-bit sRGB) must fit
-    // in memory.
-    // The buffer map keeps no photons, only its texels (24 bytes each, in
-    // up to one copy per thread: `sum_copies`, and their class sums).
+/// The bytes a run of `cfg` on `scene` needs at its peak, estimated before
+/// any tracing, and what takes most of them, named as the flags are (for
+/// the memory check's refusal). The photons (for the kd-tree: stored once
+/// per surface they land on, up to 1 + bounces times, 16 B each, and the
+/// map built from them) and the image (XYZ in f64, then 8-bit sRGB). The
+/// buffer map keeps no photons, only its texels (24 bytes each, in up to
+/// one copy per thread: `sum_copies`, and their class sums).
+pub fn memory_need(cfg: &SpectralConfig, scene: &crate::world::World) -> (u64, String) {
     let threads = if cfg.threads == 0 { std::thread::available_parallelism().map_or(1, |n| n.get()) } else { cfg.threads };
     let photon_bytes = match cfg.map {
         MapKind::Buffer | MapKind::Film => {
             let texel = (cfg.radius.unwrap_or_else(|| default_radius(scene)) / 2.0).max(1e-5);
             // The film keeps caustics in maps of its own (2 per surface).
             let slots = if cfg.map == MapKind::Film { 2 * scene.maps.len() } else { scene.map_slots() };
-            let texels: u64 = (0..slots)
-                .filter_map(|slot| scene.faces[scene.slot_face(slot)].frame.map(|fr| (fr, texel * scene.slot_scale(slot))))
-                .map(|((_, eu, ev), texel)| ((eu.length() / texel).ceil().clamp(1.0, 4096.0) * (ev.length() / texel).ceil().clamp(1.0, 4096.0)) as u64)
-                .sum();
+            let texels: u64 = (0..slots).filter_map(|slot| crate::photon::emit::slot_texels(scene, slot, texel)).map(|(_, [nu, nv])| (nu * nv) as u64).sum();
             // Where an eye path may reach a matte surface at one wavelength
             // the texels also sum their flux by spectral class (`bands`: 8
             // bytes each, in one copy), 13 times the XYZ sums.
@@ -206,7 +214,15 @@ pub fn render_world(cfg: &SpectralConfig, scene: &crate::world::World, progress:
     } else {
         format!("--photons {} and --size {}x{}", cfg.photons, cfg.scene.width, cfg.scene.height)
     };
-    crate::data::check_memory(need, &what).map_err(anyhow::Error::msg)?;
+    (need, what)
+}
+
+/// Renders `scene` (built from `cfg.scene`, perhaps changed since) with
+/// `cfg`'s method and settings.
+pub fn render_world(cfg: &SpectralConfig, scene: &crate::world::World, progress: &dyn Progress) -> Result<SpectralReport> {
+    cfg.validate()?;
+    let (need, what) = memory_need(cfg, scene);
+    crate::data::check_memory(need, &what)?;
     // Progressive passes start from one pixel's footprint (the radius
     // then shrinks pass by pass); one pass gathers over two.
     let radius = cfg.radius.unwrap_or_else(|| default_radius(scene) / if cfg.passes > 1 { 2.0 } else { 1.0 });

@@ -4,15 +4,15 @@
 //! mirrors, lights and a pinhole camera, all in f64: the optics tests need
 //! better than f32 precision. A ray finds its face by walking prism parts
 //! cell by cell (`cells`), through a BVH over the faces in worlds of many
-//! (`bvh`, built by `build_accel`), or else by trying every face.
+//! (`face_bvh`, built by `build_accel`), or else by trying every face.
 //!
 //! `shape` holds the faces and spheres and their intersections;
 //! `interface` is what a ray does at a smooth boundary (Snell, Fresnel,
 //! total internal reflection); `probe` follows one ray per wavelength.
 
-pub mod bvh;
 pub mod camera;
 pub mod cells;
+pub mod face_bvh;
 pub mod interface;
 pub mod light;
 pub mod medium;
@@ -57,8 +57,9 @@ pub struct World {
     /// report 000's method does.
     pub direct_lighting: bool,
     /// A BVH over the faces, for worlds of many (`build_accel`); `None`
-    /// (or out of date) means a linear scan.
-    pub accel: Option<bvh::FaceBvh>,
+    /// (or out of date): a ray's face is found through the cells
+    /// (`cells`), trying one by one only the faces of no convex solid.
+    pub accel: Option<face_bvh::FaceBvh>,
     /// Scattering coefficient of a thin haze in the air (per metre) that
     /// shows the beams' paths to the camera; 0 is clear air
     /// (`spectral::haze`).
@@ -139,7 +140,7 @@ impl World {
     /// to pay (a mesh prism); call once the faces are final.
     pub fn build_accel(&mut self) {
         self.cells = Cells::index(&self.faces, &self.spheres);
-        self.accel = (self.faces.len() > 32).then(|| bvh::FaceBvh::build(&self.faces));
+        self.accel = (self.faces.len() > 32).then(|| face_bvh::FaceBvh::build(&self.faces));
     }
 
     /// Nearest hit along `o + t d`. `skip` is the surface the ray leaves: a
