@@ -66,7 +66,7 @@ struct Gather {
     lights: Vec<(f64, Light, Option<Emitting>)>,
     unmodelled: BTreeMap<String, usize>,
     /// Glass triangles by their corners (rounded): face index.
-    glass_tris: HashMap<[[i64; 3]; 3], usize>,
+    glass_tris: HashMap<Vec<[i64; 3]>, usize>,
     quantum: f64,
 }
 
@@ -604,10 +604,47 @@ fn norm(rgb: [f64; 3]) -> [f64; 3] {
     }
 }
 
-fn quantise(g: &Gather, t: &[DVec3; 3]) -> [[i64; 3]; 3] {
-    let mut k = t.map(|v| [(v.x / g.quantum).round() as i64, (v.y / g.quantum).round() as i64, (v.z / g.quantum).round() as i64]);
+fn quantise(g: &Gather, poly: &[DVec3]) -> Vec<[i64; 3]> {
+    let mut k: Vec<[i64; 3]> = poly.iter().map(|v| [(v.x / g.quantum).round() as i64, (v.y / g.quantum).round() as i64, (v.z / g.quantum).round() as i64]).collect();
     k.sort();
     k
+}
+
+/// Consecutive triangles in one plane that share an edge, joined while
+/// the polygon stays convex: a face written as a fan is one face again (a
+/// ray that refracts at one triangle must not meet its coplanar
+/// neighbour across the diagonal).
+fn merge_coplanar(tris: &[[DVec3; 3]]) -> Vec<Vec<DVec3>> {
+    let mut out: Vec<Vec<DVec3>> = Vec::new();
+    let mut normal = DVec3::ZERO;
+    for t in tris {
+        let n = (t[1] - t[0]).cross(t[2] - t[0]).normalize();
+        let size = (t[1] - t[0]).length().max((t[2] - t[0]).length());
+        let same = |a: DVec3, b: DVec3| (a - b).length() <= 1e-6 * size;
+        let merged = out.last().filter(|_| n.dot(normal) > 1.0 - 1e-9).and_then(|p| {
+            let k = p.len();
+            // An edge p[i] -> p[i + 1] that the triangle runs the other way.
+            (0..k).find_map(|i| {
+                let (a, b) = (p[i], p[(i + 1) % k]);
+                (0..3).find_map(|j| (same(t[j], b) && same(t[(j + 1) % 3], a)).then(|| t[(j + 2) % 3])).map(|apex| {
+                    let mut q = p.clone();
+                    q.insert(i + 1, apex);
+                    q
+                })
+            })
+        });
+        match merged.filter(|q| {
+            let k = q.len();
+            (0..k).all(|i| (q[(i + 1) % k] - q[i]).cross(q[(i + 2) % k] - q[(i + 1) % k]).dot(n) > 1e-12 * size * size)
+        }) {
+            Some(q) => *out.last_mut().expect("merged into the last") = q,
+            None => {
+                out.push(t.to_vec());
+                normal = n;
+            }
+        }
+    }
+    out
 }
 
 /// The parallelogram two triangles make, if they make one: corner and
@@ -632,11 +669,11 @@ fn parallelogram(a: &[DVec3; 3], b: &[DVec3; 3]) -> Option<(DVec3, DVec3, DVec3)
 fn add_triangles(g: &mut Gather, label: &str, tris: &[[DVec3; 3]], mat: &Mat, extras: &gltf::json::Extras) {
     match *mat {
         Mat::Glass(m) => {
-            for (i, t) in tris.iter().enumerate() {
-                let key = quantise(g, t);
-                let n = (t[1] - t[0]).cross(t[2] - t[0]);
+            for (i, poly) in merge_coplanar(tris).into_iter().enumerate() {
+                let key = quantise(g, &poly);
+                let n = (poly[1] - poly[0]).cross(poly[2] - poly[0]);
                 if let Some(&f) = g.glass_tris.get(&key) {
-                    // Another glass's solid has this triangle: one cemented face.
+                    // Another glass's solid has this face: one cemented face.
                     if let Surface::Interface { front: 0, back } = g.faces[f].surface {
                         if g.faces[f].normal.dot(n) < 0.0 {
                             g.faces[f].surface = Surface::Interface { front: m, back };
@@ -644,15 +681,15 @@ fn add_triangles(g: &mut Gather, label: &str, tris: &[[DVec3; 3]], mat: &Mat, ex
                         }
                     }
                 }
-                let face = Face::polygon(&format!("{label} triangle {i}"), t.to_vec(), n, Surface::Interface { front: 0, back: m });
+                let face = Face::polygon(&format!("{label} face {i}"), poly, n, Surface::Interface { front: 0, back: m });
                 g.glass_tris.insert(key, g.faces.len());
                 g.faces.push(face);
             }
         }
         Mat::Mirror(r) => {
-            for (i, t) in tris.iter().enumerate() {
-                let n = (t[1] - t[0]).cross(t[2] - t[0]);
-                g.faces.push(Face::polygon(&format!("{label} triangle {i}"), t.to_vec(), n, Surface::Mirror { reflectance: r }));
+            for (i, poly) in merge_coplanar(tris).into_iter().enumerate() {
+                let n = (poly[1] - poly[0]).cross(poly[2] - poly[0]);
+                g.faces.push(Face::polygon(&format!("{label} face {i}"), poly, n, Surface::Mirror { reflectance: r }));
             }
         }
         Mat::Matte(rgb) => {
