@@ -90,9 +90,8 @@ pub enum Command {
     /// glasses' dispersion (KHR_materials_dispersion), lights and camera;
     /// `refract render FILE` renders it back.
     Export {
-        /// The scene
-        #[arg(value_parser = param_args::named::<crate::scenes::SceneKind>(), ignore_case = true)]
-        scene: crate::scenes::SceneKind,
+        /// The scene: a built-in one (see `refract prism --help`, --scene) or one of the glTF examples (prism-table, sphere-box)
+        scene: String,
         /// The file to write: .glb (binary) or .gltf (JSON, buffer inline)
         #[arg(long)]
         out: PathBuf,
@@ -516,7 +515,7 @@ pub fn run(cli: Cli) -> Result<()> {
             }
             Ok(())
         }
-        Command::Export { scene, out, set } => run_export(scene, &out, &set),
+        Command::Export { scene, out, set } => run_export(&scene, &out, &set),
         Command::Render { file, quick, out, set } if crate::gltf::is_gltf(&file) => run_gltf(file, quick, out, &set),
         Command::Render { file, quick, out, set } => {
             let mut scene = crate::experiment::scene_file::SceneFile::load(&file, quick)?;
@@ -553,12 +552,29 @@ pub fn run(cli: Cli) -> Result<()> {
 }
 
 /// `refract export`: the built-in scene, with the parameters given, as glTF.
-fn run_export(kind: crate::scenes::SceneKind, out: &std::path::Path, set: &[String]) -> Result<()> {
+fn run_export(name: &str, out: &std::path::Path, set: &[String]) -> Result<()> {
     use crate::experiment::scene_file::SceneFile;
+    use crate::names::Named;
     if !crate::gltf::is_gltf(out) {
         bail!("--out: `{}` must end in .glb or .gltf", out.display());
     }
+    let example = crate::gltf::examples::EXAMPLES.iter().any(|(n, _)| *n == name);
+    let kind = crate::scenes::SceneKind::from_name(name);
+    if kind.is_none() && !example {
+        let all: Vec<&str> = crate::scenes::SceneKind::VALUES.iter().map(|v| v.1).chain(crate::gltf::examples::EXAMPLES.iter().map(|e| e.0)).collect();
+        bail!("`{name}` is not a scene; the scenes: {}", all.join(", "));
+    }
     crate::image_io::check_writable(out).map_err(|e| anyhow::anyhow!("--out: {e}"))?;
+    if example {
+        if !set.is_empty() {
+            bail!("--set: the glTF examples take no parameters");
+        }
+        let world = crate::gltf::examples::by_name(name, 640, 480).expect("an example");
+        crate::gltf::write::write(&world, out)?;
+        eprintln!("wrote {}", out.display());
+        return Ok(());
+    }
+    let kind = kind.expect("a built-in scene");
     let mut file = SceneFile {
         id: kind.name().into(),
         report: String::new(),

@@ -15,6 +15,7 @@
 //! kept in `extras.refract`, so a file refract wrote renders as the world
 //! it came from.
 
+pub mod examples;
 pub mod glass;
 pub mod read;
 pub mod write;

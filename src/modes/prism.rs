@@ -31,7 +31,11 @@ impl ModeKind for Prism {
     }
 
     fn mesh_file(cfg: &SpectralConfig, key: &str) -> Option<PathBuf> {
-        cfg.scene.obj.clone().filter(|_| key == "obj")
+        match key {
+            "obj" => cfg.scene.obj.clone(),
+            "gltf" => cfg.scene.gltf_file().map(|g| g.path.clone()),
+            _ => None,
+        }
     }
 
     fn cost(c: &SpectralConfig) -> Cost {
