@@ -63,3 +63,5 @@ mod names;
 mod readme;
 // Progress lines, rates and the summary line.
 mod progress;
+// glTF in and out: round trip, glass, lights, warnings, bad files.
+mod gltf;

@@ -558,10 +558,10 @@ fn run_export(name: &str, out: &std::path::Path, set: &[String]) -> Result<()> {
     if !crate::gltf::is_gltf(out) {
         bail!("--out: `{}` must end in .glb or .gltf", out.display());
     }
-    let example = crate::gltf::examples::EXAMPLES.iter().any(|(n, _)| *n == name);
+    let example = crate::scenes::examples::EXAMPLES.iter().any(|(n, _)| *n == name);
     let kind = crate::scenes::SceneKind::from_name(name);
     if kind.is_none() && !example {
-        let all: Vec<&str> = crate::scenes::SceneKind::VALUES.iter().map(|v| v.1).chain(crate::gltf::examples::EXAMPLES.iter().map(|e| e.0)).collect();
+        let all: Vec<&str> = crate::scenes::SceneKind::VALUES.iter().map(|v| v.1).chain(crate::scenes::examples::EXAMPLES.iter().map(|e| e.0)).collect();
         bail!("`{name}` is not a scene; the scenes: {}", all.join(", "));
     }
     crate::image_io::check_writable(out).map_err(|e| anyhow::anyhow!("--out: {e}"))?;
@@ -569,7 +569,7 @@ fn run_export(name: &str, out: &std::path::Path, set: &[String]) -> Result<()> {
         if !set.is_empty() {
             bail!("--set: the glTF examples take no parameters");
         }
-        let world = crate::gltf::examples::by_name(name, 640, 480).expect("an example");
+        let world = crate::scenes::examples::by_name(name, 640, 480).expect("an example");
         crate::gltf::write::write(&world, out)?;
         eprintln!("wrote {}", out.display());
         return Ok(());

@@ -15,7 +15,6 @@
 //! kept in `extras.refract`, so a file refract wrote renders as the world
 //! it came from.
 
-pub mod examples;
 pub mod glass;
 pub mod read;
 pub mod write;

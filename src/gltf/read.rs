@@ -195,6 +195,19 @@ pub fn load(o: &GltfOptions, width: usize, height: usize) -> Result<Imported, Gl
                     continue;
                 }
             }
+            // What the reader would not survive: positions that are not
+            // three floats, indices that are not unsigned integers.
+            use gltf::accessor::{DataType, Dimensions};
+            match prim.get(&gltf::Semantic::Positions) {
+                Some(a) if a.dimensions() == Dimensions::Vec3 && a.data_type() == DataType::F32 && a.view().is_some() => {}
+                Some(a) => return Err(content(format!("mesh `{label}`: its positions (accessor {}) are not three floats in a buffer", a.index()))),
+                None => return Err(content(format!("mesh `{label}` has a primitive without positions"))),
+            }
+            if let Some(a) = prim.indices() {
+                if a.dimensions() != Dimensions::Scalar || !matches!(a.data_type(), DataType::U8 | DataType::U16 | DataType::U32) || a.view().is_none() {
+                    return Err(content(format!("mesh `{label}`: its indices (accessor {}) are not unsigned integers in a buffer", a.index())));
+                }
+            }
             let reader = prim.reader(|b| buffers.get(b.index()).map(Vec::as_slice));
             let Some(positions) = reader.read_positions() else {
                 return Err(content(format!("mesh `{label}` has a primitive without positions")));

@@ -6,6 +6,7 @@
 
 pub mod amici;
 pub mod cornell;
+pub mod examples;
 pub mod single_prism;
 pub mod spheres;
 

@@ -6,7 +6,7 @@
 
 use crate::optics::glass::{self, lines};
 use crate::optics::ior::{IorKind, IorModel};
-use crate::scenes::{matte, rotate_z};
+use super::{matte, rotate_z};
 use crate::spectrum::Spectrum;
 use crate::world::probe::probe;
 use crate::world::{Camera, Emission, Face, Light, Medium, Sphere, Surface, World};

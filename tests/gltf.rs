@@ -1,0 +1,216 @@
+//! glTF 2.0 in and out: a built-in scene exported and read back renders
+//! as the scene itself; a file's glass keeps its n_d and Abbe number; a
+//! directional light lands where the probe says; what refract does not
+//! model is named in one warning; a bad file is one error line.
+
+use crate::common::*;
+use refract::gltf::{read, write, GltfOptions};
+use refract::scenes::{build, SceneKind, SceneOptions};
+use refract::spectral::SpectralConfig;
+use refract::world::{Medium, Surface, World};
+use std::path::Path;
+
+fn config(size: [usize; 2], photons: u64, spp: u32, seed: u64) -> SpectralConfig {
+    let mut o = SceneOptions::new(SceneKind::SinglePrism);
+    [o.width, o.height] = size;
+    let mut c = SpectralConfig::new(o, Default::default());
+    (c.photons, c.spp, c.seed, c.threads) = (photons, spp, seed, 2);
+    c
+}
+
+fn render(w: &World, c: &SpectralConfig) -> Vec<glam::DVec3> {
+    refract::spectral::render_world(c, w, &refract::progress::Silent).unwrap().render.image.xyz
+}
+
+/// Mean absolute difference of luminance over the mean luminance.
+fn differ(a: &[glam::DVec3], b: &[glam::DVec3]) -> f64 {
+    let mean = a.iter().map(|v| v.y).sum::<f64>() / a.len() as f64;
+    assert!(mean > 0.0, "black image");
+    a.iter().zip(b).map(|(x, y)| (x.y - y.y).abs()).sum::<f64>() / a.len() as f64 / mean
+}
+
+fn read_back(w: &World, path: &Path, size: [usize; 2]) -> World {
+    write::write(w, path).unwrap();
+    read::load(&GltfOptions::new(path.to_path_buf()), size[0], size[1]).unwrap().world
+}
+
+/// Export, import, render: the same image as the built-in scene's at the
+/// same seed, within the noise (the difference between two seeds of the
+/// built-in scene), for a prism, the cemented Amici prism on its bench,
+/// a Cornell box and report 001's sphere.
+#[test]
+fn an_exported_scene_renders_as_the_built_in_one() {
+    let dir = tempfile::tempdir().unwrap();
+    let size = [160, 90];
+    for (kind, ext) in [(SceneKind::SinglePrism, "glb"), (SceneKind::AmiciBench, "gltf"), (SceneKind::CornellPointlight, "glb"), (SceneKind::SpheresFinal, "glb")] {
+        let mut o = SceneOptions::new(kind);
+        [o.width, o.height] = size;
+        let built = build(&o).unwrap();
+        let back = read_back(&built, &dir.path().join(format!("{}.{ext}", kind.name())), size);
+        let count = |w: &World| {
+            (
+                w.faces.iter().filter(|f| matches!(f.surface, Surface::Interface { .. })).count(),
+                w.faces.iter().filter(|f| matches!(f.surface, Surface::Interface { front, .. } if front != 0)).count(),
+                w.maps.len(),
+                w.spheres.len(),
+                w.lights.len(),
+                w.media.len(),
+            )
+        };
+        assert_eq!(count(&back), count(&built), "{kind:?}: glass faces, cemented faces, matte faces, spheres, lights, media");
+        let c = config(size, 200_000, 2, 1);
+        let (a, b) = (render(&built, &c), render(&back, &c));
+        let noise = differ(&a, &render(&built, &config(size, 200_000, 2, 2)));
+        let d = differ(&a, &b);
+        // (The file's faces take the general light pass, not the built-in
+        // prism cells' shortcut: another draw of the same photons.)
+        assert!(d < 1.5 * noise, "{kind:?}: read back differs by {d:.4} of the mean; two seeds by {noise:.4}");
+        let mean = |x: &[glam::DVec3]| x.iter().map(|v| v.y).sum::<f64>() / x.len() as f64;
+        assert!((mean(&a) / mean(&b) - 1.0).abs() < 0.03, "{kind:?}: mean luminance {} against {}", mean(&b), mean(&a));
+    }
+}
+
+/// A glTF glass of n_d 1.519 and V_d 64.0 (dispersion 20/64) is read as a
+/// glass with those numbers to 1e-4 (the KHR Cauchy model); with
+/// `nearest`, as the catalogue's N-BK7 (n_d 1.5168, V_d 64.17); and a glass
+/// refract wrote keeps its catalogue glass and model.
+#[test]
+fn a_files_glass_keeps_its_n_d_and_abbe_number() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("glass.gltf");
+    std::fs::write(&file, minimal(r#"{"name": "flint", "pbrMetallicRoughness": {"roughnessFactor": 0}, "extensions": {"KHR_materials_transmission": {"transmissionFactor": 1}, "KHR_materials_ior": {"ior": 1.519}, "KHR_materials_dispersion": {"dispersion": 0.3125}}}"#, "", "")).unwrap();
+    let mut o = GltfOptions::new(file.clone());
+    o.add_light = Some(refract::gltf::AddedLight::Sun(glam::DVec3::NEG_Y));
+    let w = read::load(&o, 64, 48).unwrap().world;
+    let Medium::Glass { ior, .. } = &w.media[1] else { panic!("no glass") };
+    let (n_d, abbe) = refract::gltf::glass::nd_abbe(ior);
+    assert!((n_d - 1.519).abs() < 1e-4 && (abbe.unwrap() - 64.0).abs() < 1e-4, "n_d {n_d}, V_d {abbe:?}");
+    o.glass = refract::gltf::GlassChoice::Nearest;
+    let w = read::load(&o, 64, 48).unwrap().world;
+    let Medium::Glass { name, ior } = &w.media[1] else { panic!("no glass") };
+    assert_eq!(name, "N-BK7");
+    assert!(matches!(ior, refract::optics::ior::IorModel::Sellmeier(_)));
+    // refract's own: N-SF11 by Sellmeier comes back as N-SF11 by Sellmeier.
+    let mut s = SceneOptions::new(SceneKind::SinglePrism);
+    s.crown = refract::optics::glass::by_name("N-SF11").unwrap();
+    let back = read_back(&build(&s).unwrap(), &dir.path().join("sf11.glb"), [64, 48]);
+    let Medium::Glass { name, ior } = &back.media[1] else { panic!("no glass") };
+    assert_eq!((name.as_str(), ior), ("N-SF11", &refract::optics::ior::IorModel::Sellmeier(s.crown.clone())));
+}
+
+/// The example's sunbeam (a directional light, its width in the extras)
+/// through the prism: the spectrum on the table is centred, in the image,
+/// where the probe's d-line ray meets the table (the luminance centroid
+/// of the photons' light within 3 % of the image's width).
+#[test]
+fn a_directional_light_lands_where_the_probe_says() {
+    let path = repo("scenes/gltf/prism-table.glb");
+    let size = [240, 180];
+    let mut w = read::load(&GltfOptions::new(path), size[0], size[1]).unwrap().world;
+    assert!(matches!(w.lights[0].emission, refract::world::Emission::Beam { .. }), "the sunbeam is a beam");
+    let d = refract::world::probe::probe(&w, refract::optics::glass::lines::LD);
+    assert!(!d.tir && d.exit_dir.z < 0.0, "the d line leaves the prism downward");
+    let land = d.exit_point + d.exit_dir * (d.exit_point.z / -d.exit_dir.z);
+    let want = w.camera.project(land).expect("the landing point is in front of the camera");
+    // The beam alone (the lamp would light the whole table).
+    w.lights.truncate(1);
+    w.photon_shares = None;
+    let r = refract::spectral::render_world(&config(size, 300_000, 1, 1), &w, &refract::progress::Silent).unwrap();
+    let img = &r.render.image;
+    let (mut sum, mut total) = (glam::DVec2::ZERO, 0.0);
+    for y in 0..img.height {
+        for x in 0..img.width {
+            let v = img.xyz[y * img.width + x].y;
+            sum += v * glam::DVec2::new(x as f64 + 0.5, y as f64 + 0.5);
+            total += v;
+        }
+    }
+    let got = sum / total;
+    assert!((got - want).length() < 0.03 * size[0] as f64, "the light's centroid is at {got}, the probe's landing point at {want}");
+}
+
+/// A minimal glTF: one triangle (a floor, or a glass given its material),
+/// with `material`, extra top-level keys `more` and a node's extras.
+fn minimal(material: &str, more: &str, node_more: &str) -> String {
+    use base64::Engine;
+    let pos: [f32; 9] = [-1.0, 0.0, 1.0, 1.0, 0.0, 1.0, 0.0, 0.0, -1.0];
+    let bytes: Vec<u8> = pos.iter().flat_map(|p| p.to_le_bytes()).collect();
+    let data = base64::engine::general_purpose::STANDARD.encode(&bytes);
+    format!(
+        r#"{{"asset": {{"version": "2.0"}}, "scene": 0, "scenes": [{{"nodes": [0]}}],
+        "nodes": [{{"mesh": 0{node_more}}}],
+        "meshes": [{{"primitives": [{{"attributes": {{"POSITION": 0}}, "material": 0}}]}}],
+        "materials": [{material}],
+        "accessors": [{{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [-1, 0, -1], "max": [1, 0, 1]}}],
+        "bufferViews": [{{"buffer": 0, "byteLength": 36}}],
+        "buffers": [{{"byteLength": 36, "uri": "data:application/octet-stream;base64,{data}"}}]{more}}}"#
+    )
+}
+
+/// A file with a texture, an animation, rough glass and a spot light
+/// renders, and says so in one warning line that lists each.
+#[test]
+fn what_refract_does_not_model_is_listed_in_one_warning() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("feature.gltf");
+    let material = r#"{"name": "rough", "pbrMetallicRoughness": {"roughnessFactor": 0.3, "baseColorTexture": {"index": 0}}, "extensions": {"KHR_materials_transmission": {"transmissionFactor": 1}}}"#;
+    let more = r#", "textures": [{"source": 0}], "images": [{"uri": "missing.png"}],
+        "animations": [{"channels": [{"sampler": 0, "target": {"node": 0, "path": "translation"}}], "samplers": [{"input": 1, "output": 2}]}],
+        "extensionsUsed": ["KHR_lights_punctual", "KHR_materials_transmission", "KHR_materials_sheen"],
+        "extensions": {"KHR_lights_punctual": {"lights": [{"type": "spot", "intensity": 100, "spot": {}}]}}"#;
+    // The animation's accessors (a time and a translation key).
+    let text = minimal(material, more, r#", "children": [1]}, {"translation": [0, 2, 0], "extensions": {"KHR_lights_punctual": {"light": 0}}"#)
+        .replace(r#""accessors": [{"#, r#""accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [-1, 0, -1], "max": [1, 0, 1]}, {"bufferView": 0, "componentType": 5126, "count": 1, "type": "SCALAR", "min": [-1], "max": [-1]}, {"#)
+        .replace(r#""sampler": 0, "target""#, r#""sampler": 0, "target""#);
+    // Accessor 0 moved: the mesh keeps POSITION 0, the animation reads 1 and 0.
+    let text = text.replace(r#""input": 1, "output": 2"#, r#""input": 1, "output": 0"#);
+    std::fs::write(&file, text).unwrap();
+    let o = run(&["render", file.to_str().unwrap(), "--set", "photons=2000", "--set", "spp=1", "--set", "size=32,24", "--out", dir.path().join("f.png").to_str().unwrap()], "", dir.path());
+    let err = stderr(&o);
+    assert!(o.status.success(), "{err}");
+    let warnings: Vec<&str> = err.lines().filter(|l| l.starts_with("warning:")).collect();
+    assert_eq!(warnings.len(), 1, "one warning line: {err}");
+    for what in ["textures", "roughness above 0", "animations", "spot lights", "KHR_materials_sheen", "feature.gltf"] {
+        assert!(warnings[0].contains(what), "the warning names {what}: {}", warnings[0]);
+    }
+    // A file refract wrote holds nothing it leaves out.
+    let clean = read::load(&GltfOptions::new(repo("scenes/gltf/sphere-box.glb")), 32, 24).unwrap();
+    assert!(clean.unmodelled.is_empty(), "{:?}", clean.unmodelled);
+}
+
+/// Bad files: one line naming the file, non-zero, nothing written.
+#[test]
+fn a_bad_file_is_one_error_line_naming_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("x.png");
+    let cases: Vec<(&str, Vec<u8>, &str)> = vec![
+        ("text.gltf", b"not json at all".to_vec(), "not valid glTF 2.0"),
+        ("short.glb", b"glTF\x02\x00\x00\x00\xff\x00\x00\x00".to_vec(), "not valid glTF 2.0"),
+        ("index.gltf", minimal(r#"{"name": "m"}"#, "", "").replace(r#""POSITION": 0}"#, r#""POSITION": 0}, "indices": 0"#).into_bytes(), "are not unsigned integers"),
+        ("dark.gltf", minimal(r#"{"name": "m"}"#, "", "").into_bytes(), "has no light"),
+        ("buffer.gltf", minimal(r#"{"name": "m"}"#, "", "").replace(r#""byteLength": 36, "uri""#, r#""byteLength": 72, "uri""#).into_bytes(), "holds 36 bytes"),
+    ];
+    for (name, bytes, why) in cases {
+        let file = dir.path().join(name);
+        std::fs::write(&file, bytes).unwrap();
+        let o = run(&["render", file.to_str().unwrap(), "--out", out.to_str().unwrap()], "", dir.path());
+        assert_clean_failure(&o, name);
+        assert!(stderr(&o).contains(why), "{name}: {}", stderr(&o));
+        assert!(!out.exists(), "{name}: nothing is written");
+    }
+    let o = run(&["render", dir.path().join("absent.glb").to_str().unwrap()], "", dir.path());
+    assert_clean_failure(&o, "absent.glb: cannot read");
+    let o = run(&["export", "no-such-scene", "--out", out.with_extension("glb").to_str().unwrap()], "", dir.path());
+    assert_clean_failure(&o, "`no-such-scene` is not a scene");
+}
+
+/// The shipped examples are the writer's own output, byte for byte.
+#[test]
+fn the_examples_are_the_writers_own() {
+    for (name, _) in refract::scenes::examples::EXAMPLES {
+        let path = repo(&format!("scenes/gltf/{name}.glb"));
+        let w = refract::scenes::examples::by_name(name, 640, 480).unwrap();
+        let bytes = write::to_bytes(&w, &path).unwrap();
+        assert!(std::fs::read(&path).unwrap() == bytes, "{} differs from `refract export {name}`: write it again", path.display());
+    }
+}
