@@ -40,7 +40,8 @@ pub fn prism_table(width: usize, height: usize) -> World {
     let apex = 60f64.to_radians();
     let tall = side * (apex / 2.0).cos();
     let tri = [DVec2::new(-side / 2.0, -tall / 3.0), DVec2::new(side / 2.0, -tall / 3.0), DVec2::new(0.0, 2.0 * tall / 3.0)];
-    w.add_extruded("prism", &[(tri, 1)], 0.0, tall_z);
+    // A hair above the table: a face in the table's plane would hide it.
+    w.add_extruded("prism", &[(tri, 1)], 0.0005, tall_z);
     let n_d = glass::by_name("N-SF11").expect("in the catalogue").sellmeier(lines::LD);
     let incidence = (n_d * (apex / 2.0).sin()).asin();
     let across = rotate_z(DVec3::X, -apex / 2.0 + incidence);
