@@ -42,7 +42,9 @@ fn read_back(w: &World, path: &Path, size: [usize; 2]) -> World {
 fn an_exported_scene_renders_as_the_built_in_one() {
     let dir = tempfile::tempdir().unwrap();
     let size = [160, 90];
-    for (kind, ext) in [(SceneKind::SinglePrism, "glb"), (SceneKind::AmiciBench, "gltf"), (SceneKind::CornellPointlight, "glb"), (SceneKind::SpheresFinal, "glb")] {
+    for (kind, ext) in
+        [(SceneKind::SinglePrism, "glb"), (SceneKind::AmiciBench, "gltf"), (SceneKind::CornellPointlight, "glb"), (SceneKind::SpheresFinal, "glb")]
+    {
         let mut o = SceneOptions::new(kind);
         [o.width, o.height] = size;
         let built = build(&o).unwrap();
@@ -165,7 +167,22 @@ fn what_refract_does_not_model_is_listed_in_one_warning() {
     // Accessor 0 moved: the mesh keeps POSITION 0, the animation reads 1 and 0.
     let text = text.replace(r#""input": 1, "output": 2"#, r#""input": 1, "output": 0"#);
     std::fs::write(&file, text).unwrap();
-    let o = run(&["render", file.to_str().unwrap(), "--set", "photons=2000", "--set", "spp=1", "--set", "size=32,24", "--out", dir.path().join("f.png").to_str().unwrap()], "", dir.path());
+    let o = run(
+        &[
+            "render",
+            file.to_str().unwrap(),
+            "--set",
+            "photons=2000",
+            "--set",
+            "spp=1",
+            "--set",
+            "size=32,24",
+            "--out",
+            dir.path().join("f.png").to_str().unwrap(),
+        ],
+        "",
+        dir.path(),
+    );
     let err = stderr(&o);
     assert!(o.status.success(), "{err}");
     let warnings: Vec<&str> = err.lines().filter(|l| l.starts_with("warning:")).collect();
@@ -186,7 +203,11 @@ fn a_bad_file_is_one_error_line_naming_it() {
     let cases: Vec<(&str, Vec<u8>, &str)> = vec![
         ("text.gltf", b"not json at all".to_vec(), "not valid glTF 2.0"),
         ("short.glb", b"glTF\x02\x00\x00\x00\xff\x00\x00\x00".to_vec(), "not valid glTF 2.0"),
-        ("index.gltf", minimal(r#"{"name": "m"}"#, "", "").replace(r#""POSITION": 0}"#, r#""POSITION": 0}, "indices": 0"#).into_bytes(), "are not unsigned integers"),
+        (
+            "index.gltf",
+            minimal(r#"{"name": "m"}"#, "", "").replace(r#""POSITION": 0}"#, r#""POSITION": 0}, "indices": 0"#).into_bytes(),
+            "are not unsigned integers",
+        ),
         ("dark.gltf", minimal(r#"{"name": "m"}"#, "", "").into_bytes(), "has no light"),
         ("buffer.gltf", minimal(r#"{"name": "m"}"#, "", "").replace(r#""byteLength": 36, "uri""#, r#""byteLength": 72, "uri""#).into_bytes(), "holds 36 bytes"),
     ];
@@ -213,4 +234,45 @@ fn the_examples_are_the_writers_own() {
         let bytes = write::to_bytes(&w, &path).unwrap();
         assert!(std::fs::read(&path).unwrap() == bytes, "{} differs from `refract export {name}`: write it again", path.display());
     }
+}
+
+/// The Khronos sample `DispersionTest` (KhronosGroup/glTF-Sample-Assets,
+/// Models/DispersionTest, written for KHR_materials_dispersion; not
+/// shipped: set REFRACT_GLTF_SAMPLES to a checkout of that repository).
+/// It has no light: a sun is added, falling from the viewer's side onto
+/// the 25 prisms and the backdrop behind them. Its dispersion shows: the
+/// image holds at least 1.5 times the chroma of the same render with every
+/// index held at n_d.
+#[test]
+fn the_khronos_dispersion_test_shows_its_dispersion() {
+    let Some(root) = std::env::var_os("REFRACT_GLTF_SAMPLES") else {
+        eprintln!("skipped: REFRACT_GLTF_SAMPLES (a glTF-Sample-Assets checkout) is not set");
+        return;
+    };
+    let path = Path::new(&root).join("Models/DispersionTest/glTF/DispersionTest.gltf");
+    if !path.is_file() {
+        eprintln!("skipped: {} is absent", path.display());
+        return;
+    }
+    let chroma = |no_dispersion: bool| {
+        let mut o = SceneOptions::new(SceneKind::SinglePrism);
+        [o.width, o.height] = [240, 180];
+        let mut g = GltfOptions::new(path.clone());
+        g.add_light = Some(refract::gltf::AddedLight::parse("sun:0,-0.3,-1").unwrap());
+        o.gltf = Some(g);
+        o.no_dispersion = no_dispersion;
+        let w = build(&o).unwrap();
+        assert!(w.media.len() > 20, "the 25 prisms' glasses");
+        let mut c = config([240, 180], 1_000_000, 2, 1);
+        c.scene = o;
+        render(&w, &c)
+            .iter()
+            .map(|v| {
+                let rgb = refract::spectrum::cie::Xyz(*v).to_linear_srgb().0;
+                rgb.max_element() - rgb.min_element()
+            })
+            .sum::<f64>()
+    };
+    let (with, without) = (chroma(false), chroma(true));
+    assert!(with > 1.5 * without, "chroma with dispersion {with:.3e}, without {without:.3e}");
 }

@@ -170,7 +170,9 @@ pub fn load(o: &GltfOptions, width: usize, height: usize) -> Result<Imported, Gl
 
     let mut mats: HashMap<Option<usize>, Mat> = HashMap::new();
     for (node, m, mesh) in &meshes {
-        let sphere = refract_extras(node.extras()).and_then(|r| r.get("sphere").cloned()).or_else(|| refract_extras(mesh.extras()).and_then(|r| r.get("sphere").cloned()));
+        let sphere = refract_extras(node.extras())
+            .and_then(|r| r.get("sphere").cloned())
+            .or_else(|| refract_extras(mesh.extras()).and_then(|r| r.get("sphere").cloned()));
         for (k, prim) in mesh.primitives().enumerate() {
             let key = prim.material().index();
             if !mats.contains_key(&key) {
@@ -267,7 +269,12 @@ pub fn load(o: &GltfOptions, width: usize, height: usize) -> Result<Imported, Gl
         let order = 1e12 + g.lights.len() as f64;
         let light = match a {
             AddedLight::Sun(d) => beam_over(from_gltf(d).normalize(), None, (centre, radius), 1.0, Spectrum::light("D65").expect("D65 is known"), "added sun"),
-            AddedLight::Point(p) => Light { name: "added point".into(), emission: Emission::Point { pos: from_gltf(p) }, spectrum: Spectrum::light("D65").expect("D65 is known"), power: 1.0 },
+            AddedLight::Point(p) => Light {
+                name: "added point".into(),
+                emission: Emission::Point { pos: from_gltf(p) },
+                spectrum: Spectrum::light("D65").expect("D65 is known"),
+                power: 1.0,
+            },
         };
         g.lights.push((order, light, None));
     }
@@ -618,7 +625,8 @@ fn norm(rgb: [f64; 3]) -> [f64; 3] {
 }
 
 fn quantise(g: &Gather, poly: &[DVec3]) -> Vec<[i64; 3]> {
-    let mut k: Vec<[i64; 3]> = poly.iter().map(|v| [(v.x / g.quantum).round() as i64, (v.y / g.quantum).round() as i64, (v.z / g.quantum).round() as i64]).collect();
+    let mut k: Vec<[i64; 3]> =
+        poly.iter().map(|v| [(v.x / g.quantum).round() as i64, (v.y / g.quantum).round() as i64, (v.z / g.quantum).round() as i64]).collect();
     k.sort();
     k
 }
@@ -741,7 +749,8 @@ fn add_triangles(g: &mut Gather, label: &str, tris: &[[DVec3; 3]], mat: &Mat, ex
                 // refract's power is the whole mesh's; shared by area.
                 let power = r.as_ref().and_then(|r| num(r, "power")).map_or_else(|| emitted_watts(rgb, area), |p| p * area / total);
                 let order = r.as_ref().and_then(|r| num(r, "light")).map_or(1e9 + g.lights.len() as f64, |o| o + k as f64 * 1e-6);
-                let light = Light { name: format!("{label} {k}"), emission: Emission::Area { face: f }, spectrum: light_spectrum(r.as_ref(), norm(rgb)), power };
+                let light =
+                    Light { name: format!("{label} {k}"), emission: Emission::Area { face: f }, spectrum: light_spectrum(r.as_ref(), norm(rgb)), power };
                 g.lights.push((order, light, Some(Emitting::Face(f))));
             }
         }
@@ -821,9 +830,68 @@ pub fn default_size(o: &GltfOptions, width: usize) -> [usize; 2] {
 /// image size); errors are left to `load`.
 pub fn aspect_of(path: &Path, camera: Option<&str>) -> Option<f64> {
     let doc = gltf::Gltf::open(path).ok()?;
-    let cams: Vec<gltf::Camera> = doc.nodes().filter_map(|n| n.camera().filter(|c| camera.is_none_or(|w| c.name() == Some(w) || n.name() == Some(w)))).collect();
+    let cams: Vec<gltf::Camera> =
+        doc.nodes().filter_map(|n| n.camera().filter(|c| camera.is_none_or(|w| c.name() == Some(w) || n.name() == Some(w)))).collect();
     match cams.first()?.projection() {
         gltf::camera::Projection::Perspective(p) => p.aspect_ratio().map(f64::from).filter(|a| a.is_finite() && *a > 0.0),
         _ => None,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A convex polygon written as a fan comes back whole; a reversed fan
+    /// comes back reversed; a bent pair stays two triangles.
+    #[test]
+    fn a_fan_in_one_plane_is_one_face_again() {
+        let v = DVec3::new;
+        let poly = [v(0.0, 0.0, 0.0), v(1.0, 0.0, 0.0), v(1.5, 1.0, 0.0), v(0.5, 1.5, 0.0), v(-0.5, 1.0, 0.0)];
+        let fan: Vec<[DVec3; 3]> = (1..4).map(|i| [poly[0], poly[i], poly[i + 1]]).collect();
+        let merged = merge_coplanar(&fan);
+        assert_eq!(merged.len(), 1);
+        assert_eq!(merged[0], poly.to_vec());
+        let back: Vec<[DVec3; 3]> = fan.iter().map(|[a, b, c]| [*a, *c, *b]).collect();
+        let merged = merge_coplanar(&back);
+        assert_eq!(merged.len(), 1);
+        assert_eq!(merged[0].len(), 5);
+        // Folded along the shared edge: not one plane.
+        let bent = [[v(0.0, 0.0, 0.0), v(1.0, 0.0, 0.0), v(0.0, 1.0, 0.0)], [v(1.0, 0.0, 0.0), v(0.0, 1.0, 0.0), v(1.0, 1.0, 0.5)]];
+        assert_eq!(merge_coplanar(&bent).len(), 2);
+    }
+
+    /// Two triangles of a parallelogram give its corner and edges (normal
+    /// kept); two of a kite do not.
+    #[test]
+    fn a_quads_triangles_are_its_parallelogram() {
+        let v = DVec3::new;
+        let (c, eu, ev) = (v(1.0, 2.0, 0.0), v(2.0, 0.0, 0.0), v(0.5, 1.0, 0.0));
+        let (p, u, w) = parallelogram(&[c, c + eu, c + ev], &[c + eu, c + eu + ev, c + ev]).unwrap();
+        assert!((p - c).length() < 1e-12 && (u - eu).length() < 1e-12 && (w - ev).length() < 1e-12);
+        assert!(u.cross(w).z > 0.0);
+        let kite = [[v(0.0, 0.0, 0.0), v(1.0, 0.0, 0.0), v(0.0, 1.0, 0.0)], [v(1.0, 0.0, 0.0), v(2.0, 2.0, 0.0), v(0.0, 1.0, 0.0)]];
+        assert!(parallelogram(&kite[0], &kite[1]).is_none());
+    }
+
+    #[test]
+    fn uris_are_percent_decoded() {
+        assert_eq!(percent_decode("my%20scene.bin"), "my scene.bin");
+        assert_eq!(percent_decode("a%2"), "a%2");
+        assert_eq!(percent_decode("plain.bin"), "plain.bin");
+    }
+
+    /// Every spectrum kind refract's lights use comes back from its JSON.
+    #[test]
+    fn spectra_come_back_from_their_json() {
+        for name in ["D65", "E", "blackbody:3200", "cfl-lines", "laser:532", "FL11"] {
+            let s = Spectrum::light(name).unwrap();
+            let back = spectrum_of(&super::super::write::spectrum_json(&s)).unwrap();
+            for nm in [400.0, 532.0, 546.1, 611.0, 700.0] {
+                assert_eq!(s.eval(nm), back.eval(nm), "{name} at {nm} nm");
+            }
+        }
+        let rgb = Spectrum::from_rgb(DVec3::new(0.9, 0.3, 0.1), true);
+        assert_eq!(spectrum_of(&super::super::write::spectrum_json(&rgb)).unwrap().eval(600.0), rgb.eval(600.0));
     }
 }

@@ -235,12 +235,15 @@ pub fn document(w: &World) -> (Json, Vec<u8>) {
                     crate::world::interface::Polarisation::P => "p",
                 });
                 extras["refract"]["beam"] = json!({"half": [hx, hy], "disc": disc, "polarisation": pol});
-                d.lights.push(json!({"name": l.name, "type": "directional", "color": c, "intensity": l.power / area * LUMENS_PER_WATT / luma(c), "extras": extras}));
+                d.lights.push(
+                    json!({"name": l.name, "type": "directional", "color": c, "intensity": l.power / area * LUMENS_PER_WATT / luma(c), "extras": extras}),
+                );
                 light_nodes.push(json!({"name": l.name, "translation": vec(to_gltf(*centre)), "rotation": rotation(x, y), "extensions": {"KHR_lights_punctual": {"light": d.lights.len() - 1}}}));
             }
             Emission::Point { pos } => {
                 d.lights.push(json!({"name": l.name, "type": "point", "color": c, "intensity": l.power * LUMENS_PER_WATT / (4.0 * std::f64::consts::PI) / luma(c), "extras": extras}));
-                light_nodes.push(json!({"name": l.name, "translation": vec(to_gltf(*pos)), "extensions": {"KHR_lights_punctual": {"light": d.lights.len() - 1}}}));
+                light_nodes
+                    .push(json!({"name": l.name, "translation": vec(to_gltf(*pos)), "extensions": {"KHR_lights_punctual": {"light": d.lights.len() - 1}}}));
             }
             Emission::Area { face } => {
                 let f = &w.faces[*face];
@@ -254,7 +257,9 @@ pub fn document(w: &World) -> (Json, Vec<u8>) {
                 let nits = l.power / (std::f64::consts::PI * 4.0 * std::f64::consts::PI * s.radius * s.radius) * LUMENS_PER_WATT / luma(c);
                 d.materials.push(json!({"name": l.name, "emissiveFactor": c, "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": nits}}, "pbrMetallicRoughness": {"baseColorFactor": [0.0, 0.0, 0.0, 1.0], "metallicFactor": 0.0}, "extras": extras}));
                 let mesh = d.mesh(&s.name, &sphere_triangles(s.radius), d.materials.len() - 1, None);
-                d.nodes.push(json!({"name": s.name, "mesh": mesh, "translation": vec(to_gltf(s.centre)), "extras": {"refract": {"sphere": {"radius": s.radius}}}}));
+                d.nodes.push(
+                    json!({"name": s.name, "mesh": mesh, "translation": vec(to_gltf(s.centre)), "extras": {"refract": {"sphere": {"radius": s.radius}}}}),
+                );
             }
         }
     }
@@ -344,4 +349,27 @@ fn glb(json: &[u8], bin: &[u8]) -> Result<Vec<u8>, String> {
         out.extend(std::iter::repeat_n(0u8, pad(bin.len())));
     }
     Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scenes::{build, SceneKind, SceneOptions};
+
+    /// The GLB container and the JSON file are valid glTF to the `gltf`
+    /// crate's own validation, with the same document in both.
+    #[test]
+    fn both_forms_are_valid_gltf() {
+        let w = build(&SceneOptions::new(SceneKind::AmiciBench)).unwrap();
+        let glb = to_bytes(&w, Path::new("x.glb")).unwrap();
+        assert_eq!(&glb[..4], b"glTF");
+        assert_eq!(u32::from_le_bytes(glb[8..12].try_into().unwrap()) as usize, glb.len());
+        assert_eq!(glb.len() % 4, 0);
+        let a = gltf::Gltf::from_slice(&glb).unwrap();
+        let b = gltf::Gltf::from_slice(&to_bytes(&w, Path::new("x.gltf")).unwrap()).unwrap();
+        assert_eq!(a.meshes().count(), b.meshes().count());
+        assert_eq!(a.materials().filter(|m| m.ior().is_some()).count(), 2, "the crown and the flint");
+        assert_eq!(a.lights().map_or(0, |l| l.count()), 2);
+        assert!(to_bytes(&w, Path::new("x.obj")).unwrap_err().contains(".glb or .gltf"));
+    }
 }

@@ -4,9 +4,9 @@
 //! under a directional light, and a glass sphere in a box lit from its
 //! ceiling.
 
+use super::{matte, rotate_z};
 use crate::optics::glass::{self, lines};
 use crate::optics::ior::{IorKind, IorModel};
-use super::{matte, rotate_z};
 use crate::spectrum::Spectrum;
 use crate::world::probe::probe;
 use crate::world::{Camera, Emission, Face, Light, Medium, Sphere, Surface, World};
