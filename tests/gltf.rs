@@ -160,12 +160,12 @@ fn what_refract_does_not_model_is_listed_in_one_warning() {
         "animations": [{"channels": [{"sampler": 0, "target": {"node": 0, "path": "translation"}}], "samplers": [{"input": 1, "output": 2}]}],
         "extensionsUsed": ["KHR_lights_punctual", "KHR_materials_transmission", "KHR_materials_sheen"],
         "extensions": {"KHR_lights_punctual": {"lights": [{"type": "spot", "intensity": 100, "spot": {}}]}}"#;
-    // The animation's accessors (a time and a translation key).
+    // Two accessors put first for the animation: the positions again (0,
+    // which POSITION reads) and a time (1).
     let text = minimal(material, more, r#", "children": [1]}, {"translation": [0, 2, 0], "extensions": {"KHR_lights_punctual": {"light": 0}}"#)
         .replace(r#""accessors": [{"#, r#""accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [-1, 0, -1], "max": [1, 0, 1]}, {"bufferView": 0, "componentType": 5126, "count": 1, "type": "SCALAR", "min": [-1], "max": [-1]}, {"#)
-        .replace(r#""sampler": 0, "target""#, r#""sampler": 0, "target""#);
-    // Accessor 0 moved: the mesh keeps POSITION 0, the animation reads 1 and 0.
-    let text = text.replace(r#""input": 1, "output": 2"#, r#""input": 1, "output": 0"#);
+        // The animation reads a time (1) and the positions as keys (0).
+        .replace(r#""input": 1, "output": 2"#, r#""input": 1, "output": 0"#);
     std::fs::write(&file, text).unwrap();
     let o = run(
         &[

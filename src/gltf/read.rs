@@ -175,11 +175,14 @@ pub fn load(o: &GltfOptions, width: usize, height: usize) -> Result<Imported, Gl
             .or_else(|| refract_extras(mesh.extras()).and_then(|r| r.get("sphere").cloned()));
         for (k, prim) in mesh.primitives().enumerate() {
             let key = prim.material().index();
-            if !mats.contains_key(&key) {
-                let mat = material(&mut g, &prim.material(), o.glass);
-                mats.insert(key, mat);
-            }
-            let mat = mats[&key].clone();
+            let mat = match mats.get(&key) {
+                Some(m) => m.clone(),
+                None => {
+                    let m = material(&mut g, &prim.material(), o.glass);
+                    mats.insert(key, m.clone());
+                    m
+                }
+            };
             if prim.mode() != gltf::mesh::Mode::Triangles {
                 g.note(format!("{:?} primitives (only triangles are read)", prim.mode()).to_lowercase());
                 continue;
