@@ -738,8 +738,9 @@ mod tests {
     #[test]
     fn reads_every_id_of_the_figure_list() {
         let ids = figure_ids(include_str!("../../scenes/FIGURES.md"));
-        assert_eq!(ids.len(), 28, "{ids:?}");
+        assert_eq!(ids.len(), 30, "{ids:?}");
         assert_eq!(ids[0], "css552-p1");
         assert!(ids.contains(&"lab-ior1.1-noatten".to_string()) && ids.contains(&"pm-spectra-compare".to_string()));
+        assert_eq!(ids[28..], ["gltf-prism", "gltf-sphere"]);
     }
 }
