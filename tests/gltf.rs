@@ -162,6 +162,20 @@ fn a_directional_light_lands_where_the_probe_says() {
     }
     let got = sum / total;
     assert!((got - want).length() < 0.03 * size[0] as f64, "the light's centroid is at {got}, the probe's landing point at {want}");
+    // A light added on the command line joins the file's, with a share of the photons.
+    let mut o = GltfOptions::new(repo("scenes/gltf/prism-table.glb"));
+    o.add_light = Some(refract::gltf::AddedLight::parse("point:0,1,0").unwrap());
+    let w = read::load(&o, 64, 48).unwrap().world;
+    assert_eq!((w.lights.len(), w.photon_shares.as_ref().map(Vec::len)), (3, Some(3)));
+    // An added sun is --beam-width wide, else as wide as the scene.
+    o.add_light = Some(refract::gltf::AddedLight::parse("sun:0,-1,0").unwrap());
+    let half = |o: &GltfOptions| match read::load(o, 64, 48).unwrap().world.lights[2].emission {
+        refract::world::Emission::Beam { half, .. } => half.x,
+        _ => panic!("the sun is a beam"),
+    };
+    assert!(half(&o) > 0.3, "over the whole table: {}", half(&o));
+    o.beam_width = Some(0.05);
+    assert_eq!(half(&o), 0.025);
 }
 
 /// A minimal glTF: one triangle (a floor, or a glass given its material),

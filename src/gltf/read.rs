@@ -271,7 +271,14 @@ pub fn load(o: &GltfOptions, width: usize, height: usize) -> Result<Imported, Gl
     if let Some(a) = o.add_light {
         let order = 1e12 + g.lights.len() as f64;
         let light = match a {
-            AddedLight::Sun(d) => beam_over(from_gltf(d).normalize(), None, (centre, radius), 1.0, Spectrum::light("D65").expect("D65 is known"), "added sun"),
+            AddedLight::Sun(d) => beam_over(
+                from_gltf(d).normalize(),
+                o.beam_width.map(|w| w / 2.0),
+                (centre, radius),
+                1.0,
+                Spectrum::light("D65").expect("D65 is known"),
+                "added sun",
+            ),
             AddedLight::Point(p) => Light {
                 name: "added point".into(),
                 emission: Emission::Point { pos: from_gltf(p) },
@@ -367,7 +374,7 @@ pub fn load(o: &GltfOptions, width: usize, height: usize) -> Result<Imported, Gl
         })
         .unwrap_or((world.camera.pos, world.camera.forward));
     if let Some(r) = refract_extras(scene.extras()) {
-        settings(&mut world, &r).map_err(content)?;
+        settings(&mut world, &r, o.add_light.is_some()).map_err(content)?;
     }
     world.build_accel();
     let unmodelled = g.unmodelled.iter().map(|(k, n)| if *n > 1 && !k.contains('(') { format!("{k} ({n})") } else { k.clone() }).collect();
@@ -375,7 +382,7 @@ pub fn load(o: &GltfOptions, width: usize, height: usize) -> Result<Imported, Gl
 }
 
 /// The photon mapper's settings refract wrote into the scene's extras.
-fn settings(w: &mut World, r: &Json) -> Result<(), String> {
+fn settings(w: &mut World, r: &Json, added: bool) -> Result<(), String> {
     if let Some(b) = r.get("bounces").and_then(Json::as_u64) {
         w.bounces = b.min(64) as u32;
     }
@@ -392,7 +399,12 @@ fn settings(w: &mut World, r: &Json) -> Result<(), String> {
         w.haze_skip = s.iter().filter_map(Json::as_u64).map(|i| i as usize).filter(|&i| i < w.lights.len()).collect();
     }
     if let Some(s) = r.get("photon_shares").and_then(Json::as_array) {
-        let shares: Vec<f64> = s.iter().filter_map(Json::as_f64).collect();
+        let mut shares: Vec<f64> = s.iter().filter_map(Json::as_f64).collect();
+        if added && shares.len() + 1 == w.lights.len() {
+            // The light added on the command line (the last) gets the
+            // file's lights' mean share.
+            shares.push(shares.iter().sum::<f64>() / shares.len().max(1) as f64);
+        }
         if shares.len() != w.lights.len() || shares.iter().any(|x| !(x.is_finite() && *x >= 0.0)) || shares.iter().sum::<f64>() <= 0.0 {
             return Err(format!("extras.refract.photon_shares: {} shares for {} lights, or one not a non-negative number", shares.len(), w.lights.len()));
         }
