@@ -308,6 +308,10 @@ pub fn load(o: &GltfOptions, width: usize, height: usize) -> Result<Imported, Gl
     let camera = match chosen.map(|(_, c, m)| (c.projection(), m)) {
         Some((gltf::camera::Projection::Perspective(p), m)) => {
             aspect = p.aspect_ratio().map(f64::from).filter(|a| a.is_finite() && *a > 0.0);
+            let yfov = f64::from(p.yfov());
+            if !(yfov > 0.0 && yfov < std::f64::consts::PI) {
+                return Err(content(format!("its camera's yfov {yfov} is not between 0 and pi radians")));
+            }
             let pos = from_gltf(m.transform_point3(DVec3::ZERO));
             let forward = from_gltf(m.transform_vector3(DVec3::NEG_Z)).normalize();
             let up = from_gltf(m.transform_vector3(DVec3::Y)).normalize();
@@ -614,6 +618,11 @@ fn add_sphere(g: &mut Gather, label: &str, centre: DVec3, radius: f64, mat: &Mat
             let r = refract_extras(extras);
             let area = 4.0 * std::f64::consts::PI * radius * radius;
             let power = r.as_ref().and_then(|r| num(r, "power")).unwrap_or_else(|| emitted_watts(*rgb, area));
+            if !(power.is_finite() && power > 0.0) {
+                g.spheres.pop();
+                g.note("emitters of no finite power");
+                return;
+            }
             let order = r.as_ref().and_then(|r| num(r, "light")).unwrap_or(1e9 + g.lights.len() as f64);
             let light = Light { name: label.into(), emission: Emission::Sphere { sphere: k }, spectrum: light_spectrum(r.as_ref(), norm(*rgb)), power };
             g.lights.push((order, light, Some(Emitting::Sphere(k))));
@@ -759,10 +768,14 @@ fn add_triangles(g: &mut Gather, label: &str, tris: &[[DVec3; 3]], mat: &Mat, ex
             let total: f64 = quads.iter().map(|(_, eu, ev)| eu.cross(*ev).length()).sum();
             for (k, (c, eu, ev)) in quads.iter().enumerate() {
                 let area = eu.cross(*ev).length();
-                let f = g.faces.len();
-                g.faces.push(Face::rect(&format!("{label} emitter {k}"), *c, *eu, *ev, Surface::Emitter { light: 0 }));
                 // refract's power is the whole mesh's; shared by area.
                 let power = r.as_ref().and_then(|r| num(r, "power")).map_or_else(|| emitted_watts(rgb, area), |p| p * area / total);
+                if !(power.is_finite() && power > 0.0) {
+                    g.note("emitters of no finite power");
+                    continue;
+                }
+                let f = g.faces.len();
+                g.faces.push(Face::rect(&format!("{label} emitter {k}"), *c, *eu, *ev, Surface::Emitter { light: 0 }));
                 let order = r.as_ref().and_then(|r| num(r, "light")).map_or(1e9 + g.lights.len() as f64, |o| o + k as f64 * 1e-6);
                 let light =
                     Light { name: format!("{label} {k}"), emission: Emission::Area { face: f }, spectrum: light_spectrum(r.as_ref(), norm(rgb)), power };
