@@ -32,6 +32,7 @@ pub mod color;
 pub mod data;
 pub mod experiment;
 pub mod geometry;
+pub mod gltf;
 pub mod image_io;
 pub mod interior;
 pub mod mesh;

@@ -19,7 +19,7 @@ fn quick_figures_render_and_the_gallery_lists_every_id() {
     }
     let html = std::fs::read_to_string(out.join("index.html")).unwrap();
     let ids = refract::experiment::figures::figure_ids(&std::fs::read_to_string(repo("scenes/FIGURES.md")).unwrap());
-    assert_eq!(ids.len(), 28);
+    assert_eq!(ids.len(), 30);
     for id in &ids {
         assert!(html.contains(&format!("id=\"{id}\"")), "index.html lacks {id}");
     }

@@ -7,7 +7,7 @@
 use crate::common::repo;
 
 /// From the bottom up, as docs/architecture.md lists them.
-const LAYERS: [&str; 23] = [
+const LAYERS: [&str; 24] = [
     "data",
     "names",
     "progress",
@@ -21,6 +21,7 @@ const LAYERS: [&str; 23] = [
     "geometry",
     "mesh",
     "world",
+    "gltf",
     "photon",
     "scenes",
     "spectral",

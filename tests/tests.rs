@@ -67,3 +67,5 @@ mod progress;
 mod openexr_out;
 // `bench prism` without its peer prints no ratio.
 mod bench_peer;
+// glTF in and out: round trip, glass, lights, warnings, bad files.
+mod gltf;

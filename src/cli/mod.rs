@@ -46,9 +46,10 @@ pub enum Command {
         #[arg(long = "scene-dir", alias = "scenes", value_name = "DIR", default_value = "scenes")]
         scenes: PathBuf,
     },
-    /// Render a scene file (see scenes/*.toml) to results/<id>.png or --out.
+    /// Render a scene file (see scenes/*.toml) or a glTF 2.0 scene (.gltf,
+    /// .glb; README: glTF scenes) to results/<id>.png or --out.
     Render {
-        /// The scene file
+        /// The scene file, or a glTF file
         file: PathBuf,
         /// Its [quick] settings
         #[arg(long)]
@@ -85,6 +86,19 @@ pub enum Command {
     },
     /// Index of refraction of a catalogue glass by a chosen model, as CSV.
     Glass(GlassArgs),
+    /// Write a built-in scene as a glTF 2.0 file (.glb or .gltf) with its
+    /// glasses' dispersion (KHR_materials_dispersion), lights and camera;
+    /// `refract render FILE` renders it back.
+    Export {
+        /// The scene: a built-in one (see `refract prism --help`, --scene) or one of the glTF examples (prism-table, sphere-box)
+        scene: String,
+        /// The file to write: .glb (binary) or .gltf (JSON, buffer inline)
+        #[arg(long)]
+        out: PathBuf,
+        /// A parameter of the scene, e.g. --set glass=N-SF11 --set size=320,240 (repeatable)
+        #[arg(long, value_name = "KEY=VALUE")]
+        set: Vec<String>,
+    },
     /// Benchmarks, measured in one run and printed as a table.
     Bench {
         #[command(subcommand)]
@@ -515,6 +529,8 @@ pub fn run(cli: Cli) -> Result<()> {
             }
             Ok(())
         }
+        Command::Export { scene, out, set } => run_export(&scene, &out, &set),
+        Command::Render { file, quick, out, set } if crate::gltf::is_gltf(&file) => run_gltf(file, quick, out, &set),
         Command::Render { file, quick, out, set } => {
             let mut scene = crate::experiment::scene_file::SceneFile::load(&file, quick)?;
             if quick && scene.params == crate::experiment::scene_file::SceneFile::load(&file, false)?.params {
@@ -548,6 +564,108 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Bench { which: BenchCommand::Knn { quick } } => write_stdout(&crate::bench::knn(quick)?),
         Command::Bench { which: BenchCommand::Figures { quick, only, scenes } } => write_stdout(&crate::bench::figures(quick, &scenes, &only)?),
     }
+}
+
+/// `refract export`: the built-in scene, with the parameters given, as glTF.
+fn run_export(name: &str, out: &std::path::Path, set: &[String]) -> Result<()> {
+    use crate::experiment::scene_file::SceneFile;
+    use crate::names::Named;
+    if !crate::gltf::is_gltf(out) {
+        bail!("--out: `{}` must end in .glb or .gltf", out.display());
+    }
+    let example = crate::scenes::examples::EXAMPLES.iter().any(|(n, _)| *n == name);
+    let kind = crate::scenes::SceneKind::from_name(name);
+    if kind.is_none() && !example {
+        let all: Vec<&str> = crate::scenes::SceneKind::VALUES.iter().map(|v| v.1).chain(crate::scenes::examples::EXAMPLES.iter().map(|e| e.0)).collect();
+        bail!("`{name}` is not a scene; the scenes: {}", all.join(", "));
+    }
+    crate::image_io::check_writable(out).map_err(|e| anyhow::anyhow!("--out: {e}"))?;
+    if example {
+        if !set.is_empty() {
+            bail!("--set: the glTF examples take no parameters");
+        }
+        let world = crate::scenes::examples::by_name(name, 640, 480).expect("an example");
+        crate::gltf::write::write(&world, out)?;
+        eprintln!("wrote {}", out.display());
+        return Ok(());
+    }
+    let kind = kind.expect("a built-in scene");
+    let mut file = SceneFile {
+        id: kind.name().into(),
+        report: String::new(),
+        caption: String::new(),
+        mode: modes::Mode::Prism,
+        params: vec![("scene".into(), toml::Value::String(kind.name().into()))],
+        close_up: None,
+        labels: Vec::new(),
+    };
+    file.set(set)?;
+    let cfg = modes::config::<modes::prism::Prism>(&file.params)?;
+    if cfg.scene.gltf_file().is_some() {
+        bail!("--set gltf: export writes a built-in scene; a glTF file is one already");
+    }
+    let world = crate::scenes::build(&cfg.scene)?;
+    crate::gltf::write::write(&world, out)?;
+    eprintln!(
+        "wrote {} ({} faces, {} spheres, {} lights, {} glasses)",
+        out.display(),
+        world.faces.len(),
+        world.spheres.len(),
+        world.lights.len(),
+        world.media.len() - 1
+    );
+    Ok(())
+}
+
+/// `refract render FILE.glb`: the file as a prism-mode scene, its size
+/// from its camera's aspect ratio unless given; what the file holds and
+/// refract does not model is said in one warning before the render.
+fn run_gltf(file: PathBuf, quick: bool, out: Option<PathBuf>, set: &[String]) -> Result<()> {
+    use crate::experiment::scene_file::SceneFile;
+    let stem = file.file_stem().and_then(|s| s.to_str()).filter(|s| !s.is_empty()).unwrap_or("gltf");
+    let id: String = stem.chars().map(|c| if c.is_ascii_alphanumeric() || "-_.".contains(c) { c } else { '-' }).collect();
+    let mut scene = SceneFile {
+        id,
+        report: String::new(),
+        caption: String::new(),
+        mode: modes::Mode::Prism,
+        params: vec![("gltf".into(), toml::Value::String(file.to_string_lossy().into_owned()))],
+        close_up: None,
+        labels: Vec::new(),
+    };
+    let given = |key: &str| set.iter().any(|s| s.split_once('=').is_some_and(|(k, _)| k.trim().replace('-', "_") == key));
+    if quick {
+        // A quick look, as `prism --quick`: fewer photons, one sample.
+        for (k, v) in [("photons", 100_000), ("spp", 1)] {
+            if !given(k) {
+                scene.params.push((k.into(), toml::Value::Integer(v)));
+            }
+        }
+    }
+    scene.set(set)?;
+    let mut cfg = modes::config::<modes::prism::Prism>(&scene.params)?;
+    if !given("size") {
+        let [w, h] = crate::gltf::read::default_size(cfg.scene.gltf_file().expect("set above"), if quick { 320 } else { 640 });
+        scene.params.push(("size".into(), toml::Value::Array(vec![toml::Value::Integer(w as i64), toml::Value::Integer(h as i64)])));
+        (cfg.scene.width, cfg.scene.height) = (w, h);
+    }
+    if let Some(w) = modes::prism::gltf_check(&cfg)? {
+        eprintln!("warning: {w}");
+    }
+    let out = match out {
+        Some(o) => o,
+        None => {
+            crate::image_io::create_folder(std::path::Path::new("results"))?;
+            PathBuf::from("results").join(format!("{}.png", scene.id))
+        }
+    };
+    crate::image_io::check_output(&out, scene.mode.formats()).map_err(|e| anyhow::anyhow!("--out: {e}"))?;
+    crate::image_io::remove_stale_temps(out.parent().unwrap_or(std::path::Path::new("")));
+    let bars = crate::terminal::Bars::new();
+    let (_, summary) = scene.render_summarised(&out, &bars)?;
+    bars.done();
+    eprintln!("wrote {} ({summary})", out.display());
+    Ok(())
 }
 
 fn run_interior(args: InteriorArgs) -> Result<()> {
@@ -608,6 +726,9 @@ fn run_prism(args: PrismArgs) -> Result<()> {
     }
     let mut cfg = args.params.config();
     cfg.out = args.out.clone();
+    if let (Some(g), false) = (cfg.scene.gltf_file(), args.params.has("size")) {
+        [cfg.scene.width, cfg.scene.height] = crate::gltf::read::default_size(g, 640);
+    }
     if args.quick {
         modes::prism::quick(&mut cfg, |k| args.params.has(k));
     }

@@ -437,6 +437,7 @@ fn write_index(out: &Path, ids: &[String], records: &BTreeMap<String, Record>, q
         ("004", "Report 004: internal illumination of a translucent object"),
         ("001", "Report 001 (CS348b): prismatic effects in a spectral ray tracer"),
         ("003", "Report 003: dispersion with photon mapping (Cornell boxes)"),
+        ("gltf", "glTF examples: scenes/gltf/, written by refract export and read back"),
     ];
     let report_of = |id: &str| -> &str {
         if id.starts_with("css552") {
@@ -445,6 +446,8 @@ fn write_index(out: &Path, ids: &[String], records: &BTreeMap<String, Record>, q
             "004"
         } else if id.starts_with("cs348b") {
             "001"
+        } else if id.starts_with("gltf") {
+            "gltf"
         } else {
             "003"
         }
@@ -735,8 +738,9 @@ mod tests {
     #[test]
     fn reads_every_id_of_the_figure_list() {
         let ids = figure_ids(include_str!("../../scenes/FIGURES.md"));
-        assert_eq!(ids.len(), 28, "{ids:?}");
+        assert_eq!(ids.len(), 30, "{ids:?}");
         assert_eq!(ids[0], "css552-p1");
         assert!(ids.contains(&"lab-ior1.1-noatten".to_string()) && ids.contains(&"pm-spectra-compare".to_string()));
+        assert_eq!(ids[28..], ["gltf-prism", "gltf-sphere"]);
     }
 }

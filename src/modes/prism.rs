@@ -31,7 +31,11 @@ impl ModeKind for Prism {
     }
 
     fn mesh_file(cfg: &SpectralConfig, key: &str) -> Option<PathBuf> {
-        cfg.scene.obj.clone().filter(|_| key == "obj")
+        match key {
+            "obj" => cfg.scene.obj.clone(),
+            "gltf" => cfg.scene.gltf_file().map(|g| g.path.clone()),
+            _ => None,
+        }
     }
 
     fn cost(c: &SpectralConfig) -> Cost {
@@ -71,6 +75,15 @@ fn run_of(cfg: &SpectralConfig, mut report: SpectralReport) -> Run {
     Run { record, notes: std::mem::take(&mut report.notes), report: Report::Prism { report, gamut: cfg.gamut, exr: cfg.exr }, exposure }
 }
 
+/// A glTF scene read once before any work: its errors (one line naming
+/// the file), and the one warning listing what it holds that refract does
+/// not model.
+pub fn gltf_check(cfg: &SpectralConfig) -> Result<Option<String>> {
+    let Some(g) = cfg.scene.gltf_file() else { return Ok(None) };
+    let imported = crate::gltf::read::load(g, cfg.scene.width.max(1), cfg.scene.height.max(1))?;
+    Ok(imported.warning(&g.path))
+}
+
 /// `--quick` on the command line: unless given, a tenth of the photons, 1
 /// sample per pixel and half the size (a quick look, not a measurement).
 pub fn quick(cfg: &mut SpectralConfig, given: impl Fn(&str) -> bool) {
@@ -101,6 +114,9 @@ pub fn run_to_files(cfg: &SpectralConfig, timing_csv: Option<&Path>, progress: &
     crate::image_io::remove_stale_temps(cfg.out.parent().unwrap_or(Path::new("")));
     if let Some(path) = timing_csv {
         crate::timing::check_header::<TimingRow>(path).context("--timing-csv")?;
+    }
+    if let Some(w) = gltf_check(cfg)? {
+        say(format!("warning: {w}"));
     }
     let start = std::time::Instant::now();
     let report = crate::spectral::run(cfg, progress)?;

@@ -63,6 +63,9 @@ pub enum ValueError {
     Inset(#[from] crate::spectral::inset::InsetError),
     #[error(transparent)]
     Light(#[from] crate::spectrum::spectra::UnknownSpectrum),
+    /// A light added to a glTF scene, not of the form sun:X,Y,Z or point:X,Y,Z.
+    #[error("{0}")]
+    AddedLight(String),
 }
 
 /// Why `key = value` of a file is refused (the caller adds the file and line).

@@ -46,22 +46,55 @@ fn glass_value(g: &glass::Glass) -> Value {
 }
 
 /// `ignored` rules: why a parameter set by the user would change nothing.
+fn builtin_only(c: &SpectralConfig) -> Option<String> {
+    c.scene.gltf_file().map(|g| format!("the scene is the glTF file {}: its own meshes, materials, camera and lights", g.path.display()))
+}
+
+fn gltf_only(c: &SpectralConfig) -> Option<String> {
+    c.scene.gltf_file().is_none().then(|| "only a glTF scene (--gltf FILE, or `refract render FILE.glb`) uses it".to_string())
+}
+
+fn gltf_glass_used(c: &SpectralConfig) -> Option<String> {
+    gltf_only(c).or_else(|| c.scene.no_prism.then(|| "--no-prism leaves no glass in the scene".to_string()))
+}
+
+fn gltf_of(c: &mut SpectralConfig) -> &mut crate::gltf::GltfOptions {
+    c.scene.gltf.get_or_insert_with(|| crate::gltf::GltfOptions::new(PathBuf::new()))
+}
+
+fn added_light(s: &str) -> Result<(), ValueError> {
+    crate::gltf::AddedLight::parse(s).map(|_| ()).map_err(ValueError::AddedLight)
+}
+
 fn amici_only(c: &SpectralConfig) -> Option<String> {
+    if let Some(why) = builtin_only(c) {
+        return Some(why);
+    }
     let amici = matches!(c.scene.kind, SceneKind::AmiciScreen | SceneKind::AmiciLamp | SceneKind::AmiciBench);
     (!amici).then(|| format!("the {} scene has no Amici prism (amici-screen, amici-lamp and amici-bench have one)", c.scene.kind.name()))
 }
 
 fn has_faces(c: &SpectralConfig) -> Option<String> {
+    if let Some(why) = builtin_only(c) {
+        return Some(why);
+    }
     let sphere = matches!(c.scene.kind, SceneKind::SphereArealight | SceneKind::SphereMetal | SceneKind::SpheresFinal);
     sphere.then(|| format!("the {} scene's glass is a sphere: it has no entry face to set an angle of incidence on", c.scene.kind.name()))
 }
 
 fn bench_only(c: &SpectralConfig) -> Option<String> {
+    if let Some(why) = builtin_only(c) {
+        return Some(why);
+    }
     (c.scene.kind != SceneKind::AmiciBench).then(|| format!("the {} scene has one view (amici-bench has three)", c.scene.kind.name()))
 }
 
 fn has_glass(c: &SpectralConfig) -> Option<String> {
     c.scene.no_prism.then(|| "--no-prism leaves no glass in the scene".to_string())
+}
+
+fn builtin_glass(c: &SpectralConfig) -> Option<String> {
+    builtin_only(c).or_else(|| has_glass(c))
 }
 
 fn photons_used(c: &SpectralConfig) -> Option<String> {
@@ -129,7 +162,7 @@ pub static PARAMS: &[Param<SpectralConfig>] = &[
         auto: "",
         get: |c| Some(pick(c.scene.kind)),
         set: |c, v| c.scene.kind = v.choice(),
-        ignored: never,
+        ignored: builtin_only,
     },
     Param {
         key: "glass",
@@ -141,7 +174,7 @@ pub static PARAMS: &[Param<SpectralConfig>] = &[
         auto: "",
         get: |c| Some(glass_value(c.scene.crown)),
         set: |c, v| c.scene.crown = glass_of(v),
-        ignored: never,
+        ignored: builtin_only,
     },
     Param {
         key: "flint",
@@ -177,7 +210,7 @@ pub static PARAMS: &[Param<SpectralConfig>] = &[
         auto: "",
         get: |c| Some(pick(c.scene.ior)),
         set: |c, v| c.scene.ior = v.choice(),
-        ignored: has_glass,
+        ignored: builtin_glass,
     },
     Param {
         key: "light_spectrum",
@@ -273,7 +306,67 @@ pub static PARAMS: &[Param<SpectralConfig>] = &[
         auto: "none: the scene's own prism",
         get: |c| c.scene.obj.clone().map(Value::Path),
         set: |c, v| c.scene.obj = Some(v.path()),
-        ignored: has_glass,
+        ignored: builtin_glass,
+    },
+    Param {
+        key: "gltf",
+        aliases: &[],
+        section: SCENE,
+        help: "A glTF 2.0 scene (.gltf or .glb) in place of the built-in ones: its meshes, camera, lights and materials (README: glTF scenes)",
+        unit: "",
+        kind: Kind::Path,
+        auto: "none: the built-in --scene",
+        get: |c| c.scene.gltf.as_ref().map(|g| Value::Path(g.path.clone())),
+        set: |c, v| gltf_of(c).path = v.path(),
+        ignored: never,
+    },
+    Param {
+        key: "camera",
+        aliases: &[],
+        section: SCENE,
+        help: "The glTF file's camera (or its node) by name",
+        unit: "",
+        kind: Kind::Text(|_| Ok(())),
+        auto: "the first camera in the file's scene, else a view of the whole scene",
+        get: |c| c.scene.gltf.as_ref().and_then(|g| g.camera.clone()).map(Value::Text),
+        set: |c, v| gltf_of(c).camera = Some(v.text().to_string()),
+        ignored: gltf_only,
+    },
+    Param {
+        key: "beam_width",
+        aliases: &[],
+        section: SCENE,
+        help: "Width of the collimated beam a glTF directional light becomes, where its extras give none",
+        unit: "metres",
+        kind: Kind::above(0.0, 1e6),
+        auto: "the whole scene's width",
+        get: |c| c.scene.gltf.as_ref().and_then(|g| g.beam_width).map(Value::Real),
+        set: |c, v| gltf_of(c).beam_width = Some(v.real()),
+        ignored: gltf_only,
+    },
+    Param {
+        key: "gltf_glass",
+        aliases: &[],
+        section: SCENE,
+        help: "Index model of the glTF file's transmissive materials",
+        unit: "",
+        kind: Kind::Choice(choices::<crate::gltf::GlassChoice>),
+        auto: "",
+        get: |c| Some(pick(c.scene.gltf.as_ref().map_or(crate::gltf::GlassChoice::File, |g| g.glass))),
+        set: |c, v| gltf_of(c).glass = v.choice(),
+        ignored: gltf_glass_used,
+    },
+    Param {
+        key: "gltf_light",
+        aliases: &[],
+        section: SCENE,
+        help: "A light added to the glTF file's: sun:X,Y,Z (a white beam travelling along X,Y,Z in the file's axes, over the whole scene or --beam-width wide) or point:X,Y,Z (a point light there)",
+        unit: "",
+        kind: Kind::Text(added_light),
+        auto: "none: the file's own lights",
+        get: |c| c.scene.gltf.as_ref().and_then(|g| g.add_light).map(|l| Value::Text(l.text())),
+        set: |c, v| gltf_of(c).add_light = crate::gltf::AddedLight::parse(v.text()).ok(),
+        ignored: gltf_only,
     },
     Param {
         key: "size",

@@ -6,6 +6,7 @@
 
 pub mod amici;
 pub mod cornell;
+pub mod examples;
 pub mod single_prism;
 pub mod spheres;
 
@@ -30,6 +31,8 @@ pub enum SceneError {
     Mesh(#[from] crate::mesh::MeshError),
     #[error(transparent)]
     Light(#[from] crate::spectrum::spectra::UnknownSpectrum),
+    #[error(transparent)]
+    Gltf(#[from] crate::gltf::GltfError),
 }
 
 impl SceneError {
@@ -110,11 +113,19 @@ pub struct SceneOptions {
     pub indirect_gather: Option<f64>,
     /// A user's OBJ mesh (metres) of `crown` glass in place of the prism.
     pub obj: Option<std::path::PathBuf>,
+    /// A glTF 2.0 file that is the whole scene (`crate::gltf::read`), in
+    /// place of `kind`.
+    pub gltf: Option<crate::gltf::GltfOptions>,
     pub width: usize,
     pub height: usize,
 }
 
 impl SceneOptions {
+    /// The glTF file that is the scene, if one is named.
+    pub fn gltf_file(&self) -> Option<&crate::gltf::GltfOptions> {
+        self.gltf.as_ref().filter(|g| !g.path.as_os_str().is_empty())
+    }
+
     pub fn new(kind: SceneKind) -> Self {
         SceneOptions {
             kind,
@@ -130,6 +141,7 @@ impl SceneOptions {
             haze: None,
             indirect_gather: None,
             obj: None,
+            gltf: None,
             width: 640,
             height: 240,
         }
@@ -173,6 +185,39 @@ pub(crate) fn rotate_z(v: DVec3, angle: f64) -> DVec3 {
 pub fn build(o: &SceneOptions) -> Result<World> {
     if o.width == 0 || o.height == 0 {
         return Err(SceneError::param("size", "width and height must be at least 1"));
+    }
+    if let Some(g) = o.gltf_file() {
+        // The file is the whole scene; the options that shape the built-in
+        // ones are refused by the parameter table where a file is given.
+        let mut scene = crate::gltf::read::load(g, o.width, o.height)?.world;
+        if let Some(l) = &o.light {
+            for light in &mut scene.lights {
+                light.spectrum = l.spectrum.clone();
+            }
+        }
+        if let Some(h) = o.haze {
+            if h > 0.0 && !scene.lights.iter().any(|l| matches!(l.emission, Emission::Beam { .. })) {
+                return Err(SceneError::param("haze", format!("{} has no collimated beam (directional light), and haze shows only beams", g.path.display())));
+            }
+            scene.haze = h;
+        }
+        if let Some(gather) = o.indirect_gather {
+            scene.indirect_gather = gather;
+        }
+        if o.no_dispersion {
+            for m in &mut scene.media {
+                if let Medium::Glass { ior, .. } = m {
+                    *ior = IorModel::Constant(ior.n(glass::lines::LD));
+                }
+            }
+        }
+        if o.no_prism {
+            scene.faces.retain(|f| !matches!(f.surface, Surface::Interface { .. }));
+            scene.spheres.retain(|s| !matches!(s.surface, Surface::Interface { .. }));
+            reindex(&mut scene);
+        }
+        scene.build_accel();
+        return Ok(scene);
     }
     let mut scene = match o.kind {
         SceneKind::AmiciScreen | SceneKind::AmiciLamp | SceneKind::AmiciBench => amici::build(o)?,
@@ -223,6 +268,9 @@ fn reindex(scene: &mut World) {
     for (li, l) in scene.lights.iter_mut().enumerate() {
         if let Emission::Area { face } = &mut l.emission {
             *face = scene.faces.iter().position(|f| f.surface == Surface::Emitter { light: li }).expect("each area light keeps its face");
+        }
+        if let Emission::Sphere { sphere } = &mut l.emission {
+            *sphere = scene.spheres.iter().position(|s| s.surface == Surface::Emitter { light: li }).expect("each spherical light keeps its sphere");
         }
     }
 }

@@ -353,7 +353,7 @@ impl TimingRow {
         let s = &r.render.stats;
         TimingRow {
             mode: "prism",
-            scene: cfg.scene.kind.name(),
+            scene: if cfg.scene.gltf_file().is_some() { "gltf" } else { cfg.scene.kind.name() },
             light: cfg.scene.light.as_ref().map_or_else(|| "default".into(), |l| l.name.clone()),
             photons: s.emitted,
             stored: s.stored,

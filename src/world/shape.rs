@@ -82,6 +82,18 @@ impl Face {
         f
     }
 
+    /// A triangle a, b, c (normal (b - a) x (c - a)) charted by the
+    /// parallelogram on its edges from `a`: a matte triangle's photon map
+    /// covers that parallelogram, of which photons fill the triangle half.
+    pub fn triangle(name: &str, a: DVec3, b: DVec3, c: DVec3, surface: Surface) -> Face {
+        let (eu, ev) = (b - a, c - a);
+        let mut f = Face::polygon(name, vec![a, b, c], eu.cross(ev), surface);
+        f.frame = Some((a, eu, ev));
+        let (uu, uv, vv) = (eu.dot(eu), eu.dot(ev), ev.dot(ev));
+        f.chart = Some(Chart { uu, uv, vv, det: uu * vv - uv * uv, lengths: DVec2::new(eu.length(), ev.length()) });
+        f
+    }
+
     /// Ray-plane distance if the hit lies inside the polygon.
     #[inline]
     pub fn intersect(&self, o: DVec3, d: DVec3) -> Option<f64> {
