@@ -632,6 +632,7 @@ fn prism_strip_hue(quick: bool, out: &mut String) -> Result<()> {
 /// Error against time, every method (the peer's, if it ran, last, in black).
 fn error_chart(series: &[(String, Runs)]) -> crate::experiment::plot::LineChart {
     use crate::experiment::plot::{LineChart, Series, PALETTE};
+    const BLACK: plotters::style::RGBColor = plotters::style::RGBColor(0, 0, 0);
     LineChart {
         title: "single-prism strip: error against time".into(),
         subtitle: "320x240, 60 degree N-BK7 prism, D65 beam, 2 threads; error against the exact image".into(),
@@ -639,13 +640,11 @@ fn error_chart(series: &[(String, Runs)]) -> crate::experiment::plot::LineChart 
         y_label: "relative error (least-squares scaled RMSE / RMS)".into(),
         log_x: true,
         log_y: true,
+        // The peer in black, refract's methods in the palette's other colours.
         series: series
             .iter()
-            .zip(PALETTE.iter().cycle())
-            .map(|((name, runs), color)| {
-                let color = if name.starts_with("Mitsuba") { plotters::style::RGBColor(0, 0, 0) } else { *color };
-                Series::new(name.clone(), runs.clone(), color)
-            })
+            .zip(PALETTE.iter().filter(|c| **c != BLACK).cycle())
+            .map(|((name, runs), color)| Series::new(name.clone(), runs.clone(), if name.starts_with("Mitsuba") { BLACK } else { *color }))
             .collect(),
         ..Default::default()
     }

@@ -485,7 +485,7 @@ fn write_index(out: &Path, ids: &[String], records: &BTreeMap<String, Record>, q
     }
     h.push_str("</ul></li>\n");
     if out.join("bench/prism-error-vs-time.png").is_file() {
-        h.push_str("<li><a href=\"#bench\">Benchmark</a>: <a href=\"#bench-prism-error-vs-time\">prism-error-vs-time.png</a> (against Mitsuba 3.9)</li>\n");
+        h.push_str("<li><a href=\"#bench\">Benchmark</a>: <a href=\"#bench-prism-error-vs-time\">prism-error-vs-time.png</a> (beside Mitsuba 3.9.1, run in the same command)</li>\n");
     }
     if out.join("display/transforms.png").exists() {
         h.push_str("<li><a href=\"#display\">Display transforms</a></li>\n");
@@ -542,13 +542,13 @@ fn write_index(out: &Path, ids: &[String], records: &BTreeMap<String, Record>, q
     }
     if out.join("bench/prism-error-vs-time.png").is_file() {
         writeln!(h, "<h2 id=\"bench\">Benchmark: the prism's error against time, beside an outside renderer</h2>")?;
-        writeln!(h, "<p>From <code>cargo run --release -- bench prism</code> (data: <a href=\"bench/prism-error-vs-time.csv\">prism-error-vs-time.csv</a>; the machine, date and commit: <a href=\"bench/README.md\">bench/README.md</a>). The same error as the prism-photons and eye-split charts above: least-squares scaled RMSE of XYZ over the reference's RMS, here against the exact image.</p>")?;
+        writeln!(h, "<p>From <code>cargo run --release -- bench prism --peer mitsuba</code> (data: <a href=\"bench/prism-error-vs-time.csv\">prism-error-vs-time.csv</a>; the machine, date and commit: <a href=\"bench/README.md\">bench/README.md</a>). The same error as the prism-photons and eye-split charts above: least-squares scaled RMSE of XYZ over the reference's RMS, here against the exact image.</p>")?;
         picture_html(
             &mut h,
             out,
             "bench/prism-error-vs-time.png",
             "bench-prism-error-vs-time",
-            "every photon map, filter, light tracing and progressive photon mapping on the single-prism anchor scene, with Mitsuba 3.9's particle tracer (black) as the anchor",
+            "every photon map, filter, light tracing and progressive photon mapping on the single-prism anchor scene, with Mitsuba 3.9.1's particle tracer (black) rendered in the same run on the same scene, its glass a Cauchy fit taken band by band (the floor its curve meets)",
         )?;
     }
     if out.join("display/transforms.png").exists() {
