@@ -546,7 +546,7 @@ fn the_colour_map_tiles_are_cropped_to_the_fan_and_labelled() {
     let (w, h) = (img.width() as usize, img.height() as usize);
     let (tw, rows) = (w / 3, 2);
     let row_h = h / rows;
-    let label_h = 22;
+    let label_h = 36;
     for k in 0..6 {
         let (x0, y0) = ((k % 3) * tw, (k / 3) * row_h);
         let (mut lit, mut n) = (0, 0);

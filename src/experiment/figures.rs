@@ -413,11 +413,11 @@ fn reference_html(h: &mut String, out: &Path, name: &str, e: Option<&super::spec
     )
 }
 
-const STYLE: &str = "body{font-family:sans-serif;margin:2em;background:#fafafa;min-width:max-content}\
+const STYLE: &str = "body{font-family:sans-serif;margin:2em;background:#fafafa}\
 p,nav,h1,h2,h3{max-width:1400px}\
 figure{display:inline-block;vertical-align:top;margin:0 1em 1.5em 0}\
 img{display:block;border:1px solid #ccc;background:#000}\
-.row{display:flex;flex-wrap:nowrap;align-items:flex-start;gap:1em}.row figure{margin-right:0;flex:none}\
+.row{display:flex;flex-wrap:wrap;align-items:flex-start;gap:1em}.row figure{margin-right:0;flex:none}\
 .charts figure{display:block;margin:0 0 1.5em 0}\
 .sheet{display:grid;gap:.4em;margin-bottom:1.5em;width:max-content}.sheet figure{margin:0}.sheet figcaption{font-size:85%}\
 .group{border-left:4px solid #58a;padding-left:1em;margin-bottom:1.5em}.look{font-weight:bold;color:#245}\
@@ -677,10 +677,11 @@ fn colour_compare(png: &Path, quick: bool, scenes: &Path) -> Result<String> {
     super::plot::register();
     let file = SceneFile::load(&scenes.join("pm-dark-side.toml"), quick)?;
     let mut cfg = super::params::prism_config(&file.params)?;
-    // Three tiles across fit a 1400 px page at 1:1.
-    let (tw, th) = if quick { (220usize, 150usize) } else { (440, 300) };
-    let (label_h, font) = if quick { (22usize, 15) } else { (36, 24) };
-    let indent = if quick { 10 } else { 14 };
+    // Three tiles across fit a 1400 px page at 1:1, the quick set's too
+    // (with fewer samples: its tiles must be read at the same size).
+    let (tw, th) = (440usize, 300usize);
+    let (label_h, font) = (36usize, 24);
+    let indent = 14;
     (cfg.scene.width, cfg.scene.height) = (tw, th);
     cfg.spp = cfg.spp.min(if quick { 2 } else { 8 });
     let maps = ColorMap::ALL;
