@@ -531,7 +531,7 @@ fn the_colour_map_tiles_are_cropped_to_the_fan_and_labelled() {
     // pm-spectra-compare at quick size (3 x 2 tiles under label strips): in
     // each tile the lit pixels (max channel above 40) span at least 70 % of
     // its width and of its height (the prism and its fan fill the tile, not
-    // a corner of it) and cover at least 5 % of it (a thin diagonal fan
+    // a corner of it) and cover at least 4 % of it (a thin diagonal fan
     // leaves black round it, as on the cover), and each label strip holds
     // white text at least 8 px tall.
     let dir = tempfile::tempdir().unwrap();
@@ -565,7 +565,7 @@ fn the_colour_map_tiles_are_cropped_to_the_fan_and_labelled() {
         let frac = lit as f64 / n as f64;
         eprintln!("colour-map tile {k}: {frac:.3} lit, spanning {span_x:.2} x {span_y:.2} of it; label {text_rows} px tall");
         assert!(span_x >= 0.7 && span_y >= 0.7, "tile {k}: the subject spans only {span_x:.2} x {span_y:.2} of it");
-        assert!(frac >= 0.05, "tile {k}: only {frac:.3} of it lit");
+        assert!(frac >= 0.04, "tile {k}: only {frac:.3} of it lit");
         assert!(text_rows >= 8, "tile {k}: its label is {text_rows} px tall");
     }
 }

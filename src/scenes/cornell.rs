@@ -114,14 +114,8 @@ pub fn build(o: &SceneOptions) -> Result<World> {
             });
         }
         _ => {
-            // The laser stands on the floor 30 cm before the prism, in
-            // view: a dark housing 14 cm long on a block up to the beam's
-            // height, the beam leaving its front face.
-            let start = aim - dir * 0.3;
+            let start = aim - dir * 2.5;
             let u = DVec3::Z.cross(dir).normalize();
-            let (len, half_w) = (0.14, 0.025);
-            let corner = DVec3::new(start.x, start.y, 0.0) - dir * len - u * half_w;
-            super::matte_box(&mut s, "laser", corner - dir * 1e-3, dir * len, u * (2.0 * half_w), DVec3::Z * (start.z + 0.025), [0.04; 3]);
             s.lights.push(Light {
                 name: "laser".into(),
                 emission: Emission::Beam {

@@ -165,17 +165,6 @@ pub(crate) fn matte(s: &mut World, name: &str, corner: DVec3, eu: DVec3, ev: DVe
     s.maps.push(s.faces.len() - 1);
 }
 
-/// A matte box without a bottom (it stands on something): the
-/// parallelepiped at `corner` with right-handed edges `a`, `b`, `c` (`c`
-/// up), its five faces' normals outward.
-pub(crate) fn matte_box(s: &mut World, name: &str, corner: DVec3, a: DVec3, b: DVec3, c: DVec3, albedo: [f64; 3]) {
-    matte(s, &format!("{name} top"), corner + c, a, b, albedo);
-    matte(s, &format!("{name} side"), corner, a, c, albedo);
-    matte(s, &format!("{name} side"), corner + b, c, a, albedo);
-    matte(s, &format!("{name} end"), corner, c, b, albedo);
-    matte(s, &format!("{name} end"), corner + a, b, c, albedo);
-}
-
 pub(crate) fn rotate_z(v: DVec3, angle: f64) -> DVec3 {
     let (s, c) = angle.sin_cos();
     DVec3::new(c * v.x - s * v.y, s * v.x + c * v.y, v.z)
