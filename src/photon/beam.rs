@@ -229,6 +229,7 @@ impl<'a> Beam<'a> {
         self.trace_lanes::<super::lanes::Avx>(index, start, light, colours, maps, stats)
     }
 
+    // One body (over 80 lines), inlined into both lane types: the four lanes' state stays in registers across the faces.
     #[inline(always)]
     fn trace_lanes<F: Lanes>(
         &self,
