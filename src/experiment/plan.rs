@@ -126,13 +126,42 @@ pub fn loads(e: &Experiment, runs: &[RunSpec], n: usize) -> Vec<ShardLoad> {
     out
 }
 
-/// Writes the plan's script into its folder; returns what to tell the user.
-pub fn write(e: &Experiment, o: &PlanOptions) -> Result<String> {
-    // A shard with no run would be a job doing nothing: at most as many
-    // shards as the grid has chains (each chain stays in one shard).
-    let runs = expand(e);
-    let chains = chain_count(&runs).max(1);
-    let n = match o.shards {
+/// The scripts' text: the head every script starts with, and the body of
+/// each (placeholders `{{key}}`, filled by `fill`).
+const HEAD: &str = include_str!("plan_scripts/head.sh");
+const SHARD: &str = include_str!("plan_scripts/shard.sh");
+const MERGE: &str = include_str!("plan_scripts/merge.sh");
+const PARALLEL: &str = include_str!("plan_scripts/run-parallel.sh");
+const SLURM: &str = include_str!("plan_scripts/submit-slurm.sh");
+
+/// `template` with every `{{key}}` replaced by its value in `values`, in one
+/// pass (a value holding `{{` is left as it is).
+fn fill(template: &str, values: &[(&str, &str)]) -> String {
+    let mut out = String::with_capacity(template.len());
+    let mut rest = template;
+    while let Some(start) = rest.find("{{") {
+        out.push_str(&rest[..start]);
+        let after = &rest[start + 2..];
+        match after.find("}}").and_then(|end| values.iter().find(|(k, _)| *k == &after[..end]).map(|(_, v)| (end, v))) {
+            Some((end, v)) => {
+                out.push_str(v);
+                rest = &after[end + 2..];
+            }
+            None => {
+                out.push_str("{{");
+                rest = after;
+            }
+        }
+    }
+    out.push_str(rest);
+    out
+}
+
+/// How many shards to make: as asked, or `DEFAULT_SHARDS`, never more than
+/// the grid's chains (a shard with no run would be a job doing nothing).
+fn shard_count(runs: &[RunSpec], asked: Option<usize>) -> Result<usize> {
+    let chains = chain_count(runs).max(1);
+    Ok(match asked {
         None => DEFAULT_SHARDS.min(chains),
         Some(n) if n == 0 || n > MAX_SHARDS => bail!("--shards: {n} is not between 1 and {MAX_SHARDS}"),
         Some(n) if n > chains => bail!(
@@ -140,99 +169,88 @@ pub fn write(e: &Experiment, o: &PlanOptions) -> Result<String> {
             plural(chains, "chain of runs", "chains of runs")
         ),
         Some(n) => n,
-    };
-    if o.cpus_per_task == 0 || o.cpus_per_task > 1024 {
-        bail!("--cpus-per-task: {} is not between 1 and 1024", o.cpus_per_task);
-    }
-    let dir = o.out.clone().unwrap_or_else(|| e.default_folder());
-    crate::image_io::create_folder(&dir)?;
-    let dir = absolute(&dir)?;
-    let file = absolute(&o.file)?;
-    let workdir = std::env::current_dir().context("cannot read the current folder")?;
-    let loads = loads(e, &runs, n);
-    let quick = if o.quick { " --quick" } else { "" };
-    let busiest = loads.iter().map(|l| l.seconds).fold(0.0, f64::max);
+    })
+}
+
+/// The three scripts of a plan, by file name: shard.sh, merge.sh and the
+/// engine's script; and how to run the last (`{script}` for its path).
+struct Scripts {
+    files: [(&'static str, String); 3],
+    how: &'static str,
+}
+
+/// The plan's scripts for `n` shards of `e` with `loads`, writing into `dir`
+/// and running from `workdir`.
+fn scripts(e: &Experiment, o: &PlanOptions, n: usize, loads: &[ShardLoad], dir: &Path, file: &Path, workdir: &Path) -> Scripts {
+    let n_text = n.to_string();
+    let (refract, file, out, workdir) = (shell_quote(&o.refract), shell_quote(file), shell_quote(dir), shell_quote(workdir));
     let head = |what: &str| {
-        let mut s = String::new();
-        let _ = writeln!(s, "#!/usr/bin/env bash");
-        let _ = writeln!(s, "# Written by `refract sweep plan --engine {}` for {} ({n} shards): {what}", o.engine.name(), e.name);
-        let _ = writeln!(s, "set -euo pipefail");
-        let _ = writeln!(s, "built={}", shell_quote(&o.refract));
-        let _ = writeln!(s, "REFRACT=\"${{REFRACT:-$built}}\"  # another binary: REFRACT=/path/to/refract bash ...");
-        let _ = writeln!(s, "FILE={}", shell_quote(&file));
-        let _ = writeln!(s, "OUT={}", shell_quote(&dir));
-        let _ = writeln!(s, "N={n}");
-        let _ = writeln!(s, "# Paths in the experiment file are relative to the folder the plan was made in.");
-        let _ = writeln!(s, "cd {}", shell_quote(&workdir));
-        s
+        fill(
+            HEAD,
+            &[
+                ("engine", o.engine.name()),
+                ("name", &e.name),
+                ("n", &n_text),
+                ("what", what),
+                ("refract", &refract),
+                ("file", &file),
+                ("out", &out),
+                ("workdir", &workdir),
+            ],
+        )
     };
-    let mut shard = head("runs shard $1 of 0..N-1 into $OUT/shards/$1 (again with --resume, it finishes a shard that stopped)");
-    let _ = writeln!(shard, "i=\"${{1:?usage: shard.sh I [--resume]}}\"");
-    let _ = writeln!(shard, "shift");
-    let _ = writeln!(shard, "exec \"$REFRACT\" sweep \"$FILE\"{quick} --shard \"$i/$N\" --out \"$OUT/shards/$i\" \"$@\"");
-    let mut merge = head("joins the shards into $OUT/runs.csv and draws the plots");
-    let _ = writeln!(merge, "shards=()");
-    let _ = writeln!(merge, "for i in $(seq 0 $((N - 1))); do shards+=(\"$OUT/shards/$i\"); done");
-    let _ = writeln!(merge, "exec \"$REFRACT\" sweep merge \"${{shards[@]}}\" --out \"$OUT\" --experiment \"$FILE\"{quick} \"$@\"");
-    let (script, how, s) = match o.engine {
-        Engine::Parallel => {
-            let mut s = head(&format!("the shards through GNU parallel, then the merge (busiest shard about {busiest:.1} s on one core)"));
-            let _ = writeln!(s, "# Extra arguments go to GNU parallel (e.g. --sshloginfile FILE, -j 1). Over");
-            let _ = writeln!(s, "# ssh, every host must see $REFRACT and $OUT at the same paths.");
-            let _ = writeln!(s, "mkdir -p \"$OUT/logs\"");
-            let _ = writeln!(
-                s,
-                "parallel --will-cite --halt now,fail=1 --joblog \"$OUT/logs/parallel.log\" \"$@\" bash \"$OUT/shard.sh\" {{}} ::: $(seq 0 $((N - 1)))"
-            );
-            let _ = writeln!(s, "bash \"$OUT/merge.sh\"");
-            ("run-parallel.sh", "bash {script} [GNU parallel options, e.g. --sshloginfile hosts]", s)
-        }
+    let quick = [("quick", if o.quick { " --quick" } else { "" })];
+    let shard = head("runs shard $1 of 0..N-1 into $OUT/shards/$1 (again with --resume, it finishes a shard that stopped)") + &fill(SHARD, &quick);
+    let merge = head("joins the shards into $OUT/runs.csv and draws the plots") + &fill(MERGE, &quick);
+    let busiest = loads.iter().map(|l| l.seconds).fold(0.0, f64::max);
+    let (script, how, text) = match o.engine {
+        Engine::Parallel => (
+            "run-parallel.sh",
+            "bash {script} [GNU parallel options, e.g. --sshloginfile hosts]",
+            head(&format!("the shards through GNU parallel, then the merge (busiest shard about {busiest:.1} s on one core)")) + PARALLEL,
+        ),
         Engine::Slurm => {
             let time = o.time.clone().unwrap_or_else(|| slurm_time(busiest));
             let mem_mb = loads.iter().map(|l| l.bytes).fold(0.0, f64::max) / (1u64 << 20) as f64;
             let mem = o.mem.clone().unwrap_or_else(|| format!("{}M", (256.0 + 1.5 * mem_mb).ceil() as u64));
             let partition = o.partition.as_ref().map_or(String::new(), |p| format!(" --partition={}", shell_word(p)));
-            let mut s = head(&format!(
+            let what = format!(
                 "a job array of the shards ({time} and {mem} each, from the estimate: busiest shard about {busiest:.1} s on one core) and a merge job after them"
-            ));
-            let _ = writeln!(s, "# With --wait, returns when the merge job has ended, with its exit code.");
-            let _ = writeln!(s, "wait_flag=()");
-            let _ = writeln!(s, "if [ \"${{1:-}}\" = \"--wait\" ]; then wait_flag=(--wait); fi");
-            let _ = writeln!(s, "mkdir -p \"$OUT/logs\"");
-            let _ = writeln!(
-                s,
-                "array=$(sbatch --parsable --job-name={name}-shards --array=0-$((N - 1)){partition} --time={time} --cpus-per-task={cpus} --mem={mem} \\\n  --output=\"$OUT/logs/shard-%a.out\" --wrap=\"bash '$OUT/shard.sh' \\$SLURM_ARRAY_TASK_ID\")",
-                name = shell_word(&e.name),
-                time = shell_word(&time),
-                cpus = o.cpus_per_task,
-                mem = shell_word(&mem),
             );
-            let _ = writeln!(s, "array=${{array%%;*}}");
-            let _ = writeln!(s, "echo \"submitted the shards: job array $array ($N tasks)\"");
-            let _ = writeln!(s, "echo \"merged results will be in $OUT/runs.csv (log: $OUT/logs/merge.out)\"");
-            let _ = writeln!(
-                s,
-                "sbatch --parsable \"${{wait_flag[@]}}\" --job-name={name}-merge --dependency=afterok:$array --kill-on-invalid-dep=yes{partition} --time=0-00:30:00 --cpus-per-task=1 --mem={mem} \\\n  --output=\"$OUT/logs/merge.out\" --wrap=\"bash '$OUT/merge.sh'\"",
-                name = shell_word(&e.name),
-                mem = shell_word(&mem),
+            let body = fill(
+                SLURM,
+                &[
+                    ("job", &shell_word(&e.name)),
+                    ("partition", &partition),
+                    ("time", &shell_word(&time)),
+                    ("cpus", &o.cpus_per_task.to_string()),
+                    ("mem", &shell_word(&mem)),
+                ],
             );
-            ("submit-slurm.sh", "bash {script} [--wait]", s)
+            ("submit-slurm.sh", "bash {script} [--wait]", head(&what) + &body)
         }
     };
-    let path = dir.join(script);
-    for (name, text) in [("shard.sh", &shard), ("merge.sh", &merge), (script, &s)] {
-        let p = dir.join(name);
-        crate::image_io::atomic_write(&p, |f| {
-            use std::io::Write;
-            f.write_all(text.as_bytes())?;
-            Ok(())
-        })?;
-        #[cfg(unix)]
-        {
-            use std::os::unix::fs::PermissionsExt;
-            std::fs::set_permissions(&p, std::fs::Permissions::from_mode(0o755))?;
-        }
+    Scripts { files: [("shard.sh", shard), ("merge.sh", merge), (script, text)], how }
+}
+
+/// Writes `text` to `path` (through a temp file), executable on Unix.
+fn write_script(path: &Path, text: &str) -> Result<()> {
+    crate::image_io::atomic_write(path, |f| {
+        use std::io::Write;
+        f.write_all(text.as_bytes())?;
+        Ok(())
+    })?;
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        std::fs::set_permissions(path, std::fs::Permissions::from_mode(0o755))?;
     }
+    Ok(())
+}
+
+/// What to tell the user: the shards' estimated loads, the script written
+/// at `path`, how to run it and where the merged results go.
+fn summary(e: &Experiment, n: usize, loads: &[ShardLoad], path: &Path, how: &str, dir: &Path) -> String {
     let mut msg = String::new();
     let _ = writeln!(
         msg,
@@ -247,7 +265,28 @@ pub fn write(e: &Experiment, o: &PlanOptions) -> Result<String> {
     let _ = writeln!(msg, "wrote {} (with shard.sh and merge.sh beside it)", path.display());
     let _ = writeln!(msg, "run it: {}", how.replace("{script}", &path.display().to_string()));
     let _ = write!(msg, "merged results: {}/runs.csv and the plots beside it", dir.display());
-    Ok(msg)
+    msg
+}
+
+/// Writes the plan's script into its folder; returns what to tell the user.
+pub fn write(e: &Experiment, o: &PlanOptions) -> Result<String> {
+    let runs = expand(e);
+    let n = shard_count(&runs, o.shards)?;
+    if o.cpus_per_task == 0 || o.cpus_per_task > 1024 {
+        bail!("--cpus-per-task: {} is not between 1 and 1024", o.cpus_per_task);
+    }
+    let dir = o.out.clone().unwrap_or_else(|| e.default_folder());
+    crate::image_io::create_folder(&dir)?;
+    let dir = absolute(&dir)?;
+    let file = absolute(&o.file)?;
+    let workdir = std::env::current_dir().context("cannot read the current folder")?;
+    let loads = loads(e, &runs, n);
+    let s = scripts(e, o, n, &loads, &dir, &file, &workdir);
+    for (name, text) in &s.files {
+        write_script(&dir.join(name), text)?;
+    }
+    let path = dir.join(s.files[2].0);
+    Ok(summary(e, n, &loads, &path, s.how, &dir))
 }
 
 /// A Slurm time limit for a shard estimated at `seconds`: four times the
@@ -311,6 +350,41 @@ mod tests {
         assert!(assign(&runs, 1).iter().all(|&x| x == 0));
         let s8 = assign(&runs, 8);
         assert_eq!(s8.iter().collect::<std::collections::HashSet<_>>().len(), 4);
+    }
+
+    #[test]
+    fn templates_are_filled_in_one_pass() {
+        assert_eq!(fill("a {{x}} b {{y}}{{x}}", &[("x", "1"), ("y", "{{x}}")]), "a 1 b {{x}}1");
+        assert_eq!(fill("${a} {{unknown}} {{x", &[("x", "1")]), "${a} {{unknown}} {{x");
+    }
+
+    /// Every placeholder of every script is filled, for both engines.
+    #[test]
+    fn scripts_leave_no_placeholder() {
+        let file = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/experiments/lab-trace.toml"));
+        let e = Experiment::load(file, true).unwrap();
+        let runs = expand(&e);
+        for engine in [Engine::Parallel, Engine::Slurm] {
+            let o = PlanOptions {
+                file: file.into(),
+                engine,
+                shards: None,
+                out: None,
+                quick: true,
+                partition: Some("p".into()),
+                time: None,
+                cpus_per_task: 2,
+                mem: None,
+                refract: "/bin/refract".into(),
+            };
+            let s = scripts(&e, &o, 2, &loads(&e, &runs, 2), Path::new("/out"), file, Path::new("/w"));
+            for (name, text) in &s.files {
+                assert!(text.starts_with("#!/usr/bin/env bash\n") && text.ends_with('\n'), "{name}");
+                assert!(!text.contains("{{") && !text.contains("}}"), "{name}: {text}");
+                assert!(text.contains("N=2\n") && text.contains("cd '/w'\n"), "{name}");
+            }
+            assert!(s.files[0].1.contains(" --quick --shard"));
+        }
     }
 
     #[test]

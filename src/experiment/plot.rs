@@ -389,23 +389,8 @@ where
     X: Ranged<ValueType = f64> + ValueFormatter<f64>,
     Y: Ranged<ValueType = f64> + ValueFormatter<f64>,
 {
+    draw_mesh(&mut c, chart)?;
     let cats = &chart.categories;
-    let cat_label = |v: &f64| -> String {
-        let k = v.round();
-        if (v - k).abs() < 1e-6 && k >= 0.0 && (k as usize) < cats.len() {
-            cats[k as usize].clone()
-        } else {
-            String::new()
-        }
-    };
-    let mut mesh = c.configure_mesh();
-    mesh.x_desc(&chart.x_label).y_desc(&chart.y_label).y_labels(12).y_label_formatter(&tick).label_style(("sans-serif", 15));
-    if cats.is_empty() {
-        mesh.x_labels(12).x_label_formatter(&tick);
-    } else {
-        mesh.x_labels(2 * cats.len() + 1).x_label_formatter(&cat_label).disable_x_mesh();
-    }
-    mesh.draw().map_err(|e| anyhow!("{e}"))?;
     let err = |e: DrawingAreaErrorKind<DB::ErrorType>| anyhow!("{e}");
     let ok = |p: &(f64, f64)| p.0.is_finite() && p.1.is_finite() && (!chart.log_x || p.0 > 0.0) && (!chart.log_y || p.1 > 0.0);
     let n = chart.series.len().max(1) as f64;
@@ -415,26 +400,7 @@ where
         let dodge = if cats.is_empty() { 0.0 } else { (k as f64 - (n - 1.0) / 2.0) * (0.6 / n) };
         let keep: Vec<usize> = (0..s.points.len()).filter(|&i| ok(&s.points[i])).collect();
         let pts: Vec<(f64, f64)> = keep.iter().map(|&i| (s.points[i].0 + dodge, s.points[i].1)).collect();
-        let pos = |v: f64, log: bool| !log || v > 0.0;
-        for &i in &keep {
-            let (px, py) = (s.points[i].0 + dodge, s.points[i].1);
-            if let Some(Some((lo, hi))) = s.spread_y.get(i) {
-                if pos(*lo, chart.log_y) && lo < hi {
-                    c.draw_series([PathElement::new(vec![(px, *lo), (px, *hi)], color.stroke_width(1))]).map_err(err)?;
-                    for v in [*lo, *hi] {
-                        c.draw_series([EmptyElement::at((px, v)) + PathElement::new(vec![(-5, 0), (5, 0)], color.stroke_width(1))]).map_err(err)?;
-                    }
-                }
-            }
-            if let Some(Some((lo, hi))) = s.spread_x.get(i) {
-                if pos(*lo, chart.log_x) && lo < hi {
-                    c.draw_series([PathElement::new(vec![(*lo, py), (*hi, py)], color.stroke_width(1))]).map_err(err)?;
-                    for v in [*lo, *hi] {
-                        c.draw_series([EmptyElement::at((v, py)) + PathElement::new(vec![(0, -5), (0, 5)], color.stroke_width(1))]).map_err(err)?;
-                    }
-                }
-            }
-        }
+        draw_spreads(&mut c, s, &keep, dodge, chart)?;
         let over = coincides_with(&chart.series, k, chart.log_y).is_some();
         if cats.is_empty() {
             if over {
@@ -463,6 +429,69 @@ where
                     c.draw_series([EmptyElement::at(p) + PathElement::new(shape, color.stroke_width(2))]).map_err(err)?;
                 } else {
                     c.draw_series([EmptyElement::at(p) + Polygon::new(shape, color.filled())]).map_err(err)?;
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The axes, their labels and ticks (a category's name under it on a dot
+/// plot), and the grid.
+fn draw_mesh<'a, DB, X, Y>(c: &mut ChartContext<'a, DB, Cartesian2d<X, Y>>, chart: &LineChart) -> Result<()>
+where
+    DB: DrawingBackend + 'a,
+    DB::ErrorType: 'static,
+    X: Ranged<ValueType = f64> + ValueFormatter<f64>,
+    Y: Ranged<ValueType = f64> + ValueFormatter<f64>,
+{
+    let cats = &chart.categories;
+    let cat_label = |v: &f64| -> String {
+        let k = v.round();
+        if (v - k).abs() < 1e-6 && k >= 0.0 && (k as usize) < cats.len() {
+            cats[k as usize].clone()
+        } else {
+            String::new()
+        }
+    };
+    let mut mesh = c.configure_mesh();
+    mesh.x_desc(&chart.x_label).y_desc(&chart.y_label).y_labels(12).y_label_formatter(&tick).label_style(("sans-serif", 15));
+    if cats.is_empty() {
+        mesh.x_labels(12).x_label_formatter(&tick);
+    } else {
+        mesh.x_labels(2 * cats.len() + 1).x_label_formatter(&cat_label).disable_x_mesh();
+    }
+    mesh.draw().map_err(|e| anyhow!("{e}"))?;
+    Ok(())
+}
+
+/// The error bars of series `s` at its drawn points `keep` (moved right by
+/// `dodge`): a spread in y upright, a spread in x level, each capped.
+fn draw_spreads<'a, DB, X, Y>(c: &mut ChartContext<'a, DB, Cartesian2d<X, Y>>, s: &Series, keep: &[usize], dodge: f64, chart: &LineChart) -> Result<()>
+where
+    DB: DrawingBackend + 'a,
+    DB::ErrorType: 'static,
+    X: Ranged<ValueType = f64> + ValueFormatter<f64>,
+    Y: Ranged<ValueType = f64> + ValueFormatter<f64>,
+{
+    let err = |e: DrawingAreaErrorKind<DB::ErrorType>| anyhow!("{e}");
+    let color = s.color;
+    let pos = |v: f64, log: bool| !log || v > 0.0;
+    for &i in keep {
+        let (px, py) = (s.points[i].0 + dodge, s.points[i].1);
+        if let Some(Some((lo, hi))) = s.spread_y.get(i) {
+            if pos(*lo, chart.log_y) && lo < hi {
+                c.draw_series([PathElement::new(vec![(px, *lo), (px, *hi)], color.stroke_width(1))]).map_err(err)?;
+                for v in [*lo, *hi] {
+                    c.draw_series([EmptyElement::at((px, v)) + PathElement::new(vec![(-5, 0), (5, 0)], color.stroke_width(1))]).map_err(err)?;
+                }
+            }
+        }
+        if let Some(Some((lo, hi))) = s.spread_x.get(i) {
+            if pos(*lo, chart.log_x) && lo < hi {
+                c.draw_series([PathElement::new(vec![(*lo, py), (*hi, py)], color.stroke_width(1))]).map_err(err)?;
+                for v in [*lo, *hi] {
+                    c.draw_series([EmptyElement::at((v, py)) + PathElement::new(vec![(0, -5), (0, 5)], color.stroke_width(1))]).map_err(err)?;
                 }
             }
         }

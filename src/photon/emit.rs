@@ -419,6 +419,8 @@ pub fn concentric_disc(a: f64, b: f64) -> DVec2 {
     DVec2::new(r * t.cos(), r * t.sin())
 }
 
+/// One photon's walk, bounce by bounce, until it is absorbed or leaves.
+// One body (over 80 lines): one bounce loop whose branches (the surface kinds) share the photon's whole state.
 #[allow(clippy::too_many_arguments)]
 fn trace_photon(
     scene: &World,
