@@ -36,6 +36,8 @@ mod sweep;
 mod sweep_record;
 // Checks made before any work: output folders, bounds, empty meshes.
 mod prework_checks;
+// Wavefront OBJ input: messages name OBJ, the file and the line; soups are warned of.
+mod obj_input;
 // The committed timing charts: medians with error bars, fits where claimed.
 mod committed_charts;
 // Sweeps through GNU parallel and Slurm (ignored unless the engines are there).

@@ -103,9 +103,13 @@ pub enum MeshErrorKind {
     /// The file could not be opened or read.
     #[error("cannot read the file: {0}")]
     Io(#[from] std::io::Error),
-    /// NUL bytes, invalid UTF-8 or control characters: not an OFF text file.
-    #[error("non-text data ({0}); only text OFF files are read")]
-    NotText(String),
+    /// NUL bytes, invalid UTF-8 or control characters: not a text file of
+    /// the format read (`OFF` or `OBJ`).
+    #[error("non-text data ({what}); only text {format} files are read")]
+    NotText { format: &'static str, what: String },
+    /// An OBJ statement tobj refused that the line check let through.
+    #[error("tobj could not read the OBJ statement here: {0}")]
+    Tobj(String),
     /// The first token is not an OFF keyword, e.g. `PLY`.
     #[error("expected the keyword OFF or COFF, found `{0}`")]
     MissingKeyword(String),

@@ -2,7 +2,10 @@
 //!
 //! tobj's errors carry no line number, so the file is first checked line by
 //! line here (vertex and face syntax, finite numbers, indices in range,
-//! text only); tobj then does the loading and triangulation. Winding is
+//! text only); tobj then does the loading and triangulation, on the text
+//! with its `#` comments cut (tobj reads `v 1 2 3 # note` as a bad colour).
+//! Should tobj still refuse it, the line is found by loading ever shorter
+//! beginnings of the text (a bisection), so the message names it. Winding is
 //! made consistent and outward afterwards (`orient`), because refraction
 //! reads "entering" or "leaving" from the normal (report 003's trouble).
 
@@ -14,10 +17,8 @@ pub fn read_obj(path: &Path) -> Result<Mesh, MeshError> {
     let name = path.display().to_string();
     let err = |line: usize, kind: MeshErrorKind| MeshError { path: name.clone(), line, kind };
     let bytes = crate::data::read_input(path).map_err(|e| err(0, e.into()))?;
-    check(&bytes).map_err(|(line, kind)| err(line, kind))?;
-    let opts = tobj::LoadOptions { triangulate: true, single_index: true, ignore_points: true, ignore_lines: true };
-    let (models, _) = tobj::load_obj_buf(&mut std::io::Cursor::new(&bytes), &opts, |_| Ok(Default::default()))
-        .map_err(|e| err(0, MeshErrorKind::Invalid(format!("tobj: {e}"))))?;
+    let text = check(&bytes).map_err(|(line, kind)| err(line, kind))?;
+    let (models, _) = load(&text).map_err(|e| err(failing_line(&text), MeshErrorKind::Tobj(e.to_string())))?;
     let mut mesh = Mesh { positions: Vec::new(), triangles: Vec::new(), colors: MeshColors::None, stats: MeshStats::default() };
     for m in models {
         let base = mesh.positions.len() as u32;
@@ -38,23 +39,54 @@ pub fn read_obj(path: &Path) -> Result<Mesh, MeshError> {
     Ok(mesh)
 }
 
-/// Line-by-line check of the statements the renderer relies on.
-fn check(bytes: &[u8]) -> Result<(), (usize, MeshErrorKind)> {
-    let text = std::str::from_utf8(bytes)
-        .map_err(|e| (1 + bytes[..e.valid_up_to()].iter().filter(|&&b| b == b'\n').count(), MeshErrorKind::NotText("invalid UTF-8".into())))?;
+fn load(text: &str) -> tobj::LoadResult {
+    let opts = tobj::LoadOptions { triangulate: true, single_index: true, ignore_points: true, ignore_lines: true };
+    tobj::load_obj_buf(&mut text.as_bytes(), &opts, |_| Ok(Default::default()))
+}
+
+/// The 1-based line whose addition makes tobj refuse `text`: the first `k`
+/// lines load and the first `k + 1` do not (bisection over the line count,
+/// so about log2(lines) loads).
+fn failing_line(text: &str) -> usize {
+    let ends: Vec<usize> = text.match_indices('\n').map(|(i, _)| i + 1).chain((!text.ends_with('\n')).then_some(text.len())).collect();
+    let fails = |k: usize| k > 0 && load(&text[..ends[k - 1]]).is_err();
+    let (mut ok, mut bad) = (0, ends.len());
+    if !fails(bad) {
+        return 0;
+    }
+    while bad - ok > 1 {
+        let mid = (ok + bad) / 2;
+        if fails(mid) {
+            bad = mid;
+        } else {
+            ok = mid;
+        }
+    }
+    bad
+}
+
+/// Line-by-line check of the statements the renderer relies on; returns
+/// the text with comments cut, line for line.
+fn check(bytes: &[u8]) -> Result<String, (usize, MeshErrorKind)> {
+    let not_text = |what: String| MeshErrorKind::NotText { format: "OBJ", what };
+    let text =
+        std::str::from_utf8(bytes).map_err(|e| (1 + bytes[..e.valid_up_to()].iter().filter(|&&b| b == b'\n').count(), not_text("invalid UTF-8".into())))?;
+    let mut cut = String::with_capacity(text.len());
     let (mut nv, mut nvt, mut nvn) = (0i64, 0i64, 0i64);
     for (i, raw) in text.lines().enumerate() {
         let line = i + 1;
         if let Some(b) = raw.bytes().find(|&b| b < 0x20 && b != b'\t' && b != b'\r') {
-            return Err((line, MeshErrorKind::NotText(format!("control byte 0x{b:02x}"))));
+            return Err((line, not_text(format!("control byte 0x{b:02x}"))));
         }
         let content = raw.split('#').next().unwrap_or("");
+        cut.push_str(content);
+        cut.push('\n');
         let mut toks = content.split_whitespace();
         let Some(kw) = toks.next() else { continue };
         let args: Vec<&str> = toks.collect();
-        let numbers = |what: &str, min: usize, max: usize| -> Result<(), (usize, MeshErrorKind)> {
-            if args.len() < min || args.len() > max {
-                return Err((line, MeshErrorKind::Invalid(format!("`{kw}` needs {min} to {max} numbers, found {}", args.len()))));
+        let numbers = |what: &str, counts: &[usize], said: &str| -> Result<(), (usize, MeshErrorKind)> {
+            if !counts.contains(&args.len()) {
+                return Err((line, MeshErrorKind::Invalid(format!("`{kw}` needs {said} numbers, found {}", args.len()))));
             }
             for a in &args {
                 let v: f64 = a.parse().map_err(|_| (line, MeshErrorKind::BadToken { what: format!("a number in {what}"), token: a.to_string() }))?;
@@ -66,15 +98,18 @@ fn check(bytes: &[u8]) -> Result<(), (usize, MeshErrorKind)> {
         };
         match kw {
             "v" => {
-                numbers("a vertex", 3, 7)?;
+                numbers("a vertex", &[3, 4, 6], "3, 4 (x y z w) or 6 (x y z r g b)")?;
+                if args.len() == 4 && args[3].parse::<f64>() == Ok(0.0) {
+                    return Err((line, MeshErrorKind::Invalid("a vertex's w is 0 (x y z are divided by it)".into())));
+                }
                 nv += 1;
             }
             "vt" => {
-                numbers("a texture coordinate", 1, 3)?;
+                numbers("a texture coordinate", &[2, 3], "2 or 3")?;
                 nvt += 1;
             }
             "vn" => {
-                numbers("a normal", 3, 3)?;
+                numbers("a normal", &[3], "3")?;
                 nvn += 1;
             }
             "f" => {
@@ -98,7 +133,7 @@ fn check(bytes: &[u8]) -> Result<(), (usize, MeshErrorKind)> {
             _ => {}
         }
     }
-    Ok(())
+    Ok(cut)
 }
 
 #[cfg(test)]
@@ -126,7 +161,12 @@ mod tests {
     fn errors_name_the_line() {
         let dir = tempfile::tempdir().unwrap();
         for (text, needle) in [
-            ("v 0 0 0\nv 1 0\n", "b.obj:2: `v` needs 3 to 7 numbers, found 2"),
+            ("v 0 0 0\nv 1 0\n", "b.obj:2: `v` needs 3, 4 (x y z w) or 6 (x y z r g b) numbers, found 2"),
+            ("v 0 0 0\nv 1 0 0 1 1\n", "b.obj:2: `v` needs 3, 4"),
+            ("v 0 0 0\nv 1 0 0 0\n", "b.obj:2: a vertex's w is 0"),
+            ("v 0 0 0\nvt 0.5\n", "b.obj:2: `vt` needs 2 or 3 numbers, found 1"),
+            ("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nusemtl\nf 1 2 3\n", "b.obj:5: tobj could not read the OBJ statement here: material parse error"),
+            ("v 0 0 0\n\u{0}\n", "b.obj:2: non-text data (control byte 0x00); only text OBJ files are read"),
             ("v 0 0 0\nv 1 nan 0\n", "b.obj:2: a vertex `nan` is not a finite"),
             ("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n", "b.obj:4: face index `4` is out of range (3 defined so far)"),
             ("v 0 0 0\nf 1 x 1\n", "b.obj:2: expected a face index, found `x`"),
@@ -137,5 +177,23 @@ mod tests {
             let e = read_obj(&p).unwrap_err().to_string();
             assert!(e.contains(needle), "{e} / {needle}");
         }
+    }
+
+    #[test]
+    fn comments_after_statements_load() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = write(dir.path(), "c.obj", "v 0 0 0 # origin\nv 1 0 0\nv 0 1 0\r\nf 1 2 3 # the one face\n");
+        assert_eq!(read_obj(&p).unwrap().triangles.len(), 1);
+    }
+
+    #[test]
+    fn the_failing_line_is_found_by_bisection() {
+        let body = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n".repeat(40);
+        for at in [1, 77, 160] {
+            let mut lines: Vec<&str> = body.lines().collect();
+            lines.insert(at - 1, "usemtl");
+            assert_eq!(failing_line(&lines.join("\n")), at);
+        }
+        assert_eq!(failing_line(&body), 0);
     }
 }

@@ -39,7 +39,7 @@ pub fn read_off(path: &Path) -> Result<Mesh, MeshError> {
 /// Parses OFF text; `name` is used in error messages.
 pub fn parse_off(bytes: &[u8], name: &str) -> Result<Mesh, MeshError> {
     let err = |line: usize, kind: MeshErrorKind| MeshError { path: name.to_string(), line, kind };
-    let text = check_text(bytes).map_err(|(line, what)| err(line, MeshErrorKind::NotText(what)))?;
+    let text = check_text(bytes).map_err(|(line, what)| err(line, MeshErrorKind::NotText { format: "OFF", what }))?;
     Parser { lex: Lexer::new(text) }.parse().map_err(|(line, kind)| err(line, kind))
 }
 

@@ -1,14 +1,14 @@
-//! Where a mesh comes from: an OFF file, or a shape generated in code for
+//! Where a mesh comes from: an OFF file (or an OBJ, by its extension), or a shape generated in code for
 //! sweeps over mesh size (`icosphere:S`, `torus:N`). Parsed once, where
 //! the user names it.
 
-use super::{generate, off::read_off, Mesh, MeshError};
+use super::{generate, obj::read_obj, off::read_off, Mesh, MeshError};
 use std::fmt;
 use std::path::PathBuf;
 
 #[derive(Clone, Debug, PartialEq, Eq, Hash)]
 pub enum MeshSource {
-    /// An OFF or COFF file.
+    /// An OFF or COFF file, or a Wavefront OBJ if its name ends in `.obj`.
     File(PathBuf),
     /// A unit icosphere of S subdivisions (20 * 4^S triangles), 0-8.
     Icosphere(u32),
@@ -48,7 +48,8 @@ impl MeshSource {
     pub fn load(&self) -> Result<Mesh, MeshError> {
         Ok(match self {
             MeshSource::File(p) => {
-                let m = read_off(p)?;
+                let obj = p.extension().is_some_and(|e| e.eq_ignore_ascii_case("obj"));
+                let m = if obj { read_obj(p)? } else { read_off(p)? };
                 if m.triangles.is_empty() {
                     let s = &m.stats;
                     let kind = super::MeshErrorKind::NoFaces { faces: s.faces, small: s.skipped_small, degenerate: s.skipped_degenerate };

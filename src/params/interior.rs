@@ -87,7 +87,7 @@ pub static PARAMS: &[Param<InteriorConfig>] = &[
         key: "off",
         aliases: &[],
         section: PROMPTS,
-        help: "The OFF or COFF mesh to render, or a generated icosphere:S (S = 0-8 subdivisions) or torus:N",
+        help: "The OFF or COFF mesh to render (a Wavefront OBJ if the name ends in .obj), or a generated icosphere:S (S = 0-8 subdivisions) or torus:N",
         unit: "",
         kind: Kind::Text(mesh),
         auto: "",

@@ -160,7 +160,33 @@ pub fn run(cfg: &SpectralConfig, progress: &dyn Progress) -> Result<SpectralRepo
 pub fn render_config(cfg: &SpectralConfig, progress: &dyn Progress) -> Result<SpectralReport> {
     cfg.validate()?;
     let scene = crate::scenes::build(&cfg.scene)?;
+    if let Some(w) = soup_warning(cfg, &scene) {
+        eprintln!("warning: {w}");
+    }
     render_world(cfg, &scene, progress)
+}
+
+/// Faces a ray may test, on average, above which a mesh is said to be slow.
+const SOUP_TESTS: f64 = 1000.0;
+
+/// A warning, before any tracing, for an `--obj` mesh whose triangles'
+/// boxes overlap so much that the face hierarchy cannot narrow a ray's
+/// tests (a soup of large triangles): each ray then tests a good part of
+/// them, and each photon may bounce up to 100 times among them.
+pub fn soup_warning(cfg: &SpectralConfig, scene: &crate::world::World) -> Option<String> {
+    let path = cfg.scene.obj.as_ref()?;
+    let mesh = scene.faces.iter().filter(|f| matches!(f.surface, crate::world::Surface::Interface { .. })).flat_map(|f| f.verts.iter().copied());
+    let (lo, hi) = mesh.fold((glam::DVec3::INFINITY, glam::DVec3::NEG_INFINITY), |(l, h), v| (l.min(v), h.max(v)));
+    let tests = scene.accel.as_ref()?.expected_tests(lo, hi);
+    (tests > SOUP_TESTS).then(|| {
+        format!(
+            "--obj {}: its triangles overlap so much that a ray through it tests about {:.0} of the scene's {} faces, against a few dozen for a closed surface; \
+             the light pass may take hours (fewer --photons, or a mesh of less overlapping triangles)",
+            path.display(),
+            tests,
+            scene.faces.len()
+        )
+    })
 }
 
 /// The bytes a run of `cfg` on `scene` needs at its peak, estimated before
