@@ -537,20 +537,7 @@ pub fn run(cli: Cli) -> Result<()> {
                 bail!("--quick: {} has no [quick] settings, so the render would be the full one; add a [quick] table or leave --quick out", file.display());
             }
             scene.set(&set)?;
-            let out = match out {
-                Some(o) => o,
-                None => {
-                    crate::image_io::create_folder(std::path::Path::new("results"))?;
-                    PathBuf::from("results").join(format!("{}.png", scene.id))
-                }
-            };
-            crate::image_io::check_output(&out, scene.mode.formats()).map_err(|e| anyhow::anyhow!("--out: {e}"))?;
-            crate::image_io::remove_stale_temps(out.parent().unwrap_or(std::path::Path::new("")));
-            let bars = crate::terminal::Bars::new();
-            let (_, summary) = scene.render_summarised(&out, &bars)?;
-            bars.done();
-            eprintln!("wrote {} ({summary})", out.display());
-            Ok(())
+            render_to(&scene, out)
         }
         Command::Sweep(args) => run_sweep(args),
         Command::Spectrum { which } => run_spectrum(which),
@@ -652,6 +639,12 @@ fn run_gltf(file: PathBuf, quick: bool, out: Option<PathBuf>, set: &[String]) ->
     if let Some(w) = modes::prism::gltf_check(&cfg)? {
         eprintln!("warning: {w}");
     }
+    render_to(&scene, out)
+}
+
+/// Renders a scene file to `out` (default `results/<id>.png`), checked
+/// before any work, with its progress bars and summary line.
+fn render_to(scene: &crate::experiment::scene_file::SceneFile, out: Option<PathBuf>) -> Result<()> {
     let out = match out {
         Some(o) => o,
         None => {
