@@ -167,7 +167,7 @@ fn cfl_lines_give_separate_tube_images_where_the_probe_says() {
     o.split = cfg.split;
     let r = render(&s, &o, &hidden());
     // Brightness per column: the largest linear sRGB channel, summed over
-    // the spiral's middle rows.
+    // the middle rows of the lamp's legs.
     let column = |c: usize| -> DVec3 { (45..75).map(|y| r.image.linear_srgb(y * r.image.width + c).max(DVec3::ZERO)).sum() };
     let profile: Vec<f64> = (0..r.image.width).map(|c| column(c).max_element()).collect();
     let at = |full_px: f64| (full_px / 2.0) as usize;
@@ -184,12 +184,12 @@ fn cfl_lines_give_separate_tube_images_where_the_probe_says() {
         let peak = |c: f64| (at(c - half)..=at(c + half)).map(|k| profile[k]).fold(0.0, f64::max);
         let dimmer = peak(w[0]).min(peak(w[1]));
         let gap = (at(left) + 1..at(right)).map(|k| profile[k]).fold(f64::INFINITY, f64::min);
-        // Measured with the figure's eye rays (eye = "lines") and a 40 mm
-        // lamp: 3.8 % between the 435.8 and 546.1 nm images (the dim Tb 488
-        // image between them), 8.5 % between 546.1 and 587: there the Hg
-        // 577/579 nm doublet's own image stands a sixth of a lamp's width
-        // from the 587 nm one, on the continuum, so that pair is allowed
-        // 10 %. (The 28 mm lamp leaves less continuum in each image's way.)
+        // Measured with the figure's eye rays (eye = "lines") and its 30 mm
+        // twin-tube lamp at 14 m: 1.4 % between the 435.8 and 546.1 nm
+        // images (the dim Tb 488 image between them), 5.7 % between 546.1
+        // and 587: there the Hg 577/579 nm doublet's own image stands a
+        // sixth of a lamp's width from the 587 nm one, on the continuum, so
+        // that pair is allowed 10 %.
         let limit = if w[0] == x[1] { 0.10 } else { 0.05 };
         assert!(gap < limit * dimmer, "between the images at columns {:.1} and {:.1}: {gap:.3} against a peak of {dimmer:.3}", w[1], w[0]);
     }

@@ -1,7 +1,8 @@
 //! The display transforms side by side: four photograph-like figures, each
 //! rendered once (from its own scene file, at its quick size and its own
-//! exposure) and shown four ways, clipped, desaturated, through the
-//! filmic AgX curve and through AgX with its print look (docs/physics.md §23), so a reader can see what each
+//! exposure) and shown five ways, clipped, desaturated, through the
+//! filmic AgX curve, through AgX with its print look (docs/physics.md §23)
+//! and as a camera's sensor and print would show it (§25), so a reader can see what each
 //! does to a spectrum: `results/display/transforms.png` in the gallery.
 
 use super::labels::{draw, Label};
@@ -14,9 +15,9 @@ use std::path::Path;
 /// The figures compared: the lamp's lines, the bench's strip, the album
 /// cover's fan and the laser's spectrum on a wall.
 pub const FIGURES: [&str; 4] = ["css552-p1", "css552-p5", "pm-dark-side", "pm-laser-prism"];
-const MAPS: [GamutMap; 4] = [GamutMap::Clip, GamutMap::Desaturate, GamutMap::Agx, GamutMap::AgxPunchy];
+const MAPS: [GamutMap; 5] = [GamutMap::Clip, GamutMap::Desaturate, GamutMap::Agx, GamutMap::AgxPunchy, GamutMap::Camera];
 /// Each tile's width in pixels (heights follow the figures' aspects).
-const TILE: usize = 320;
+const TILE: usize = 272;
 
 /// Renders the comparison into `png`; the figures' scene files are in
 /// `scenes`.

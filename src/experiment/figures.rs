@@ -553,8 +553,8 @@ fn write_index(out: &Path, ids: &[String], records: &BTreeMap<String, Record>, q
     }
     if out.join("display/transforms.png").exists() {
         writeln!(h, "<h2 id=\"display\">Display transforms for spectral light</h2>")?;
-        writeln!(h, "<p>{}, each rendered once at its quick size and shown four ways: each channel clipped to [0, 1]; desaturated toward the grey of its own luminance (hue kept, the brightest parts no brighter than white paper); the filmic AgX curve, where bright saturated light rolls smoothly toward white as on film; and AgX with a print look (more contrast and saturation), which sinks faint light toward black as contrasty film does (docs/physics.md §23). The photograph-like figures use one of these, each named in its scene file.</p>", super::display::FIGURES.join(", "))?;
-        picture_html(&mut h, out, "display/transforms.png", "display-transforms", "the same renders through four display transforms")?;
+        writeln!(h, "<p>{}, each rendered once at its quick size and shown five ways: each channel clipped to [0, 1]; desaturated toward the grey of its own luminance (hue kept, the brightest parts no brighter than white paper); the filmic AgX curve, where bright saturated light rolls smoothly toward white as on film; AgX with a print look (more contrast and saturation), which sinks faint light toward black as contrasty film does (docs/physics.md §23); and a camera, whose sensor clips in its own colour space (an over-exposed green line turns yellow-green, then white) and whose print has a black point at a tenth of white (§25). The photograph-like figures use one of these, each named in its scene file.</p>", super::display::FIGURES.join(", "))?;
+        picture_html(&mut h, out, "display/transforms.png", "display-transforms", "the same renders through five display transforms")?;
     }
     if !spectral_charts.is_empty() {
         writeln!(h, "<h2 id=\"spectral\">Spectral accuracy: IOR models and colour maps (<code>refract spectrum accuracy</code>)</h2><div class=\"charts\">")?;

@@ -324,18 +324,17 @@ const BENCH_HAZE: f64 = 9.0;
 
 /// Picture 1: a compact fluorescent lamp across the room past the prism,
 /// and the camera just before the entry face looking back through the
-/// prism at it. The lamp is a spiral CFL seen from the side, as real ones
-/// are: a helix of glowing tube, each turn's near half crossing the axis
-/// one way and its far half, behind, the other way. Its width as seen
-/// through the prism (`LAMP_WIDTH` at `LAMP_DISTANCE`, 0.10 degrees) is
-/// under half the gap between the orange (587 nm) and red (611 nm) copies
-/// with the 80 degree flint, the closest pair, so every copy stands apart
-/// on black; and the phosphors' continuum, whose brightness at a point
-/// grows with the band of wavelengths one lamp's width spans, stays dim.
+/// prism at it. The lamp is a twin-tube CFL, its two legs side by side as
+/// seen. Its width as seen through the prism (`LAMP_WIDTH` at
+/// `LAMP_DISTANCE`, 0.12 degrees) is about the gap between the orange
+/// (587 nm) and red (611 nm) copies with the 80 degree flint, the closest
+/// bright pair, so the copies stand apart; the phosphors' continuum, whose
+/// brightness at a point grows with the band of wavelengths one lamp's
+/// width spans, stays a few per cent of theirs.
 fn add_lamp(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism, design: &World, d_line: &ProbeRay) -> Result<()> {
     let x = d_line.exit_point.x + LAMP_DISTANCE;
     let spectrum = light_spectrum(o, "cfl-lines")?;
-    let parts = spiral_lamp(x);
+    let parts = twin_tube_lamp(x);
     let area: f64 = parts.iter().map(|(_, u, v)| u.cross(*v).length()).sum();
     for (k, (corner, eu, ev)) in parts.into_iter().enumerate() {
         let light = scene.lights.len();
@@ -349,15 +348,15 @@ fn add_lamp(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism, design: &Wo
         });
     }
     // The camera frames the lamp's images from the blue mercury line to
-    // the deep red europium line (where each appears, found by tracing back
-    // through the prism), with 5 % to spare on each side. The violet 404.7
-    // nm image lies beyond the blue one, outside the frame: to the eye
-    // (the CIE observer) it is about 70 times fainter than the 435.8 nm
-    // image (a third of the power, a fortieth of the luminous efficiency),
+    // the red europium lines (`FRAME_NM`; where each appears, found by
+    // tracing back through the prism), with 5 % to spare on each side. The
+    // violet 404.7 nm image lies beyond the blue one, outside the frame: to
+    // the eye (the CIE observer) it is about 40 times fainter than the
+    // 435.8 nm image (half the power, a fifteenth of the blue response),
     // black in any exposure that does not blow out the rest.
     let cam = DVec3::new(prism.parts[0][1].x - 0.03, 0.0, 0.0);
-    let blue = lamp_image_angle(design, cam, x, 435.834);
-    let (Some(blue), Some(red)) = (blue, lamp_image_angle(design, cam, x, 711.0)) else {
+    let blue = lamp_image_angle(design, cam, x, FRAME_NM.0);
+    let (Some(blue), Some(red)) = (blue, lamp_image_angle(design, cam, x, FRAME_NM.1)) else {
         match o.incidence_deg {
             Some(_) => return Err(SceneError::param("incidence", "the lamp cannot be seen through the prism at 436-711 nm")),
             None => return Err(SceneError::design(o, "the lamp cannot be seen through this prism at 436-711 nm")),
@@ -396,35 +395,32 @@ pub fn lamp_image_angle(design: &World, cam: DVec3, lamp_x: f64, nm: f64) -> Opt
     Some(0.5 * (lo + hi))
 }
 
-/// How far the lamp stands past the prism's exit face, m.
-pub const LAMP_DISTANCE: f64 = 10.0;
-/// The spiral's outer diameter and height, the tube's diameter, m, and its
-/// turns: a miniature spiral CFL.
-pub const LAMP_WIDTH: f64 = 0.018;
-const LAMP_HEIGHT: f64 = 0.08;
-const LAMP_TUBE: f64 = 0.0075;
-const LAMP_TURNS: usize = 6;
+/// The wavelengths, nm, whose copies of the lamp the frame spans: the
+/// blue mercury line to past the last bright europium lines (626, 631).
+const FRAME_NM: (f64, f64) = (435.834, 640.0);
 
-/// The spiral lamp at distance `x` along the axis, as emitting
-/// parallelograms facing -x (corner, edge along the tube, edge across it):
-/// each turn's near half (in the plane x, from +y down-slope to -y) and its
-/// far half (a tube's width behind, back from -y to +y), which shows
-/// between the near halves as a helix seen from the side does.
-fn spiral_lamp(x: f64) -> Vec<(DVec3, DVec3, DVec3)> {
-    let r = (LAMP_WIDTH - LAMP_TUBE) / 2.0;
-    let pitch = (LAMP_HEIGHT - LAMP_TUBE) / LAMP_TURNS as f64;
-    let across = DVec3::new(0.0, 0.0, LAMP_TUBE);
-    let mut parts = Vec::new();
-    for k in 0..LAMP_TURNS {
-        let z = -LAMP_HEIGHT / 2.0 + k as f64 * pitch;
-        // Near half: +y to -y while rising half a pitch; each edge pair's
-        // cross product is -x (the emitting side faces the prism).
-        parts.push((DVec3::new(x, r + LAMP_TUBE / 2.0, z), DVec3::new(0.0, -2.0 * r - LAMP_TUBE, pitch / 2.0), across));
-        // Far half, behind: from -y back to +y, rising the other half.
-        let top = DVec3::new(x + LAMP_WIDTH - LAMP_TUBE, r + LAMP_TUBE / 2.0, z + pitch);
-        parts.push((top, DVec3::new(0.0, -2.0 * r - LAMP_TUBE, -pitch / 2.0), across));
-    }
-    parts
+/// How far the lamp stands past the prism's exit face, m.
+pub const LAMP_DISTANCE: f64 = 14.0;
+/// The lamp's width and height and its tube's diameter, m: a twin-tube
+/// ("2U") compact fluorescent lamp, two legs joined across the top.
+pub const LAMP_WIDTH: f64 = 0.030;
+const LAMP_HEIGHT: f64 = 0.13;
+const LAMP_TUBE: f64 = 0.011;
+
+/// The twin-tube lamp at distance `x` along the axis, seen from the side
+/// its legs stand in: as emitting rectangles facing -x (corner, edge
+/// across the tube, edge along it), its two legs and the bend across
+/// their tops, an upside-down U.
+fn twin_tube_lamp(x: f64) -> Vec<(DVec3, DVec3, DVec3)> {
+    let (w, h, t) = (LAMP_WIDTH, LAMP_HEIGHT, LAMP_TUBE);
+    // Each pair's cross product is -x: the emitting side faces the prism.
+    let across = DVec3::new(0.0, -t, 0.0);
+    let leg = DVec3::new(0.0, 0.0, h - t);
+    vec![
+        (DVec3::new(x, w / 2.0, -h / 2.0), across, leg),
+        (DVec3::new(x, -w / 2.0 + t, -h / 2.0), across, leg),
+        (DVec3::new(x, w / 2.0, h / 2.0 - t), DVec3::new(0.0, -w, 0.0), DVec3::new(0.0, 0.0, t)),
+    ]
 }
 #[cfg(test)]
 mod tests {

@@ -163,6 +163,12 @@ crate::named_enum! {
         /// so faint light between bright features sinks toward black as on
         /// contrasty film.
         AgxPunchy = "agx-punchy",
+        /// A camera's sensor and print (§25): each channel clipped where a
+        /// real camera's sensor saturates (in its own colour space, so an
+        /// over-exposed green line turns yellow and then white, as in a
+        /// photograph), back to sRGB, and a print's black point, so faint
+        /// light a few per cent of white is black.
+        Camera = "camera",
     }
 }
 
@@ -186,8 +192,47 @@ impl GamutMap {
             }
             GamutMap::Agx => agx(desaturate(v)),
             GamutMap::AgxPunchy => punchy(agx(desaturate(v))),
+            GamutMap::Camera => camera(v),
         }
     }
+}
+
+/// XYZ (D65) to a Canon EOS 5D Mark II's raw colour space, x 10^4: Adobe's
+/// matrix as dcraw's `adobe_coeff` table lists it (docs/physics.md §25).
+const CAMERA_XYZ: [f64; 9] = [4716.0, 603.0, -830.0, -7798.0, 15474.0, 2480.0, -1496.0, 1937.0, 6651.0];
+/// The print's black point: display-linear light below this fraction of
+/// white is black (§25).
+pub const CAMERA_BLACK: f64 = 0.1;
+
+/// Linear sRGB to the camera's white-balanced raw space (§25): the
+/// camera's matrix after sRGB-to-XYZ, each row scaled to sum to 1 so
+/// that white (1, 1, 1) stays white, as dcraw's `cam_rgb` is.
+pub fn camera_from_srgb() -> DMat3 {
+    let [a, b, c, d, e, f, g, h, i] = CAMERA_XYZ.map(|x| x / 1e4);
+    // Rows of the camera matrix; glam's constructor takes columns.
+    let cam_xyz = DMat3::from_cols_array(&[a, d, g, b, e, h, c, f, i]);
+    let m = cam_xyz * XYZ_TO_SRGB.inverse();
+    let rows = m.transpose();
+    let norm = |r: DVec3| r / (r.x + r.y + r.z);
+    DMat3::from_cols(norm(rows.x_axis), norm(rows.y_axis), norm(rows.z_axis)).transpose()
+}
+
+/// The camera transform (§25) on exposed linear sRGB: into the camera's
+/// space, each channel clipped at the sensor's full scale 1 (the negative
+/// values a 3x3 fit gives spectral colours are kept), back to sRGB,
+/// clamped to [0, 1], then the print's black point, which scales the
+/// colour (hue kept) so that its largest channel m becomes
+/// (m - b) / (1 - b).
+pub fn camera(v: DVec3) -> DVec3 {
+    static M: OnceLock<(DMat3, DMat3)> = OnceLock::new();
+    let (to_cam, from_cam) = *M.get_or_init(|| (camera_from_srgb(), camera_from_srgb().inverse()));
+    let c = (to_cam * v).min(DVec3::ONE);
+    let rgb = (from_cam * c).clamp(DVec3::ZERO, DVec3::ONE);
+    let m = rgb.max_element();
+    if !(m > CAMERA_BLACK) {
+        return DVec3::ZERO;
+    }
+    rgb * ((m - CAMERA_BLACK) / (1.0 - CAMERA_BLACK) / m)
 }
 
 /// AgX's inset (docs/physics.md §23): each colour mixed 20 % of the way
@@ -297,6 +342,38 @@ mod tests {
         assert!((SRGB_LUMA.dot(m) - c.luminance()).abs() < 1e-12);
         assert!(m.min_element().abs() < 1e-12);
         assert_eq!(GamutMap::Clip.apply(LinearRgb(DVec3::new(f64::NAN, 0.0, 0.0))), DVec3::ZERO);
+    }
+
+    #[test]
+    fn camera_matrix_is_dcraws_and_keeps_white() {
+        let m = camera_from_srgb();
+        // White stays white; dcraw's cam_rgb for this camera, computed
+        // independently (numpy, its sRGB matrix), first row.
+        assert!((m * DVec3::ONE - DVec3::ONE).abs().max_element() < 1e-12);
+        let r = m.row(0);
+        assert!((r.x - 0.4920).abs() < 2e-3 && (r.y - 0.4827).abs() < 2e-3 && (r.z - 0.0253).abs() < 2e-3, "{r:?}");
+    }
+
+    #[test]
+    fn camera_turns_an_over_exposed_green_line_yellow_then_white_and_keeps_red_red() {
+        let line = |nm: f64, k: f64| {
+            let c = Xyz(cmf(nm)).to_linear_srgb().0;
+            camera(c / desaturate(c).max_element() * k)
+        };
+        // Exposed at full scale the 546 nm line is green with no red; three
+        // times over, the sensor's green clips and red rises: yellow-green.
+        let (a, b) = (line(546.075, 0.5), line(546.075, 3.0));
+        assert!(a.x < 0.05 && a.y > 0.3, "{a:?}");
+        assert!(b.x > 0.7 && b.y > 0.95 && b.z < b.x, "{b:?}");
+        assert!(line(546.075, 100.0).min_element() > 0.95);
+        // Clipping each sRGB channel never adds red to it.
+        assert!(GamutMap::Clip.apply(LinearRgb(Xyz(cmf(546.075)).to_linear_srgb().0 * 10.0)).x == 0.0);
+        let red = line(611.0, 10.0);
+        assert!(red.x > 0.99 && red.y < 0.05 && red.z < 0.05, "{red:?}");
+        // The print's black point: faint light is black, greys stay grey.
+        assert_eq!(camera(DVec3::splat(0.5 * CAMERA_BLACK)), DVec3::ZERO);
+        let g = camera(DVec3::splat(0.55));
+        assert!((g.x - 0.5).abs() < 1e-9 && (g.x - g.z).abs() < 1e-12, "{g:?}");
     }
 
     #[test]
