@@ -398,7 +398,15 @@ fn line_chart_with(p: &PlotSpec, header: &[String], rows: &[Vec<String>], quick:
         notes.push((format!("{} with a value of 0 or less not drawn on the log axis", count(not_positive, "run")), RGBColor(60, 60, 60)));
     }
     if short > 0 {
-        notes.push((format!("{} timed over less than {} ms not plotted", count(short, "point"), SHORTEST_TIMING_S * 1e3), RGBColor(60, 60, 60)));
+        let (whose, verb) = if short == 1 { ("its", "was") } else { ("their", "were") };
+        notes.push((
+            format!(
+                "{} not plotted: {whose} renders together, repeats inside one timing included, {verb} timed over less than {} ms",
+                count(short, "point"),
+                SHORTEST_TIMING_S * 1e3
+            ),
+            RGBColor(60, 60, 60),
+        ));
     }
     if let Some(n) = reference_noise {
         let also = if below_reference > 0 { format!("; {} under ten times that left out", count(below_reference, "point")) } else { String::new() };
@@ -626,7 +634,13 @@ mod tests {
         assert_eq!(s.points[0].1, 0.12, "the median, not the mean");
         assert_eq!(s.spread_y[0], Some((0.10, 0.30)));
         assert!(s.fit.is_some() && s.name.contains("slope") && s.name.contains("R²"));
-        assert!(c.notes.iter().any(|n| n.0.contains("1 point timed over less than 50 ms not plotted")), "{:?}", c.notes);
+        assert!(
+            c.notes
+                .iter()
+                .any(|n| n.0.contains("1 point not plotted: its renders together, repeats inside one timing included, was timed over less than 50 ms")),
+            "{:?}",
+            c.notes
+        );
         assert!(c.notes.iter().any(|n| n.0.contains("time grows with n") && n.0.contains("DOES NOT HOLD")), "n = 5 is fast: {:?}", c.notes);
         // A quick run judges nothing and says its times are not measurements.
         let q = line_chart_with(&p, &header(), &rows, true, &[], None).unwrap();
