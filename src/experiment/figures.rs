@@ -273,9 +273,9 @@ const GROUPS: [(&str, &[&str], &str); 8] = [
     (
         "004",
         &["lab-trace0", "lab-trace5", "lab-trace10", "lab-trace10-fixed"],
-        "The same sphere at trace counts 0, 5 and 10: followed rays dim it (the report's compositing scales the highlight by the opacity; at 5 and 10 the same, since every ray has left the sphere after two hits); the report's fix restores the highlight.",
+        "The same cube as the index series at trace counts 0, 5 and 10: followed rays show its far faces through its near ones and dim it (the report's compositing scales the hot spots by the opacity; 5 and 10 alike); the report's fix restores the hot spots.",
     ),
-    ("004", &["lab-cornell-trace0", "lab-cornell-trace10"], "Only when rays are followed does the sphere show the room: the red and green walls inverted at its rim, the tiled floor along its top."),
+    ("004", &["lab-cornell-trace0", "lab-cornell-trace10"], "Only when rays are followed does the cube show the room: the green and red walls and the tiled floor refracted through its faces."),
     ("003", &["pm-pointlight-faint", "pm-mirror-tube"], "A bare point light gives a faint rainbow; the mirror tube concentrates it."),
 ];
 
