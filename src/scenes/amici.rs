@@ -405,7 +405,7 @@ pub const LAMP_DISTANCE: f64 = 14.0;
 /// ("2U") compact fluorescent lamp, two legs joined across the top.
 pub const LAMP_WIDTH: f64 = 0.030;
 const LAMP_HEIGHT: f64 = 0.13;
-const LAMP_TUBE: f64 = 0.011;
+const LAMP_TUBE: f64 = 0.0075;
 
 /// The twin-tube lamp at distance `x` along the axis, seen from the side
 /// its legs stand in: as emitting rectangles facing -x (corner, edge
