@@ -60,7 +60,7 @@ pub enum Command {
         #[arg(long, value_name = "KEY=VALUE")]
         set: Vec<String>,
     },
-    /// Report 004: a point light inside a translucent OFF mesh. With none of
+    /// Report 004: a point light inside a translucent OFF or OBJ mesh. With none of
     /// the report's flags (--trace ... --ior) it asks the report's 13
     /// questions on standard input.
     Interior(InteriorArgs),
