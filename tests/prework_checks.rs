@@ -56,6 +56,11 @@ fn a_black_interior_image_says_why() {
     assert!(stderr(&o).contains("note: the image is black: the object colour is black (--object-colour 0,0,0)"), "{}", stderr(&o));
     let o = run(&["interior", "--off", "off/cube.off", "--size", "16,16", "--out", out.to_str().unwrap()], "", &repo(""));
     assert!(o.status.success() && !stderr(&o).contains("black"), "{}", stderr(&o));
+    // A scene file's render says it too.
+    let scene = dir.path().join("s.toml");
+    std::fs::write(&scene, format!("id = \"s\"\nmode = \"interior\"\n[params]\noff = \"{}\"\nsize = [16, 16]\n", repo("off/cube.off").display())).unwrap();
+    let o = run(&["render", scene.to_str().unwrap(), "--set", "object_colour=0,0,0", "--out", out.to_str().unwrap()], "", &repo(""));
+    assert!(o.status.success() && stderr(&o).contains("note: s: the image is black: the object colour is black"), "{}", stderr(&o));
 }
 
 #[test]
