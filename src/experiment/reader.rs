@@ -400,9 +400,10 @@ impl<'a> FileParser<'a> {
             };
             let expect = match t.get("expect") {
                 None => Expect::Ok,
-                Some(x) => x.as_str().and_then(Expect::from_name).ok_or_else(|| {
-                    self.err("case", i, "expect", "must be \"error\" (each run of the case is meant to fail) or \"ok\" (the default)")
-                })?,
+                Some(x) => x
+                    .as_str()
+                    .and_then(Expect::from_name)
+                    .ok_or_else(|| self.err("case", i, "expect", "must be \"error\" (each run of the case is meant to fail) or \"ok\" (the default)"))?,
             };
             let mut set = Vec::new();
             for (k, v) in t.iter().filter(|(k, _)| !["name", "mode", "expect"].contains(&k.as_str())) {

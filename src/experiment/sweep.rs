@@ -556,7 +556,8 @@ impl Sweep<'_> {
         if !rendered_anyway.is_empty() {
             failures.push_str(&format!("; {} meant to fail rendered", rendered_anyway.len()));
         }
-        let summary = format!("{}: {} of {} runs{what} in {} ({failures}){}", self.e.name, rows.len(), wanted, csv_path.display(), if complete { "" } else { again });
+        let summary =
+            format!("{}: {} of {} runs{what} in {} ({failures}){}", self.e.name, rows.len(), wanted, csv_path.display(), if complete { "" } else { again });
         let mut why = Vec::new();
         if let Some(r) = failed.first() {
             let case = if r[col("case")].is_empty() { String::new() } else { format!(" ({})", r[col("case")]) };

@@ -209,7 +209,11 @@ pub fn soup_warning(cfg: &SpectralConfig, scene: &crate::world::World) -> Option
         }
         let one = took / traced as f64 * cfg.photons as f64;
         let on_all = if threads > 1 { format!("{} on {threads} idle cores, ", crate::timing::spoken_seconds(one / threads as f64)) } else { String::new() };
-        format!("{traced} photons took {took:.2} s on one thread, so the light pass of {} photons should take about {on_all}{} on one", cfg.photons, crate::timing::spoken_seconds(one))
+        format!(
+            "{traced} photons took {took:.2} s on one thread, so the light pass of {} photons should take about {on_all}{} on one",
+            cfg.photons,
+            crate::timing::spoken_seconds(one)
+        )
     };
     Some(format!(
         "--obj {}: its triangles overlap so much that a ray through it tests about {tests:.0} of the scene's {} faces, against a few dozen for a closed surface; \
