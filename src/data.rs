@@ -70,19 +70,25 @@ fn memory_limits() -> Vec<(u64, String)> {
 /// The room left in this process's memory cgroup and its parents (the
 /// tightest), if any has a limit.
 fn cgroup_room() -> Option<(u64, String)> {
-    let cgroups = std::fs::read_to_string("/proc/self/cgroup").ok()?;
+    cgroup_room_in(&std::fs::read_to_string("/proc/self/cgroup").ok()?, std::path::Path::new("/sys/fs/cgroup"))
+}
+
+/// `cgroup_room` for the cgroups listed in `cgroups` (as /proc/self/cgroup
+/// lists them) under the cgroup file system mounted at `mount`.
+fn cgroup_room_in(cgroups: &str, mount: &std::path::Path) -> Option<(u64, String)> {
     let num = |p: &std::path::Path| std::fs::read_to_string(p).ok().and_then(|t| t.trim().parse::<u64>().ok());
     let mut best: Option<(u64, String)> = None;
     for line in cgroups.lines() {
         let mut f = line.splitn(3, ':');
         let (Some(_), Some(controllers), Some(path)) = (f.next(), f.next(), f.next()) else { continue };
         let (root, max, current, what) = if controllers.is_empty() {
-            ("/sys/fs/cgroup", "memory.max", "memory.current", "memory.max - memory.current")
+            (mount.to_path_buf(), "memory.max", "memory.current", "memory.max - memory.current")
         } else if controllers.split(',').any(|c| c == "memory") {
-            ("/sys/fs/cgroup/memory", "memory.limit_in_bytes", "memory.usage_in_bytes", "memory.limit_in_bytes - memory.usage_in_bytes")
+            (mount.join("memory"), "memory.limit_in_bytes", "memory.usage_in_bytes", "memory.limit_in_bytes - memory.usage_in_bytes")
         } else {
             continue;
         };
+        let root = root.as_os_str();
         // From the cgroup up to the root (inside a container the cgroup's
         // own folder is often the mount's root).
         let mut dir = std::path::PathBuf::from(root).join(path.trim_start_matches('/'));
@@ -252,6 +258,32 @@ mod memory_tests {
         );
         assert!(check_memory_against(1 << 30, free(20 << 30), "x").is_ok());
         assert!(check_memory_against(u64::MAX, None, "x").is_ok());
+    }
+
+    /// A container's or a Slurm job's cgroup (v2: memory.max, v1:
+    /// memory.limit_in_bytes), and its parents': the least room is named;
+    /// "max" and values near 2^63 are no limit.
+    #[test]
+    fn the_cgroup_with_the_least_room_is_named() {
+        let mount = tempfile::tempdir().unwrap();
+        let put = |dir: &str, files: &[(&str, &str)]| {
+            let d = mount.path().join(dir);
+            std::fs::create_dir_all(&d).unwrap();
+            for (f, v) in files {
+                std::fs::write(d.join(f), v).unwrap();
+            }
+        };
+        put("job", &[("memory.max", "3000000000\n"), ("memory.current", "1000000000\n")]);
+        put("job/step", &[("memory.max", "max\n"), ("memory.current", "10\n")]);
+        let (room, name) = cgroup_room_in("0::/job/step\n", mount.path()).unwrap();
+        assert_eq!(room, 2_000_000_000);
+        assert!(name.starts_with("the cgroup's limit (memory.max - memory.current in ") && name.ends_with("job) leaves {}"), "{name}");
+        put("memory/box", &[("memory.limit_in_bytes", "500000000"), ("memory.usage_in_bytes", "100000000")]);
+        put("memory", &[("memory.limit_in_bytes", "9223372036854771712"), ("memory.usage_in_bytes", "5")]);
+        let (room, name) = cgroup_room_in("4:memory:/box\n1:cpu:/\n", mount.path()).unwrap();
+        assert_eq!(room, 400_000_000);
+        assert!(name.contains("memory.limit_in_bytes - memory.usage_in_bytes in "), "{name}");
+        assert_eq!(cgroup_room_in("0::/job/step\n", &mount.path().join("none")), None);
     }
 
     #[test]

@@ -176,9 +176,27 @@ pub fn rate(per_s: f64, unit: &str) -> String {
     format!("{v:.digits$} {prefix}{unit}/s")
 }
 
+/// A duration as people say it: `40 s`, `14 minutes`, `9.2 hours`, `3.1 days`.
+pub fn spoken_seconds(s: f64) -> String {
+    match s {
+        s if s < 90.0 => format!("{s:.0} s"),
+        s if s < 5400.0 => format!("{:.0} minutes", s / 60.0),
+        s if s < 172_800.0 => format!("{:.1} hours", s / 3600.0),
+        s => format!("{:.1} days", s / 86_400.0),
+    }
+}
+
 #[cfg(test)]
 mod rate_tests {
-    use super::rate;
+    use super::{rate, spoken_seconds};
+
+    #[test]
+    fn durations_read_as_people_say_them() {
+        assert_eq!(spoken_seconds(40.2), "40 s");
+        assert_eq!(spoken_seconds(840.0), "14 minutes");
+        assert_eq!(spoken_seconds(33_120.0), "9.2 hours");
+        assert_eq!(spoken_seconds(267_840.0), "3.1 days");
+    }
 
     #[test]
     fn rates_read_as_people_write_them() {

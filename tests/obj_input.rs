@@ -44,8 +44,8 @@ fn an_obj_renders_in_the_interior_mode_comments_and_all() {
 }
 
 /// Large random triangles overlap everywhere: no hierarchy narrows a ray's
-/// tests, so the run says so before its light pass (and a closed mesh of
-/// as many faces does not).
+/// tests, so the run says so, once, before its light pass, with what the
+/// pass will cost (and a closed mesh of as many faces does not).
 #[test]
 fn a_soup_of_large_triangles_is_warned_of() {
     let dir = tempfile::tempdir().unwrap();
@@ -66,6 +66,15 @@ fn a_soup_of_large_triangles_is_warned_of() {
     let o = run(&["prism", "--obj", "soup.obj", "--out", "s.png", "--size", "16,8", "--photons", "10"], "", dir.path());
     let err = stderr(&o);
     assert!(err.contains("warning: --obj soup.obj: its triangles overlap so much that a ray through it tests about"), "{err}");
+    // With what the light pass will cost, timed before it starts, and how to stop it.
+    assert!(err.contains("so the light pass of 10 photons should take about") && err.contains("Ctrl-C stops it"), "{err}");
+    assert_eq!(err.matches("overlap so much").count(), 1, "{err}");
+    // A sweep of three runs of the soup says it once, before its first run.
+    let e = "name = \"soup\"\nmode = \"prism\"\n[fixed]\nobj = \"soup.obj\"\nsize = [16, 8]\n[sweep]\nphotons = [10, 20, 30]\n";
+    std::fs::write(dir.path().join("soup.toml"), e).unwrap();
+    let o = run(&["sweep", "soup.toml", "--out", "swept"], "", dir.path());
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(stderr(&o).matches("overlap so much").count(), 1, "{}", stderr(&o));
     let sphere = repo("off/prism60.obj");
     let o = run(&["prism", "--obj", sphere.to_str().unwrap(), "--out", "c.png", "--size", "16,8", "--photons", "10"], "", dir.path());
     assert!(!stderr(&o).contains("overlap so much"), "{}", stderr(&o));

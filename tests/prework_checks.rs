@@ -45,6 +45,24 @@ fn huge_rotations_are_reduced_not_a_black_image() {
     assert_eq!(image("380,30,0"), image("20,30,0"));
 }
 
+/// A black interior image is never silent: it says why.
+#[test]
+fn a_black_interior_image_says_why() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("b.png");
+    let o = run(&["interior", "--off", "off/cube.off", "--size", "16,16", "--object-colour", "0,0,0", "--out", out.to_str().unwrap()], "", &repo(""));
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(image::open(&out).unwrap().to_rgb8().iter().all(|&b| b == 0));
+    assert!(stderr(&o).contains("note: the image is black: the object colour is black (--object-colour 0,0,0)"), "{}", stderr(&o));
+    let o = run(&["interior", "--off", "off/cube.off", "--size", "16,16", "--out", out.to_str().unwrap()], "", &repo(""));
+    assert!(o.status.success() && !stderr(&o).contains("black"), "{}", stderr(&o));
+    // A scene file's render says it too.
+    let scene = dir.path().join("s.toml");
+    std::fs::write(&scene, format!("id = \"s\"\nmode = \"interior\"\n[params]\noff = \"{}\"\nsize = [16, 16]\n", repo("off/cube.off").display())).unwrap();
+    let o = run(&["render", scene.to_str().unwrap(), "--set", "object_colour=0,0,0", "--out", out.to_str().unwrap()], "", &repo(""));
+    assert!(o.status.success() && stderr(&o).contains("note: s: the image is black: the object colour is black"), "{}", stderr(&o));
+}
+
 #[test]
 fn a_mesh_with_no_faces_is_refused_in_off_as_in_obj() {
     let dir = tempfile::tempdir().unwrap();

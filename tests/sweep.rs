@@ -197,6 +197,51 @@ fn failing_runs_are_rows_and_bad_files_name_the_line() {
     assert_clean_failure(&o, "e.toml:3: `repeat`: unknown key");
 }
 
+/// A case may declare that its runs fail (`expect = "error"`): such a
+/// failure ends the sweep well and is counted apart; a run meant to fail
+/// that renders, or an undeclared failure, ends it non-zero. The record
+/// made before the declaration is the same experiment's.
+#[test]
+fn a_case_that_declares_its_failure_ends_the_sweep_well() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("e.toml");
+    let bad = dir.path().join("bad.off");
+    std::fs::write(&bad, "PLY\n").unwrap();
+    let text = format!(
+        "name = \"e\"\nmode = \"interior\"\n[fixed]\nsize = [8, 8]\n[[case]]\nname = \"fine\"\noff = \"{}\"\n[[case]]\nname = \"malformed mesh\"\noff = \"{}\"\n",
+        repo("off/cube.off").display(),
+        bad.display()
+    );
+    let out = dir.path().join("o");
+    let o_arg = out.to_str().unwrap();
+    std::fs::write(&file, &text).unwrap();
+    let o = sweep(&[file.to_str().unwrap(), "--out", o_arg], &repo(""));
+    assert_clean_failure(&o, "e: 2 of 2 runs in ");
+    assert!(stderr(&o).contains("(1 failed); the first failed run, 1 (malformed mesh)"), "{}", stderr(&o));
+    // Declared: the same record, now judged as the file says.
+    let declared = text.replace("bad.off\"\n", "bad.off\"\nexpect = \"error\"\n");
+    std::fs::write(&file, &declared).unwrap();
+    let o = sweep(&[file.to_str().unwrap(), "--out", o_arg, "--resume"], &repo(""));
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stderr(&o).contains("e: 2 of 2 runs in ") && stderr(&o).contains("(0 failed, and 1 as its case declares (expect = \"error\"))"), "{}", stderr(&o));
+    let o = sweep(&[file.to_str().unwrap(), "--out", dir.path().join("o2").to_str().unwrap()], &repo(""));
+    assert!(o.status.success(), "{}", stderr(&o));
+    // A run meant to fail that renders is the sweep's failure.
+    std::fs::write(&file, declared.replace("name = \"fine\"\n", "name = \"fine\"\nexpect = \"error\"\n")).unwrap();
+    let o = sweep(&[file.to_str().unwrap(), "--out", dir.path().join("o3").to_str().unwrap()], &repo(""));
+    assert_clean_failure(&o, "e: 2 of 2 runs in ");
+    assert!(
+        stderr(&o).contains("(0 failed, and 1 as its case declares (expect = \"error\"); 1 meant to fail rendered); run 0 (fine) rendered, but its case declares expect = \"error\""),
+        "{}",
+        stderr(&o)
+    );
+    // Checked when the file is read, on its line.
+    std::fs::write(&file, declared.replace("expect = \"error\"", "expect = \"failure\"")).unwrap();
+    let o = sweep(&[file.to_str().unwrap(), "--out", dir.path().join("o4").to_str().unwrap()], &repo(""));
+    assert_clean_failure(&o, "e.toml:11: `expect`: must be \"error\"");
+    assert!(!dir.path().join("o4").exists());
+}
+
 #[test]
 fn shipped_experiments_parse_and_stability_records_failures_as_rows() {
     let mut n = 0;
@@ -228,9 +273,10 @@ fn shipped_experiments_parse_and_stability_records_failures_as_rows() {
     let dir = tempfile::tempdir().unwrap();
     // (stability.toml has no [quick] settings: --quick would be refused.)
     let o = sweep(&[repo("experiments/stability.toml").to_str().unwrap(), "--out", dir.path().to_str().unwrap()], &repo(""));
-    // Its runs fail on purpose: each a row, and the status says so.
-    assert_clean_failure(&o, "stability: ");
-    assert!(stderr(&o).contains("failed); the first failed run, "), "{}", stderr(&o));
+    // Its runs fail on purpose, as its cases declare: each a row, and the
+    // summary says so.
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stderr(&o).contains("stability: 18 of 18 runs in ") && stderr(&o).contains("(0 failed, and 1 as its case declares"), "{}", stderr(&o));
     let (h, r) = rows(dir.path());
     let col = |n: &str| h.iter().position(|c| c == n).unwrap();
     let tir = r.iter().find(|x| x[col("case")].contains("totally reflected")).unwrap();

@@ -60,7 +60,7 @@ pub enum Command {
         #[arg(long, value_name = "KEY=VALUE")]
         set: Vec<String>,
     },
-    /// Report 004: a point light inside a translucent OFF mesh. With none of
+    /// Report 004: a point light inside a translucent OFF or OBJ mesh. With none of
     /// the report's flags (--trace ... --ior) it asks the report's 13
     /// questions on standard input.
     Interior(InteriorArgs),
@@ -654,6 +654,9 @@ fn render_to(scene: &crate::experiment::scene_file::SceneFile, out: Option<PathB
     };
     crate::image_io::check_output(&out, scene.mode.formats()).map_err(|e| anyhow::anyhow!("--out: {e}"))?;
     crate::image_io::remove_stale_temps(out.parent().unwrap_or(std::path::Path::new("")));
+    for w in scene.mode.warnings(&scene.params) {
+        eprintln!("warning: {w}");
+    }
     let bars = crate::terminal::Bars::new();
     let (_, summary) = scene.render_summarised(&out, &bars)?;
     bars.done();

@@ -22,9 +22,13 @@ pub struct RunSpec {
 /// Every run of an experiment, in a fixed order (case, then the sweep axes
 /// with the first outermost, then repeats).
 pub fn expand(e: &Experiment) -> Vec<RunSpec> {
-    let cases = if e.cases.is_empty() { vec![Case { name: String::new(), mode: e.mode, params: Vec::new() }] } else { e.cases.clone() };
+    let cases = if e.cases.is_empty() {
+        vec![Case { name: String::new(), mode: e.mode, params: Vec::new(), expect: super::spec::Expect::Ok }]
+    } else {
+        e.cases.clone()
+    };
     let mut runs = Vec::new();
-    for Case { name: case, mode, params: case_params } in &cases {
+    for Case { name: case, mode, params: case_params, .. } in &cases {
         let axes: Vec<(String, Vec<Value>)> = e.axes_for(case_params).map(|(k, v)| (k.clone(), v.clone())).collect();
         let overrides: Vec<(String, Value)> = case_params.iter().filter(|(k, _)| !axes.iter().any(|(a, _)| a == k)).cloned().collect();
         let lens: Vec<usize> = axes.iter().map(|s| s.1.len()).collect();

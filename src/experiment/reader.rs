@@ -16,6 +16,7 @@
 //! [[case]]                         # optional named cases (stability), times the sweep
 //! name = "low ior"
 //! ior = 0.5
+//! expect = "error"                 # its runs are meant to fail (optional; "ok" by default)
 //! [reference]                      # overrides for the reference image (RMSE, PSNR)
 //! photons = 20000000
 //! [quick]                          # replaces fixed/sweep/repeats keys under --quick
@@ -38,7 +39,7 @@
 //! the key and its line.
 
 use super::key_lines::KeyLines;
-use super::spec::{fnv1a, Case, Experiment, PlotKind, PlotSpec, MAX_RUNS};
+use super::spec::{fnv1a, Case, Expect, Experiment, PlotKind, PlotSpec, MAX_RUNS};
 use crate::modes::Mode;
 use crate::names::Named;
 use anyhow::{anyhow, Result};
@@ -81,7 +82,7 @@ impl Experiment {
             Some(Value::Boolean(b)) => *b,
             Some(_) => return Err(p.err("outputs", 0, "images", "must be true or false")),
         };
-        let fingerprint = format!("{name}@{:016x}{}", fnv1a(text.as_bytes()), if quick { "-quick" } else { "" });
+        let fingerprint = format!("{name}@{:016x}{}", fnv1a(judged_apart(text).as_bytes()), if quick { "-quick" } else { "" });
         let e = Experiment {
             name,
             mode,
@@ -237,6 +238,14 @@ impl Experiment {
     }
 }
 
+/// The text an experiment's fingerprint is taken of: the file without its
+/// cases' `expect` lines, which judge how runs end and change no run, so
+/// declaring a case's expected failure keeps the record made before.
+fn judged_apart(text: &str) -> String {
+    let expect = |l: &str| l.trim_start().strip_prefix("expect").is_some_and(|r| r.trim_start().starts_with('='));
+    text.split_inclusive('\n').filter(|l| !expect(l)).collect()
+}
+
 /// Columns of runs.csv that hold text whatever the experiment.
 const TEXT_COLUMNS: [&str; 7] = ["mode", "case", "experiment", "host", "cpu", "status", "error"];
 
@@ -389,8 +398,15 @@ impl<'a> FileParser<'a> {
                 None => mode,
                 Some(m) => m.as_str().and_then(Mode::from_name).ok_or_else(|| self.err("case", i, "mode", "must be interior or prism"))?,
             };
+            let expect = match t.get("expect") {
+                None => Expect::Ok,
+                Some(x) => x
+                    .as_str()
+                    .and_then(Expect::from_name)
+                    .ok_or_else(|| self.err("case", i, "expect", "must be \"error\" (each run of the case is meant to fail) or \"ok\" (the default)"))?,
+            };
             let mut set = Vec::new();
-            for (k, v) in t.iter().filter(|(k, _)| k.as_str() != "name" && k.as_str() != "mode") {
+            for (k, v) in t.iter().filter(|(k, _)| !["name", "mode", "expect"].contains(&k.as_str())) {
                 let check = |x: &Value| case_mode.check(k, x, self.base()).map_err(|m| self.err("case", i, k, m));
                 let v = match v {
                     Value::Array(list) if sweep.iter().any(|(a, _)| a == k) => Value::Array(list.iter().map(check).collect::<Result<_>>()?),
@@ -398,7 +414,7 @@ impl<'a> FileParser<'a> {
                 };
                 set.push((k.clone(), v));
             }
-            cases.push(Case { name, mode: case_mode, params: set });
+            cases.push(Case { name, mode: case_mode, params: set, expect });
         }
         Ok(cases)
     }

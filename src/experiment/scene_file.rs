@@ -148,6 +148,11 @@ impl SceneFile {
     pub fn render_summarised(&self, out: &Path, progress: &dyn Progress) -> Result<(f64, String)> {
         let start = std::time::Instant::now();
         let run = self.mode.render_to(&self.params, out, progress)?;
+        // What the run says of its image (a black one and why), as the
+        // command line's runs say it.
+        for n in &run.notes {
+            eprintln!("note: {}: {n}", self.id);
+        }
         let mut secs = run.record.render_time();
         let mut summary = run.record.summary(run.exposure, start.elapsed().as_secs_f64());
         drop(run);

@@ -13,6 +13,20 @@ pub struct Case {
     pub name: String,
     pub mode: Mode,
     pub params: Vec<(String, Value)>,
+    /// How its runs are meant to end (`expect = "error"`: a condition the
+    /// experiment records a method failing under).
+    pub expect: Expect,
+}
+
+crate::named_enum! {
+    /// How a case's runs are meant to end.
+    pub enum Expect {
+        /// Each run renders (the default).
+        Ok = "ok",
+        /// Each run fails: the sweep counts such a failure as expected, and
+        /// a run that renders after all as a failure of the sweep.
+        Error = "error",
+    }
 }
 
 /// One line chart drawn from the runs' CSV.
@@ -256,6 +270,23 @@ sweep = { trace = [0] }
         }
         // Text on x alone is a dot plot: accepted.
         Experiment::parse(&format!("{base}x = \"param_map\"\ny = \"total_s\"\nfile = \"a\"\n"), "g.toml", false).unwrap();
+    }
+
+    /// A case may declare that its runs fail; the declaration judges runs
+    /// and changes none, so the file's fingerprint (its record) stays.
+    #[test]
+    fn a_case_declares_its_expected_failure_outside_the_fingerprint() {
+        let plain = format!("{GOOD}[[case]]\nname = \"a\"\n[[case]]\nname = \"b\"\nsize = [8, 8]\n");
+        let declared = plain.replace("size = [8, 8]\n", "size = [8, 8]\n  expect = \"error\"\n");
+        let (p, d) = (Experiment::parse(&plain, "t.toml", false).unwrap(), Experiment::parse(&declared, "t.toml", false).unwrap());
+        assert_eq!(d.cases.iter().map(|c| c.expect).collect::<Vec<_>>(), [Expect::Ok, Expect::Error]);
+        assert!(d.cases[1].params.iter().all(|(k, _)| k != "expect"), "not a parameter");
+        assert_eq!(p.fingerprint, d.fingerprint);
+        assert_eq!(p.columns(), d.columns());
+        let other = plain.replace("size = [8, 8]", "size = [9, 8]");
+        assert_ne!(p.fingerprint, Experiment::parse(&other, "t.toml", false).unwrap().fingerprint);
+        let bad = Experiment::parse(&declared.replace("\"error\"", "\"fail\""), "t.toml", false).unwrap_err().to_string();
+        assert!(bad.starts_with("t.toml:17: `expect`: must be \"error\""), "{bad}");
     }
 
     #[test]

@@ -251,7 +251,10 @@ pub fn run(e: &Experiment, opts: &SweepOptions) -> Result<Outcome> {
     // record is kept without it; its charts read reference.csv).
     let shard_ids = opts.shard.map(|(_, n)| super::plan::assign(&all, n));
     let pending = all.iter().any(|r| !done.contains(&r.id) && opts.shard.is_none_or(|(i, _)| shard_ids.as_ref().is_some_and(|s| s[r.id] == i)));
-    let (reference, reference_error) = if pending || !dir.join("reference.csv").is_file() { reference_frame(e, &dir, &meshes)? } else { (None, None) };
+    let reference_runs = pending || !dir.join("reference.csv").is_file();
+    let reference_params = e.reference_params().filter(|_| reference_runs);
+    warn_once(reference_params.iter().map(|p| (e.mode, &p[..])).chain(all.iter().filter(|r| mine.contains(&r.id)).map(|r| (r.mode, &r.params[..]))));
+    let (reference, reference_error) = if reference_runs { reference_frame(e, &dir, &meshes)? } else { (None, None) };
     if let Some(err) = &reference_error {
         eprintln!("refract: the reference run failed: {err}; the runs go on, with rmse, psnr and rel_rmse marked `{NO_REFERENCE}`");
     }
@@ -276,6 +279,23 @@ pub fn run(e: &Experiment, opts: &SweepOptions) -> Result<Outcome> {
     let mine: Vec<&RunSpec> = mine.iter().map(|&id| &sweep.all[id]).collect();
     sweep.run_all(&mine, opts.jobs)?;
     sweep.finish(&csv_path, opts.shard, wanted)
+}
+
+/// Tells the user, before the first run, what a run's mode would warn of
+/// (`Mode::warnings`: an `obj` mesh the face hierarchy cannot narrow):
+/// once for the sweep, not once a run, asking the first run of each mesh.
+fn warn_once<'a>(runs: impl Iterator<Item = (Mode, &'a [(String, Value)])>) {
+    let mut asked: Vec<&Value> = Vec::new();
+    for (mode, params) in runs {
+        let Some((_, mesh)) = params.iter().find(|(k, _)| k == "obj") else { continue };
+        if asked.contains(&mesh) {
+            continue;
+        }
+        asked.push(mesh);
+        for w in mode.warnings(params) {
+            eprintln!("warning: {w}");
+        }
+    }
 }
 
 /// What SIGINT or SIGTERM does during a sweep: waits for a row being
@@ -520,24 +540,31 @@ impl Sweep<'_> {
             }
         }
         let col = |name: &str| self.header.iter().position(|h| h == name).unwrap_or(0);
-        let failed: Vec<&Vec<String>> = rows.iter().filter(|r| r[col("failed")] == "1").collect();
+        // A case may declare that its runs fail (`expect = "error"`): such
+        // a failure is what the experiment records, not the sweep's.
+        let meant_to_fail = |r: &Vec<String>| self.e.cases.iter().any(|c| c.name == r[col("case")] && c.expect == super::spec::Expect::Error);
+        let (expected, failed): (Vec<&Vec<String>>, Vec<&Vec<String>>) = rows.iter().filter(|r| r[col("failed")] == "1").partition(|r| meant_to_fail(r));
+        let rendered_anyway: Vec<&Vec<String>> = rows.iter().filter(|r| r[col("failed")] != "1" && meant_to_fail(r)).collect();
         let (what, again) = match shard {
             Some((i, n)) => (format!(" of shard {i}/{n}"), "; run this shard again with --resume to finish it"),
             None => (String::new(), "; run again with --resume to finish"),
         };
-        let summary = format!(
-            "{}: {} of {} runs{what} in {} ({} failed){}",
-            self.e.name,
-            rows.len(),
-            wanted,
-            csv_path.display(),
-            failed.len(),
-            if complete { "" } else { again }
-        );
+        let mut failures = format!("{} failed", failed.len());
+        if !expected.is_empty() {
+            failures.push_str(&format!(", and {} as its case declares (expect = \"error\")", expected.len()));
+        }
+        if !rendered_anyway.is_empty() {
+            failures.push_str(&format!("; {} meant to fail rendered", rendered_anyway.len()));
+        }
+        let summary =
+            format!("{}: {} of {} runs{what} in {} ({failures}){}", self.e.name, rows.len(), wanted, csv_path.display(), if complete { "" } else { again });
         let mut why = Vec::new();
         if let Some(r) = failed.first() {
             let case = if r[col("case")].is_empty() { String::new() } else { format!(" ({})", r[col("case")]) };
             why.push(format!("the first failed run, {}{case}: {}", r[0], r[col("error")]));
+        }
+        if let Some(r) = rendered_anyway.first() {
+            why.push(format!("run {} ({}) rendered, but its case declares expect = \"error\": the condition it records no longer fails", r[0], r[col("case")]));
         }
         if let Some(err) = &self.reference_error {
             why.push(format!("the reference run failed: {err} (rmse, psnr and rel_rmse are marked `{NO_REFERENCE}`)"));

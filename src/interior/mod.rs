@@ -78,6 +78,14 @@ pub fn render_mesh(mesh: Mesh, cfg: &InteriorConfig) -> Result<RunReport> {
         let render = Tracer::new(&scene, &accel, cfg).render(cfg.spp, cfg.seed);
         (build_s, render, t.elapsed().as_secs_f64())
     });
+    // Never a silent black image: why it is black, and what to change.
+    if render.image.to_rgb8().iter().all(|&b| b == 0) {
+        notes.push(if cfg.color == [0, 0, 0] {
+            "the image is black: the object colour is black (--object-colour 0,0,0) against a black --background".to_string()
+        } else {
+            "the image is black: no light reaches the camera (check --light-pos, --ka, --kd, --ks and --exposure)".to_string()
+        });
+    }
     Ok(RunReport { image: render.image, triangles, threads, load_s: 0.0, build_s, render_s, rays: render.rays, tir: render.tir, notes })
 }
 

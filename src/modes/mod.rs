@@ -202,6 +202,17 @@ impl Mode {
         }
     }
 
+    /// What the user should be told before the run `given` describes
+    /// starts: an `--obj` mesh that the face hierarchy cannot narrow
+    /// (`spectral::soup_warning`). The scene is built for it only when the
+    /// run names such a mesh; nothing to say where its configuration is
+    /// refused, which the run reports.
+    pub fn warnings(self, given: &[(String, Value)]) -> Vec<String> {
+        let Mode::Prism = self else { return Vec::new() };
+        let Some(cfg) = config::<prism::Prism>(given).ok().filter(|c| c.scene.obj.is_some()) else { return Vec::new() };
+        crate::scenes::build(&cfg.scene).ok().and_then(|scene| crate::spectral::soup_warning(&cfg, &scene)).into_iter().collect()
+    }
+
     /// The image formats the mode writes.
     pub fn formats(self) -> &'static [ImageFormat] {
         with_mode!(self, M => M::FORMATS)

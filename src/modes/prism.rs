@@ -119,7 +119,12 @@ pub fn run_to_files(cfg: &SpectralConfig, timing_csv: Option<&Path>, progress: &
         say(format!("warning: {w}"));
     }
     let start = std::time::Instant::now();
-    let report = crate::spectral::run(cfg, progress)?;
+    let scene = crate::scenes::build(&cfg.scene)?;
+    if let Some(w) = crate::spectral::soup_warning(cfg, &scene) {
+        say(format!("warning: {w}"));
+    }
+    let report = crate::spectral::run_world(cfg, &scene, progress)?;
+    drop(scene);
     for n in &report.notes {
         say(format!("warning: {n}"));
     }

@@ -103,7 +103,7 @@ pub static PARAMS: &[Param<InteriorConfig>] = &[
         key: "coff",
         aliases: &[],
         section: PROMPTS,
-        help: "Use the colours stored in the OFF file (the report's \"colour OFF\" answer 1)",
+        help: "Use the colours stored in a COFF file (the report's \"colour OFF\" answer 1; an OBJ holds none: the object colour is used)",
         unit: "",
         kind: Kind::Flag,
         auto: "",

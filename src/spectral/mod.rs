@@ -143,7 +143,14 @@ pub struct SpectralReport {
 
 /// Builds the scene, renders, writes the image.
 pub fn run(cfg: &SpectralConfig, progress: &dyn Progress) -> Result<SpectralReport> {
-    let report = render_config(cfg, progress)?;
+    cfg.validate()?;
+    run_world(cfg, &crate::scenes::build(&cfg.scene)?, progress)
+}
+
+/// Renders `scene` (built from `cfg.scene`) and writes the image: `run`
+/// once the caller has the scene (to warn of it first: `soup_warning`).
+pub fn run_world(cfg: &SpectralConfig, scene: &crate::world::World, progress: &dyn Progress) -> Result<SpectralReport> {
+    let report = render_world(cfg, scene, progress)?;
     report.render.image.write(&cfg.out, report.exposure, cfg.gamut, cfg.exr)?;
     let png = cfg.out.extension().is_some_and(|e| e.eq_ignore_ascii_case("png"));
     if let (Some(inset), true) = (cfg.inset, png) {
@@ -160,33 +167,60 @@ pub fn run(cfg: &SpectralConfig, progress: &dyn Progress) -> Result<SpectralRepo
 pub fn render_config(cfg: &SpectralConfig, progress: &dyn Progress) -> Result<SpectralReport> {
     cfg.validate()?;
     let scene = crate::scenes::build(&cfg.scene)?;
-    if let Some(w) = soup_warning(cfg, &scene) {
-        eprintln!("warning: {w}");
-    }
     render_world(cfg, &scene, progress)
 }
 
 /// Faces a ray may test, on average, above which a mesh is said to be slow.
 const SOUP_TESTS: f64 = 1000.0;
 
+/// Photons first traced, before the work, to time the light pass of a slow
+/// mesh, and the seconds such a pilot must take to be a measurement.
+const PILOT_PHOTONS: u64 = 16;
+const PILOT_SECONDS: f64 = 0.2;
+
 /// A warning, before any tracing, for an `--obj` mesh whose triangles'
 /// boxes overlap so much that the face hierarchy cannot narrow a ray's
 /// tests (a soup of large triangles): each ray then tests a good part of
-/// them, and each photon may bounce up to 100 times among them.
+/// them, and each photon may bounce up to 100 times among them. It gives
+/// the light pass's cost, timed on photons traced on one thread (at least
+/// `PILOT_PHOTONS`, for at least `PILOT_SECONDS`) and scaled to `--photons`
+/// over the run's threads.
 pub fn soup_warning(cfg: &SpectralConfig, scene: &crate::world::World) -> Option<String> {
     let path = cfg.scene.obj.as_ref()?;
     let mesh = scene.faces.iter().filter(|f| matches!(f.surface, crate::world::Surface::Interface { .. })).flat_map(|f| f.verts.iter().copied());
     let (lo, hi) = mesh.fold((glam::DVec3::INFINITY, glam::DVec3::NEG_INFINITY), |(l, h), v| (l.min(v), h.max(v)));
     let tests = scene.accel.as_ref()?.expected_tests(lo, hi);
-    (tests > SOUP_TESTS).then(|| {
+    if tests <= SOUP_TESTS {
+        return None;
+    }
+    let cost = if cfg.exact {
+        String::from("the exact render may take hours")
+    } else {
+        let threads = if cfg.threads == 0 { std::thread::available_parallelism().map_or(1, |n| n.get()) } else { cfg.threads };
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build().ok()?;
+        // Four times more photons until their pass takes long enough to
+        // time (or a tenth of the run's).
+        let (mut n, mut traced, mut took) = (PILOT_PHOTONS, 0, 0.0);
+        while took < PILOT_SECONDS && traced < cfg.photons / 10 {
+            let t = std::time::Instant::now();
+            let pilot = pool.install(|| crate::photon::emit::light_pass(scene, n, cfg.seed, cfg.colours, &crate::progress::Silent));
+            (traced, took) = (pilot.stats.emitted.max(1), t.elapsed().as_secs_f64());
+            n *= 4;
+        }
+        let one = took / traced as f64 * cfg.photons as f64;
+        let on_all = if threads > 1 { format!("{} on {threads} idle cores, ", crate::timing::spoken_seconds(one / threads as f64)) } else { String::new() };
         format!(
-            "--obj {}: its triangles overlap so much that a ray through it tests about {:.0} of the scene's {} faces, against a few dozen for a closed surface; \
-             the light pass may take hours (fewer --photons, or a mesh of less overlapping triangles)",
-            path.display(),
-            tests,
-            scene.faces.len()
+            "{traced} photons took {took:.2} s on one thread, so the light pass of {} photons should take about {on_all}{} on one",
+            cfg.photons,
+            crate::timing::spoken_seconds(one)
         )
-    })
+    };
+    Some(format!(
+        "--obj {}: its triangles overlap so much that a ray through it tests about {tests:.0} of the scene's {} faces, against a few dozen for a closed surface; \
+         {cost} (Ctrl-C stops it; fewer --photons, or a mesh of less overlapping triangles, go faster)",
+        path.display(),
+        scene.faces.len()
+    ))
 }
 
 /// The bytes a run of `cfg` on `scene` needs at its peak, estimated before

@@ -87,7 +87,6 @@ impl FaceBvh {
     }
 }
 
-/// Builds the subtree over `order[a..b]`; returns its node index.
 impl FaceBvh {
     /// Faces a ray crossing the box `lo..hi` is expected to test: each
     /// leaf's count weighted by the surface area of its box's part in
@@ -108,6 +107,7 @@ impl FaceBvh {
     }
 }
 
+/// Builds the subtree over `order[a..b]`; returns its node index.
 fn split(boxes: &[(DVec3, DVec3)], order: &mut [u32], a: usize, b: usize, nodes: &mut Vec<Node>) -> u32 {
     let (mut lo, mut hi) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
     let (mut clo, mut chi) = (lo, hi);
@@ -171,9 +171,7 @@ mod tests {
     use crate::sampling::Rng;
     use crate::world::Surface;
 
-    /// On a 1280-triangle sphere and random rays (from inside, outside and
-    /// on the surface, with a face skipped), the BVH finds the same nearest
-    /// face at the same distance as the linear scan.
+    /// Faces of the given triangles, each an interface between media 0 and 1.
     fn triangles(tris: impl Iterator<Item = [DVec3; 3]>) -> Vec<Face> {
         tris.map(|v| Face::polygon("t", v.to_vec(), (v[1] - v[0]).cross(v[2] - v[0]), Surface::Interface { front: 0, back: 1 })).collect()
     }
@@ -192,6 +190,9 @@ mod tests {
         assert!(sphere_tests < 100.0, "sphere of {} faces: {sphere_tests}", sphere.len());
     }
 
+    /// On a 1280-triangle sphere and random rays (from inside, outside and
+    /// on the surface, with a face skipped), the BVH finds the same nearest
+    /// face at the same distance as the linear scan.
     #[test]
     fn the_bvh_finds_what_the_linear_scan_finds() {
         let mesh = crate::mesh::generate::icosphere(3);
