@@ -18,8 +18,7 @@
 use super::bands::CLASSES;
 use super::beam::LANES;
 use super::landing::{store, Emitted, MAX_BOUNCES};
-pub use super::landing::{Deposit, LightStats};
-use super::map::Photon;
+pub use super::landing::{Deposit, Keep, LightPass, LightStats, Shared, Sink};
 use super::train::Start;
 use crate::progress::Progress;
 use crate::sampling::{radical_inverse, rotate, RadicalInverses, Rng};
@@ -175,78 +174,49 @@ impl Deposit for &Grids {
     }
 }
 
-/// Photons per matte surface (in `scene.maps` order) and the counts.
-pub struct LightPass {
-    pub photons: Vec<Vec<Photon>>,
-    pub stats: LightStats,
-}
-
 const CHUNK: u64 = 8192;
 
-/// Traces `total` photons, shared among the lights by power. The result
-/// depends only on the scene, `total` and `seed`, not on thread count.
-pub fn light_pass(scene: &World, total: u64, seed: u64, colours: ColorMap, progress: &dyn Progress) -> LightPass {
-    light_pass_from(scene, total, seed, 0, colours, progress)
+/// Which photons a light pass traces: `total` photons shared among the
+/// lights by power (or `World::photon_shares`), the `pass`-th batch of one
+/// low-discrepancy sequence (photon indices pass n .. (pass + 1) n for
+/// each light's n: successive passes of progressive photon mapping
+/// continue the sequence, so their union is as evenly spread as one pass
+/// with all the photons), carrying the colour weights `colours`.
+#[derive(Clone, Copy, Debug)]
+pub struct Batch {
+    pub total: u64,
+    pub seed: u64,
+    pub pass: u64,
+    pub colours: ColorMap,
 }
 
-/// The `pass`-th batch of `total` photons of one low-discrepancy sequence
-/// (photon indices pass n .. (pass + 1) n for each light's n): successive
-/// passes of progressive photon mapping continue the sequence, so their
-/// union is as evenly spread as one pass with all the photons.
-pub fn light_pass_from(scene: &World, total: u64, seed: u64, pass: u64, colours: ColorMap, progress: &dyn Progress) -> LightPass {
-    let mut out = LightPass { photons: vec![Vec::new(); scene.map_slots()], stats: LightStats::default() };
-    let results = trace_lights(scene, total, seed, pass, colours, progress, || vec![Vec::new(); scene.map_slots()]);
-    // Each map's photons in one allocation, not grown by doubling: no
-    // copies, and half the pages touched.
-    for (slot, dst) in out.photons.iter_mut().enumerate() {
-        dst.reserve_exact(results.iter().map(|(maps, _)| maps[slot].len()).sum());
+impl Batch {
+    /// The first (or only) pass of `total` photons.
+    pub fn new(total: u64, seed: u64, colours: ColorMap) -> Batch {
+        Batch { total, seed, pass: 0, colours }
     }
-    for (maps, stats) in results {
-        for (dst, src) in out.photons.iter_mut().zip(maps) {
-            dst.extend(src);
-        }
-        out.stats.add(&stats);
-    }
-    out
 }
 
-/// The light pass straight into the buffer map's texels (`grids`): no
-/// photon is kept, so memory does not grow with `total`. Otherwise as
-/// `light_pass_from`.
-pub fn light_pass_into(scene: &World, total: u64, seed: u64, pass: u64, colours: ColorMap, grids: &Grids, progress: &dyn Progress) -> LightStats {
-    light_pass_with(scene, total, seed, pass, colours, progress, || grids)
-}
-
-/// The light pass into any sink (`sink()` makes one per chunk of photons
-/// traced in parallel; it must not depend on their order): for sinks that
-/// share their sums, such as the buffer map's texels and the film.
-pub fn light_pass_with<D: Deposit + Send>(
-    scene: &World,
-    total: u64,
-    seed: u64,
-    pass: u64,
-    colours: ColorMap,
-    progress: &dyn Progress,
-    sink: impl Fn() -> D + Sync,
-) -> LightStats {
+/// The light pass: traces `batch`'s photons into `sink` (kept, `Keep`, or
+/// added into shared sums, `Shared`) and returns what the sink makes of
+/// them with the counts. The result depends only on the scene and the
+/// batch, not on the thread count.
+pub fn light_pass<S: Sink>(scene: &World, batch: Batch, sink: S, progress: &dyn Progress) -> S::Out {
     let mut stats = LightStats::default();
-    for (_, s) in trace_lights(scene, total, seed, pass, colours, progress, sink) {
-        stats.add(&s);
-    }
-    stats
+    let chunks = trace_lights(scene, batch, progress, &sink)
+        .into_iter()
+        .map(|(chunk, s)| {
+            stats.add(&s);
+            chunk
+        })
+        .collect();
+    sink.finish(scene, chunks, stats)
 }
 
-/// Traces the photons in fixed chunks (in parallel), each chunk into the
-/// sink `sink()` makes; returns each chunk's sink and counts, in order.
-fn trace_lights<D: Deposit + Send>(
-    scene: &World,
-    total: u64,
-    seed: u64,
-    pass: u64,
-    colours: ColorMap,
-    progress: &dyn Progress,
-    sink: impl Fn() -> D + Sync,
-) -> Vec<(D, LightStats)> {
+/// Traces the photons in fixed chunks (in parallel), each chunk into its
+/// own `sink.chunk`; returns each chunk's deposit and counts, in order.
+fn trace_lights<S: Sink>(scene: &World, batch: Batch, progress: &dyn Progress, sink: &S) -> Vec<(S::Chunk, LightStats)> {
+    let Batch { total, seed, pass, colours } = batch;
     let mut out = Vec::new();
     let power: f64 = scene.lights.iter().map(|l| l.power).sum();
     if scene.maps.is_empty() || power <= 0.0 {
@@ -284,10 +254,10 @@ fn trace_lights<D: Deposit + Send>(
         let photon = Emitted { power: per_photon, ..source };
         // A beam through a prism train: four photons at a time (`beam`).
         let beam = train.as_ref().and_then(|t| super::beam::Beam::new(t, emission, &photon, colours));
-        let results: Vec<(D, LightStats)> = chunks
+        let results: Vec<(S::Chunk, LightStats)> = chunks
             .par_iter()
             .map(|&(a, b)| {
-                let mut maps = sink();
+                let mut maps = sink.chunk(scene);
                 let mut stats = LightStats::default();
                 let (mut by3, mut by5) = (RadicalInverses::new(3, a + pass * n), RadicalInverses::new(5, a + pass * n));
                 // Photons waiting for a group of four (`beam`).
@@ -535,6 +505,7 @@ fn trace_photon(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::photon::map::Photon;
     use crate::spectrum::Spectrum;
     use crate::world::{Face, Light, Medium};
 
@@ -630,16 +601,22 @@ mod tests {
             spectrum: Spectrum::Constant(1.0),
             power: 3.0,
         });
-        let flux =
-            |w: &World| light_pass(w, 100_000, 2, ColorMap::Cie, &crate::progress::Silent).photons.iter().flatten().map(|p| p.xyz()[1] as f64).sum::<f64>();
+        let flux = |w: &World| {
+            light_pass(w, Batch::new(100_000, 2, ColorMap::Cie), Keep, &crate::progress::Silent)
+                .photons
+                .iter()
+                .flatten()
+                .map(|p| p.xyz()[1] as f64)
+                .sum::<f64>()
+        };
         let by_power = flux(&two);
         two.photon_shares = Some(vec![1.0, 1.0]);
-        let (shared, counts) = (flux(&two), light_pass(&two, 100_000, 2, ColorMap::Cie, &crate::progress::Silent).stats.emitted);
+        let (shared, counts) = (flux(&two), light_pass(&two, Batch::new(100_000, 2, ColorMap::Cie), Keep, &crate::progress::Silent).stats.emitted);
         assert!((shared / by_power - 1.0).abs() < 0.01, "{shared} vs {by_power}");
         assert_eq!(counts, 100_000);
         for bounces in [0u32, 4] {
             s.bounces = bounces;
-            let pass = light_pass(&s, 200_000, 1, ColorMap::Cie, &crate::progress::Silent);
+            let pass = light_pass(&s, Batch::new(200_000, 1, ColorMap::Cie), Keep, &crate::progress::Silent);
             let stored: f64 = pass.photons.iter().flatten().map(|p| p.xyz()[1] as f64).sum();
             let emitted = WavelengthSampler::new(&Spectrum::Constant(1.0)).mean_cmf().y;
             let want: f64 = (1..=bounces + 1).map(|k| rho.powi(k as i32)).sum();
@@ -662,7 +639,10 @@ mod tests {
         let mut one = split.clone();
         one.indirect_gather = 1.0;
         let progress = crate::progress::Silent;
-        let (a, b) = (light_pass(&split, 200_000, 3, ColorMap::Cie, &progress), light_pass(&one, 200_000, 3, ColorMap::Cie, &progress));
+        let (a, b) = (
+            light_pass(&split, Batch::new(200_000, 3, ColorMap::Cie), Keep, &progress),
+            light_pass(&one, Batch::new(200_000, 3, ColorMap::Cie), Keep, &progress),
+        );
         let n = split.maps.len();
         assert_eq!((a.photons.len(), b.photons.len()), (2 * n, n));
         let total = |maps: &[Vec<Photon>]| maps.iter().flatten().map(|p| p.xyz()[1] as f64).sum::<f64>();

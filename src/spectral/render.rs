@@ -7,7 +7,7 @@ use super::film::XyzImage;
 use super::haze::Haze;
 use super::options::{EyeMode, RenderOptions};
 use super::splat::{FilmAndBuffer, Splat};
-use crate::photon::emit::{light_pass_from, light_pass_into, light_pass_with, Grids, LightStats};
+use crate::photon::emit::{light_pass, Batch, Grids, Keep, LightStats, Shared};
 use crate::photon::map::MapKind;
 use crate::photon::map::SurfaceMap;
 use crate::progress::Progress;
@@ -70,7 +70,7 @@ fn render_with(scene: &World, opts: &RenderOptions, place: Option<PassPlace>, pr
     let eye_seed = place.map_or(opts.seed, |p| p.eye_seed);
     let t = Instant::now();
     let texel = (opts.lookup.radius() / 2.0).max(1e-5);
-    let index = place.map_or(0, |p| p.index);
+    let batch = Batch { total: opts.photons, seed: opts.seed, pass: place.map_or(0, |p| p.index), colours: opts.colours };
     let size = |f: usize| {
         let (_, eu, ev) = scene.faces[f].frame.expect("matte surfaces are parallelograms");
         DVec2::new(eu.length(), ev.length())
@@ -93,12 +93,11 @@ fn render_with(scene: &World, opts: &RenderOptions, place: Option<PassPlace>, pr
         let grids = Grids::new(scene, texel, most, spectral, |slot| unused_first && slot < scene.maps.len());
         let stats = if opts.map == MapKind::Film {
             let splat = Splat::new(scene, most, opts.photons);
-            let stats =
-                light_pass_with(scene, opts.photons, opts.seed, index, opts.colours, progress, || FilmAndBuffer { grids: &grids, splat: &splat, half: 0 });
+            let stats = light_pass(scene, batch, Shared(|| FilmAndBuffer { grids: &grids, splat: &splat, half: 0 }), progress);
             halves = Some(splat.halves());
             stats
         } else {
-            light_pass_into(scene, opts.photons, opts.seed, index, opts.colours, &grids, progress)
+            light_pass(scene, batch, Shared(|| &grids), progress)
         };
         let trace_s = t.elapsed().as_secs_f64();
         let t = Instant::now();
@@ -110,7 +109,7 @@ fn render_with(scene: &World, opts: &RenderOptions, place: Option<PassPlace>, pr
         let maps = grids.grids.iter().enumerate().map(|(m, g)| SurfaceMap::buffer(g.size, g.nu, g.nv, grids.flux(m), grids.classes(m))).collect();
         (stats, maps, trace_s, t.elapsed().as_secs_f64())
     } else {
-        let pass = light_pass_from(scene, opts.photons, opts.seed, index, opts.colours, progress);
+        let pass = light_pass(scene, batch, Keep, progress);
         let trace_s = t.elapsed().as_secs_f64();
         let t = Instant::now();
         let maps = pass
