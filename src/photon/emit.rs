@@ -531,6 +531,41 @@ mod tests {
         assert_eq!(crate::photon::map::texels(glam::DVec2::new(1.0, 1e-9), 1e-5), [4096, 1]);
     }
 
+    /// One batch lands the same photons whichever sink takes them: kept
+    /// (`Keep`), added into the texels (`Shared` over `Grids`) or counted
+    /// by a sink of the test's own, with the same counts; the next batch
+    /// of the sequence (`pass` 1) lands other photons.
+    #[test]
+    fn every_sink_takes_the_same_photons() {
+        use std::sync::atomic::{AtomicU64, Ordering::Relaxed};
+        struct Count<'a>(&'a AtomicU64);
+        impl Deposit for Count<'_> {
+            fn deposit(&mut self, _: usize, _: [f32; 2], _: [f32; 3], _: u8, _: f32) {
+                self.0.fetch_add(1, Relaxed);
+            }
+        }
+        let scene = crate::scenes::build(&crate::scenes::SceneOptions::new(crate::scenes::SceneKind::CornellPointlight)).unwrap();
+        let batch = Batch::new(20_000, 5, ColorMap::Cie);
+        let silent = &crate::progress::Silent;
+        let kept = light_pass(&scene, batch, Keep, silent);
+        let landed: usize = kept.photons.iter().map(Vec::len).sum();
+        assert!(landed > 5_000 && kept.stats.emitted == 20_000, "{landed} photons landed");
+        let most = 100.0 * kept.photons.iter().flatten().map(|p| p.xyz().iter().fold(0.0f64, |m, &v| m.max(v.abs() as f64))).sum::<f64>();
+        let grids = Grids::new(&scene, 0.05, most, false, |_| false);
+        assert_eq!(light_pass(&scene, batch, Shared(|| &grids), silent), kept.stats);
+        for (m, photons) in kept.photons.iter().enumerate() {
+            let want: f64 = photons.iter().map(|p| p.xyz()[1] as f64).sum();
+            let got: f64 = grids.flux(m).iter().map(|t| t[1] as f64).sum();
+            assert!((got - want).abs() <= 1e-3 * want.max(1e-9), "map {m}: {got} in the texels, {want} kept");
+        }
+        let count = AtomicU64::new(0);
+        assert_eq!(light_pass(&scene, batch, Shared(|| Count(&count)), silent), kept.stats);
+        assert_eq!(count.load(Relaxed), landed as u64);
+        let next = light_pass(&scene, Batch { pass: 1, ..batch }, Keep, silent);
+        assert_eq!(next.stats.emitted, 20_000);
+        assert_ne!(next.photons[0].first().map(|p| p.pos), kept.photons[0].first().map(|p| p.pos));
+    }
+
     /// Wavelengths drawn by importance (spectrum x colour weight) and
     /// weighted back carry, on average, exactly the light's XYZ: for D65,
     /// a CFL's lines and a 2700 K black body, with CIE and a report's map;
