@@ -254,61 +254,12 @@ fn trace_lights<S: Sink>(scene: &World, batch: Batch, progress: &dyn Progress, s
         let photon = Emitted { power: per_photon, ..source };
         // A beam through a prism train: four photons at a time (`beam`).
         let beam = train.as_ref().and_then(|t| super::beam::Beam::new(t, emission, &photon, colours));
+        let photons = LightPhotons { scene, emission, photon, colours, light: li, seed, first: pass * n, offsets, train: train.as_ref(), beam: beam.as_ref() };
         let results: Vec<(S::Chunk, LightStats)> = chunks
             .par_iter()
             .map(|&(a, b)| {
                 let mut maps = sink.chunk(scene);
-                let mut stats = LightStats::default();
-                let (mut by3, mut by5) = (RadicalInverses::new(3, a + pass * n), RadicalInverses::new(5, a + pass * n));
-                // Photons waiting for a group of four (`beam`).
-                let mut group: [Start; LANES] = std::array::from_fn(|_| Start { o: DVec3::ZERO, d: DVec3::ZERO, u_lambda: 0.0, rng: Rng::new(0, 0, 0) });
-                let (mut index, mut grouped) = ([0; LANES], 0);
-                for i in (a + pass * n)..(b + pass * n) {
-                    let u = [rotate(by3.value(), offsets[0]), rotate(by5.value(), offsets[1]), rotate(radical_inverse(i, 2), offsets[2])];
-                    by3.advance();
-                    by5.advance();
-                    let mut rng = Rng::new(seed, i, 1 + li as u64);
-                    // Beams take stratified positions; lights that emit in all
-                    // directions take random ones (a Halton lattice folded by
-                    // mirrors shows as a checkerboard on the walls).
-                    let (a, b) = match emission {
-                        Emission::Beam { .. } => (u[0], u[1]),
-                        _ => (rng.f64(), rng.f64()),
-                    };
-                    match (&beam, &train) {
-                        (Some(beam), _) => {
-                            // Field by field, the start and direction straight
-                            // into the group: a whole `Start`, or the pair, built
-                            // on the stack and copied had loads that waited on
-                            // the stores.
-                            let g = &mut group[grouped];
-                            (g.o, g.d) = emit(scene, emission, a, b, &mut rng);
-                            (g.u_lambda, g.rng, index[grouped]) = (u[2], rng, i);
-                            grouped += 1;
-                            if grouped == LANES {
-                                beam.trace(&index, &group, &photon, colours, &mut maps, &mut stats);
-                                grouped = 0;
-                            }
-                        }
-                        (None, Some(t)) => {
-                            let (o, d) = emit(scene, emission, a, b, &mut rng);
-                            maps.photon(i);
-                            t.trace(&Start { o, d, u_lambda: u[2], rng }, &photon, colours, &mut maps, &mut stats);
-                        }
-                        (None, None) => {
-                            let (o, d) = emit(scene, emission, a, b, &mut rng);
-                            maps.photon(i);
-                            trace_photon(scene, o, d, &photon, colours, u[2], &mut rng, &mut maps, &mut stats);
-                        }
-                    }
-                }
-                // The last photons of the chunk, fewer than a group.
-                if let Some(t) = &train {
-                    for (&i, start) in index.iter().zip(&group).take(grouped) {
-                        maps.photon(i);
-                        t.trace(start, &photon, colours, &mut maps, &mut stats);
-                    }
-                }
+                let stats = photons.trace_chunk(a, b, &mut maps);
                 progress.advance("light", b - a);
                 (maps, stats)
             })
@@ -317,6 +268,84 @@ fn trace_lights<S: Sink>(scene: &World, batch: Batch, progress: &dyn Progress, s
     }
     progress.finish("light");
     out
+}
+
+/// One light's photons of a batch as its chunks trace them: what each
+/// carries, where the batch starts in the light's sequence, and the
+/// tracer that takes them (a beam's four lanes, the prism train's
+/// shortcut, or the general tracer).
+struct LightPhotons<'a> {
+    scene: &'a World,
+    emission: &'a Emission,
+    photon: Emitted<'a>,
+    colours: ColorMap,
+    /// The light's index in the scene.
+    light: usize,
+    seed: u64,
+    /// The batch's first photon index (pass n).
+    first: u64,
+    /// The light's rotations of the stratified numbers (Cranley-Patterson).
+    offsets: [f64; 3],
+    train: Option<&'a super::train::Train<'a>>,
+    beam: Option<&'a super::beam::Beam<'a>>,
+}
+
+impl LightPhotons<'_> {
+    /// Traces photons `a..b` of the batch into `maps`; returns the counts.
+    fn trace_chunk(&self, a: u64, b: u64, maps: &mut impl Deposit) -> LightStats {
+        let mut stats = LightStats::default();
+        let (mut by3, mut by5) = (RadicalInverses::new(3, a + self.first), RadicalInverses::new(5, a + self.first));
+        // Photons waiting for a group of four (`beam`).
+        let mut group: [Start; LANES] = std::array::from_fn(|_| Start { o: DVec3::ZERO, d: DVec3::ZERO, u_lambda: 0.0, rng: Rng::new(0, 0, 0) });
+        let (mut index, mut grouped) = ([0; LANES], 0);
+        for i in (a + self.first)..(b + self.first) {
+            let u = [rotate(by3.value(), self.offsets[0]), rotate(by5.value(), self.offsets[1]), rotate(radical_inverse(i, 2), self.offsets[2])];
+            by3.advance();
+            by5.advance();
+            let mut rng = Rng::new(self.seed, i, 1 + self.light as u64);
+            // Beams take stratified positions; lights that emit in all
+            // directions take random ones (a Halton lattice folded by
+            // mirrors shows as a checkerboard on the walls).
+            let (a, b) = match self.emission {
+                Emission::Beam { .. } => (u[0], u[1]),
+                _ => (rng.f64(), rng.f64()),
+            };
+            match (self.beam, self.train) {
+                (Some(beam), _) => {
+                    // Field by field, the start and direction straight
+                    // into the group: a whole `Start`, or the pair, built
+                    // on the stack and copied had loads that waited on
+                    // the stores.
+                    let g = &mut group[grouped];
+                    (g.o, g.d) = emit(self.scene, self.emission, a, b, &mut rng);
+                    (g.u_lambda, g.rng, index[grouped]) = (u[2], rng, i);
+                    grouped += 1;
+                    if grouped == LANES {
+                        beam.trace(&index, &group, &self.photon, self.colours, maps, &mut stats);
+                        grouped = 0;
+                    }
+                }
+                (None, Some(t)) => {
+                    let (o, d) = emit(self.scene, self.emission, a, b, &mut rng);
+                    maps.photon(i);
+                    t.trace(&Start { o, d, u_lambda: u[2], rng }, &self.photon, self.colours, maps, &mut stats);
+                }
+                (None, None) => {
+                    let (o, d) = emit(self.scene, self.emission, a, b, &mut rng);
+                    maps.photon(i);
+                    trace_photon(self.scene, o, d, &self.photon, self.colours, u[2], &mut rng, maps, &mut stats);
+                }
+            }
+        }
+        // The last photons of the chunk, fewer than a group.
+        if let Some(t) = self.train {
+            for (&i, start) in index.iter().zip(&group).take(grouped) {
+                maps.photon(i);
+                t.trace(start, &self.photon, self.colours, maps, &mut stats);
+            }
+        }
+        stats
+    }
 }
 
 #[cfg(test)]
