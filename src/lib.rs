@@ -12,8 +12,9 @@
 //!   the reports' colour maps), `optics` (Snell, Fresnel, glasses, IOR
 //!   models), `geometry` (f32 rays, triangles, the mesh BVH), `mesh` (OFF
 //!   and OBJ readers, generated meshes);
-//! - renderers: `world` (the f64 spectral world), `photon` (the light
-//!   pass, photon maps, filters), `scenes` (one builder per report),
+//! - renderers: `world` (the f64 spectral world), `gltf` (glTF scenes in
+//!   and out), `photon` (the light pass, photon maps, filters), `scenes`
+//!   (one builder per report),
 //!   `spectral` (the two-pass photon mapper `refract prism` runs),
 //!   `interior` (report 004's point light inside a mesh);
 //! - running: `params` (one row per run parameter), `modes` (one home per
@@ -21,6 +22,9 @@
 //!   and the small tools), `terminal` (progress bars);
 //! - the edge: `experiment` (scene and experiment files, sweeps, metrics,
 //!   plots, figures), `bench` (`refract bench`), `cli` (the command line).
+//!
+//! Below `modes` every error is a typed (`thiserror`) value that names the
+//! file, line or parameter; `anyhow` starts at the runners above.
 
 // `!(a <= b)` is written on purpose throughout: unlike `a > b` it is true
 // for NaN, so a NaN fails every range check instead of slipping through.

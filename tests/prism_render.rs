@@ -1,7 +1,7 @@
 //! Whole renders of the prism scenes against analytic optics.
 
 use glam::{DVec2, DVec3};
-use refract::photon::emit::light_pass;
+use refract::photon::emit::{light_pass, Batch, Keep};
 use refract::photon::gather::{Filter, Lookup};
 use refract::photon::map::MapKind;
 use refract::scenes::{build, SceneKind, SceneOptions};
@@ -61,7 +61,7 @@ fn energy_on_the_screen_is_the_emitted_power_times_fresnel_transmittance() {
         let (c, eu, ev) = s.faces[f].frame.unwrap();
         let mid = c + eu / 2.0 + ev / 2.0;
         s.faces[f] = Face::rect("big screen", mid - eu * 5.0 - ev * 5.0, eu * 10.0, ev * 10.0, Surface::Diffuse { albedo: Albedo::new([0.8; 3]), map: 0 });
-        let pass = light_pass(&s, 400_000, 3, refract::spectrum::colormap::ColorMap::Cie, &refract::progress::Silent);
+        let pass = light_pass(&s, Batch::new(400_000, 3, refract::spectrum::colormap::ColorMap::Cie), Keep, &refract::progress::Silent);
         let measured = pass.stats.stored_power / pass.stats.emitted_power;
         // Analytic: the light's spectrum-weighted (prod Ts + prod Tp) / 2.
         let sampler = WavelengthSampler::new(&s.lights[0].spectrum);

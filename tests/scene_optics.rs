@@ -5,7 +5,7 @@
 
 use glam::DVec3;
 use refract::optics::ior::IorModel;
-use refract::photon::emit::light_pass;
+use refract::photon::emit::{light_pass, Batch, Keep};
 use refract::scenes::{build, SceneKind, SceneOptions};
 use refract::spectrum::colormap::ColorMap;
 use refract::spectrum::spectra::NamedSpectrum;
@@ -60,7 +60,7 @@ fn the_cornell_laser_lands_where_the_probe_says() {
         let (_, eu, ev) = face.frame.unwrap();
         let uv = face.uv(spot).unwrap();
         let want = glam::DVec2::new(uv.x * eu.length(), uv.y * ev.length());
-        let pass = light_pass(&scene, 40_000, 7, ColorMap::Cie, &refract::progress::Silent);
+        let pass = light_pass(&scene, Batch::new(40_000, 7, ColorMap::Cie), Keep, &refract::progress::Silent);
         // Photon-weighted centre of what landed within 5 cm of the prediction.
         let (mut sum, mut weight) = (glam::DVec2::ZERO, 0.0);
         for ph in &pass.photons[map] {
@@ -272,12 +272,12 @@ fn the_glass_sphere_rings_the_card_with_a_rainbow() {
     // R sin i / cos theta + L tan theta from the hole's centre
     // (docs/physics.md §21): the density peaks there, and red photons land
     // farther out than blue ones.
-    use refract::photon::emit::light_pass;
+    use refract::photon::emit::{light_pass, Batch, Keep};
     let mut o = SceneOptions::new(SceneKind::SpheresFinal);
     [o.width, o.height] = [64, 48];
     o.crown = refract::optics::glass::by_name("N-SF11").unwrap();
     let s = build(&o).unwrap();
-    let pass = light_pass(&s, 400_000, 3, ColorMap::Cie, &refract::progress::Silent);
+    let pass = light_pass(&s, Batch::new(400_000, 3, ColorMap::Cie), Keep, &refract::progress::Silent);
     // Radius from the hole's centre of every photon on the card's four
     // pieces (each map's origin is its face's corner), with its colour.
     let mut hits: Vec<(f64, [f32; 3])> = Vec::new();

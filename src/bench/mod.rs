@@ -412,7 +412,12 @@ fn prism_throughput(what: &str, scene: &crate::world::World, quick: bool, out: &
         .map(|_| {
             one.install(|| {
                 let (t, cpu) = (Instant::now(), crate::timing::thread_cpu_seconds());
-                let p = crate::photon::emit::light_pass(scene, n, 1, ColorMap::Cie, &crate::progress::Silent);
+                let p = crate::photon::emit::light_pass(
+                    scene,
+                    crate::photon::emit::Batch::new(n, 1, ColorMap::Cie),
+                    crate::photon::emit::Keep,
+                    &crate::progress::Silent,
+                );
                 let cpu = cpu.zip(crate::timing::thread_cpu_seconds()).map(|(a, b)| b - a);
                 (p.stats, t.elapsed().as_secs_f64(), cpu)
             })

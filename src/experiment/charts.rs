@@ -551,7 +551,7 @@ fn status_table(p: &PlotSpec, dir: &Path, header: &[String], rows: &[Vec<String>
         }
         root.present().map_err(|e| anyhow!("{e}"))?;
     }
-    write_rgb8(&dir.join(format!("{}.png", p.file)), w as usize, h as usize, &buf)
+    Ok(write_rgb8(&dir.join(format!("{}.png", p.file)), w as usize, h as usize, &buf)?)
 }
 
 #[cfg(test)]

@@ -52,5 +52,5 @@ pub fn write(png: &Path, scenes: &Path) -> Result<()> {
         .map(|(k, map)| Label { text: format!("--gamut {}", map.name()), at: [(k as f64 + 0.5) / MAPS.len() as f64, 12.0 / h as f64] })
         .collect();
     draw(&mut buf, w, h, &labels).map_err(anyhow::Error::msg)?;
-    write_rgb8(png, w, h, &buf)
+    Ok(write_rgb8(png, w, h, &buf)?)
 }

@@ -138,7 +138,7 @@ fn write_records(out: &Path, records: &BTreeMap<String, Record>) -> Result<()> {
     })?;
     // The same for the gallery page, which reads it where it exists.
     let js: Vec<String> = records.iter().filter(|(_, r)| r.seconds.parse::<f64>().is_ok()).map(|(id, r)| format!("{id:?}:{:?}", r.seconds)).collect();
-    crate::image_io::write_text(&out.join("timings").join("figures.js"), &format!("window.refractTimes={{{}}};\n", js.join(",")))
+    Ok(crate::image_io::write_text(&out.join("timings").join("figures.js"), &format!("window.refractTimes={{{}}};\n", js.join(",")))?)
 }
 
 /// What `figures` did.
@@ -566,7 +566,7 @@ fn write_index(out: &Path, ids: &[String], records: &BTreeMap<String, Record>, q
     // Render times, where this machine measured them (an ignored file).
     h.push_str("<script src=\"timings/figures.js\"></script>\n<script>if(window.refractTimes){for(const s of document.querySelectorAll('span.time')){const t=window.refractTimes[s.dataset.id];if(t)s.textContent='('+t+' s here)';}}</script>\n");
     writeln!(h, "</body></html>")?;
-    crate::image_io::write_text(&out.join("index.html"), &h)
+    Ok(crate::image_io::write_text(&out.join("index.html"), &h)?)
 }
 
 /// The page anchor of a chart (`lab-trace/time-vs-trace.png` ->

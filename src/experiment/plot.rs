@@ -505,12 +505,12 @@ pub fn render(path: &Path, chart: &LineChart) -> Result<()> {
     if path.extension().is_some_and(|e| e == "svg") {
         let mut svg = String::new();
         draw(SVGBackend::with_string(&mut svg, size_of(chart)).into_drawing_area(), chart)?;
-        write_text(path, &svg)
+        Ok(write_text(path, &svg)?)
     } else {
         let size = size_of(chart);
         let mut buf = vec![0u8; (size.0 * size.1 * 3) as usize];
         draw(BitMapBackend::with_buffer(&mut buf, size).into_drawing_area(), chart)?;
-        write_rgb8(path, size.0 as usize, size.1 as usize, &buf)
+        Ok(write_rgb8(path, size.0 as usize, size.1 as usize, &buf)?)
     }
 }
 
@@ -562,7 +562,7 @@ pub fn colour_strips(path: &Path, title: &str, x_range: (f64, f64), rows: &[Stri
         }
         root.present().map_err(|e| anyhow!("{e}"))?;
     }
-    write_rgb8(path, size.0 as usize, size.1 as usize, &buf)
+    Ok(write_rgb8(path, size.0 as usize, size.1 as usize, &buf)?)
 }
 
 #[cfg(test)]

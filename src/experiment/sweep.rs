@@ -174,15 +174,14 @@ fn read_rows(path: &Path, header: &[String]) -> Result<Vec<Vec<String>>> {
 }
 
 fn write_rows(path: &Path, header: &[String], rows: &[Vec<String>]) -> Result<()> {
-    atomic_write(path, |f| {
+    Ok(atomic_write(path, |f| {
         let mut w = csv::Writer::from_writer(f);
         w.write_record(header)?;
         for r in rows {
             w.write_record(r)?;
         }
-        w.flush()?;
-        Ok(())
-    })
+        w.flush()
+    })?)
 }
 
 /// A sweep under way: what every run shares.
@@ -492,7 +491,7 @@ impl Sweep<'_> {
         // One image a place: the repeats of a run draw the same picture.
         if self.e.images && r.repeat == 0 {
             if let Err(err) = write_rgb8(&self.dir.join("images").join(image_name(self.e, r)), f.width, f.height, &f.display) {
-                self.errors.lock().unwrap().push(err);
+                self.errors.lock().unwrap().push(err.into());
             }
         }
         self.frames.lock().unwrap().insert(r.id, f.clone());
@@ -770,8 +769,5 @@ pub struct MergeOptions {
 /// Copies a file to a temporary sibling of `to`, then renames it there.
 fn copy_into_place(from: &Path, to: &Path) -> Result<()> {
     let bytes = std::fs::read(from).with_context(|| format!("cannot read {}", from.display()))?;
-    atomic_write(to, |f| {
-        f.write_all(&bytes)?;
-        Ok(())
-    })
+    Ok(atomic_write(to, |f| f.write_all(&bytes))?)
 }

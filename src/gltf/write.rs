@@ -307,7 +307,7 @@ pub fn document(w: &World) -> (Json, Vec<u8>) {
 pub fn write(w: &World, path: &Path) -> Result<(), GltfError> {
     let err = |why: String| GltfError::Write { path: path.display().to_string(), why };
     let bytes = to_bytes(w, path).map_err(err)?;
-    crate::image_io::atomic_write(path, |f| Ok(std::io::Write::write_all(f, &bytes)?)).map_err(|e| err(format!("{e:#}")))
+    crate::image_io::atomic_write(path, |f| std::io::Write::write_all(f, &bytes)).map_err(|e| err(e.to_string()))
 }
 
 /// The file's bytes, by `path`'s extension.

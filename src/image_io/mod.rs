@@ -5,7 +5,6 @@
 pub mod openexr;
 
 use crate::color::Rgb;
-use anyhow::{Context, Result};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
@@ -68,6 +67,36 @@ pub enum OutputError {
     NotWritable { dir: PathBuf, source: std::io::Error },
 }
 
+/// Why an output was not written: each names the file. Nothing is left
+/// at the path, nor a temporary file beside it.
+#[derive(Debug, thiserror::Error)]
+pub enum WriteError {
+    #[error("writing {}: cannot create {}: {io}", .path.display(), .tmp.display())]
+    Create { path: PathBuf, tmp: PathBuf, io: std::io::Error },
+    /// Filling the temporary file failed (the disk, or the encoder).
+    #[error("writing {}: {io}", .path.display())]
+    Fill { path: PathBuf, io: std::io::Error },
+    #[error("writing {}: cannot move the output into place at {}: {io}", .path.display(), .path.display())]
+    Rename { path: PathBuf, io: std::io::Error },
+    #[error("{}: {bad} of {total} pixels came out NaN or infinite; nothing written", .path.display())]
+    NonFinite { path: PathBuf, bad: usize, total: usize },
+    #[error("{} is not a folder", .0.display())]
+    NotFolder(PathBuf),
+    #[error("cannot create the folder {}: {io}", .path.display())]
+    Folder { path: PathBuf, io: std::io::Error },
+}
+
+/// Why a PPM was not read back, naming the file.
+#[derive(Debug, thiserror::Error)]
+pub enum PpmError {
+    #[error("cannot read {}: {io}", .path.display())]
+    Read { path: PathBuf, io: std::io::Error },
+    #[error("{}: not an 8-bit P6 PPM", .0.display())]
+    Format(PathBuf),
+    #[error("{}: expected {expected} bytes of pixels, found {found}", .path.display())]
+    Size { path: PathBuf, expected: usize, found: usize },
+}
+
 /// Checks an output path before any work is done: an extension among
 /// `allowed`, a folder that exists, and at the path nothing yet or a
 /// regular file (the output replaces only regular files: never a folder,
@@ -105,12 +134,12 @@ pub fn check_writable(path: &Path) -> Result<(), OutputError> {
 }
 
 /// Writes `bytes` (8-bit RGB) as PNG if the name ends in `.png`, else PPM.
-pub fn write_rgb8(path: &Path, width: usize, height: usize, bytes: &[u8]) -> Result<()> {
+pub fn write_rgb8(path: &Path, width: usize, height: usize, bytes: &[u8]) -> Result<(), WriteError> {
     let png = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("png"));
     atomic_write(path, |file| {
         if png {
             let enc = image::codecs::png::PngEncoder::new(file);
-            image::ImageEncoder::write_image(enc, bytes, width as u32, height as u32, image::ExtendedColorType::Rgb8)?;
+            image::ImageEncoder::write_image(enc, bytes, width as u32, height as u32, image::ExtendedColorType::Rgb8).map_err(std::io::Error::other)?;
         } else {
             write!(file, "P6\n{width} {height}\n255\n")?;
             file.write_all(bytes)?;
@@ -121,43 +150,48 @@ pub fn write_rgb8(path: &Path, width: usize, height: usize, bytes: &[u8]) -> Res
 
 /// Writes the image; refuses, naming the count, one with NaN or infinite
 /// pixels (they would otherwise show as black).
-pub fn write_image(path: &Path, img: &Image) -> Result<()> {
+pub fn write_image(path: &Path, img: &Image) -> Result<(), WriteError> {
     let bad = img.pixels.iter().filter(|p| !p.is_finite()).count();
     if bad > 0 {
-        anyhow::bail!("{}: {bad} of {} pixels came out NaN or infinite; nothing written", path.display(), img.pixels.len());
+        return Err(WriteError::NonFinite { path: path.into(), bad, total: img.pixels.len() });
     }
     write_rgb8(path, img.width, img.height, &img.to_rgb8())
 }
 
 /// Writes text to `path` through a temporary file and a rename.
-pub fn write_text(path: &Path, text: &str) -> Result<()> {
-    atomic_write(path, |f| Ok(f.write_all(text.as_bytes())?))
+pub fn write_text(path: &Path, text: &str) -> Result<(), WriteError> {
+    atomic_write(path, |f| f.write_all(text.as_bytes()))
 }
 
 /// Makes the folder `path` (and its parents) for outputs. The one-line
 /// error names it: a file in the way, or why it cannot be made.
-pub fn create_folder(path: &Path) -> Result<()> {
+pub fn create_folder(path: &Path) -> Result<(), WriteError> {
     if path.exists() && !path.is_dir() {
-        anyhow::bail!("{} is not a folder", path.display());
+        return Err(WriteError::NotFolder(path.into()));
     }
-    std::fs::create_dir_all(path).with_context(|| format!("cannot create the folder {}", path.display()))
+    std::fs::create_dir_all(path).map_err(|io| WriteError::Folder { path: path.into(), io })
 }
 
-/// Creates `path` through a temporary sibling file and a rename.
-pub fn atomic_write(path: &Path, fill: impl FnOnce(&mut std::io::BufWriter<std::fs::File>) -> Result<()>) -> Result<()> {
+/// Creates `path` through a temporary sibling file and a rename. `fill`
+/// writes the contents; an encoder's own error goes in as
+/// `std::io::Error::other`.
+pub fn atomic_write(path: &Path, fill: impl FnOnce(&mut std::io::BufWriter<std::fs::File>) -> std::io::Result<()>) -> Result<(), WriteError> {
     let tmp = temp_sibling(path);
-    let result = (|| {
-        let file = std::fs::File::create(&tmp).with_context(|| format!("cannot create {}", tmp.display()))?;
+    let file = std::fs::File::create(&tmp).map_err(|io| WriteError::Create { path: path.into(), tmp: tmp.clone(), io })?;
+    let filled = (|| {
         let mut w = std::io::BufWriter::new(file);
         fill(&mut w)?;
         w.flush()?;
-        w.into_inner().map_err(|e| e.into_error())?.sync_all()?;
-        std::fs::rename(&tmp, path).with_context(|| format!("cannot move the output into place at {}", path.display()))
+        w.into_inner().map_err(|e| e.into_error())?.sync_all()
     })();
+    let result = match filled {
+        Ok(()) => std::fs::rename(&tmp, path).map_err(|io| WriteError::Rename { path: path.into(), io }),
+        Err(io) => Err(WriteError::Fill { path: path.into(), io }),
+    };
     if result.is_err() {
         let _ = std::fs::remove_file(&tmp);
     }
-    result.with_context(|| format!("writing {}", path.display()))
+    result
 }
 
 /// Removes the temporary files (`.NAME.TOKEN.tmp`, `TOKEN` naming the
@@ -199,8 +233,8 @@ fn temp_sibling(path: &Path) -> PathBuf {
 }
 
 /// Reads a P6 PPM (used by tests and to compare runs).
-pub fn read_ppm(path: &Path) -> Result<(usize, usize, Vec<u8>)> {
-    let data = std::fs::read(path).with_context(|| format!("cannot read {}", path.display()))?;
+pub fn read_ppm(path: &Path) -> Result<(usize, usize, Vec<u8>), PpmError> {
+    let data = std::fs::read(path).map_err(|io| PpmError::Read { path: path.into(), io })?;
     let mut fields = Vec::new();
     let mut i = 0;
     while fields.len() < 4 && i < data.len() {
@@ -213,9 +247,87 @@ pub fn read_ppm(path: &Path) -> Result<(usize, usize, Vec<u8>)> {
         }
         fields.push(String::from_utf8_lossy(&data[start..i]).into_owned());
     }
-    anyhow::ensure!(fields.len() == 4 && fields[0] == "P6" && fields[3] == "255", "{}: not an 8-bit P6 PPM", path.display());
-    let (w, h): (usize, usize) = (fields[1].parse()?, fields[2].parse()?);
+    let size = match fields.as_slice() {
+        [p6, w, h, max] if p6 == "P6" && max == "255" => w.parse::<usize>().ok().zip(h.parse::<usize>().ok()),
+        _ => None,
+    };
+    let Some((w, h)) = size else { return Err(PpmError::Format(path.into())) };
     let body = data.get(i + 1..).unwrap_or_default();
-    anyhow::ensure!(body.len() == w * h * 3, "{}: expected {} bytes of pixels, found {}", path.display(), w * h * 3, body.len());
+    if body.len() != w * h * 3 {
+        return Err(PpmError::Size { path: path.into(), expected: w * h * 3, found: body.len() });
+    }
     Ok((w, h, body.to_vec()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A write that fails part way names the file and the cause, and
+    /// leaves nothing: neither the output nor its temporary file.
+    #[test]
+    fn a_failed_write_names_the_file_and_leaves_nothing() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("a.txt");
+        let e = atomic_write(&path, |f| {
+            f.write_all(b"half")?;
+            Err(std::io::Error::other("the encoder gave up"))
+        })
+        .unwrap_err();
+        assert!(matches!(e, WriteError::Fill { .. }), "{e:?}");
+        assert_eq!(e.to_string(), format!("writing {}: the encoder gave up", path.display()));
+        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0, "something was left");
+        // Into a folder that does not exist: the temporary file is named.
+        let lost = dir.path().join("no").join("b.txt");
+        let e = write_text(&lost, "x").unwrap_err().to_string();
+        assert!(e.starts_with(&format!("writing {}: cannot create ", lost.display())) && e.contains(".tmp"), "{e}");
+    }
+
+    #[test]
+    fn a_written_file_replaces_the_old_one_whole() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("a.txt");
+        write_text(&path, "first, longer").unwrap();
+        write_text(&path, "second").unwrap();
+        assert_eq!(std::fs::read_to_string(&path).unwrap(), "second");
+        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
+    }
+
+    #[test]
+    fn non_finite_pixels_are_refused_with_their_count() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("a.png");
+        let mut img = Image::new(3, 1);
+        img.pixels[1] = Rgb::new(0.0, f32::NAN, 0.0);
+        let e = write_image(&path, &img).unwrap_err().to_string();
+        assert_eq!(e, format!("{}: 1 of 3 pixels came out NaN or infinite; nothing written", path.display()));
+        assert!(!path.exists());
+    }
+
+    #[test]
+    fn a_folder_in_the_way_of_a_file_is_named() {
+        let dir = tempfile::tempdir().unwrap();
+        let file = dir.path().join("plain");
+        std::fs::write(&file, "").unwrap();
+        assert_eq!(create_folder(&file).unwrap_err().to_string(), format!("{} is not a folder", file.display()));
+        let e = create_folder(&file.join("sub")).unwrap_err().to_string();
+        assert!(e.starts_with(&format!("cannot create the folder {}: ", file.join("sub").display())), "{e}");
+        create_folder(&dir.path().join("x").join("y")).unwrap();
+        assert!(dir.path().join("x").join("y").is_dir());
+    }
+
+    #[test]
+    fn ppm_round_trip_and_bad_files_named() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("a.ppm");
+        let bytes: Vec<u8> = (0..2 * 3 * 3).map(|i| i as u8 * 10).collect();
+        write_rgb8(&path, 2, 3, &bytes).unwrap();
+        assert_eq!(read_ppm(&path).unwrap(), (2, 3, bytes.clone()));
+        std::fs::write(&path, b"P6\n2 x\n255\n").unwrap();
+        assert_eq!(read_ppm(&path).unwrap_err().to_string(), format!("{}: not an 8-bit P6 PPM", path.display()));
+        std::fs::write(&path, [b"P6\n2 3\n255\n".as_slice(), &bytes[1..]].concat()).unwrap();
+        assert_eq!(read_ppm(&path).unwrap_err().to_string(), format!("{}: expected 18 bytes of pixels, found 17", path.display()));
+        let gone = dir.path().join("gone.ppm");
+        assert!(read_ppm(&gone).unwrap_err().to_string().starts_with(&format!("cannot read {}: ", gone.display())));
+    }
 }

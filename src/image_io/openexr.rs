@@ -32,8 +32,10 @@ pub enum ExrError {
     BeyondHalf { path: PathBuf, channel: String, value: f32 },
     #[error("{path}: channel {channel} has {len} values for a {width}x{height} image")]
     Size { path: PathBuf, channel: String, len: usize, width: usize, height: usize },
+    #[error("{}: cannot read as OpenEXR: {why}", .path.display())]
+    Read { path: PathBuf, why: exr::error::Error },
     #[error(transparent)]
-    Write(#[from] anyhow::Error),
+    Write(#[from] super::WriteError),
 }
 
 /// The sRGB (Rec. 709) primaries and D65 white of the R, G, B channels
@@ -80,7 +82,7 @@ pub fn write_exr(path: &Path, width: usize, height: usize, planes: &[Plane], sam
     let layer = Layer::new((width, height), attrs, Encoding::SMALL_LOSSLESS, AnyChannels::sort(channels));
     let mut image = Image::from_layer(layer);
     image.attributes.chromaticities = Some(SRGB_CHROMATICITIES);
-    super::atomic_write(path, |w| Ok(image.write().to_buffered(w)?))?;
+    super::atomic_write(path, |w| image.write().to_buffered(w).map_err(std::io::Error::other))?;
     Ok(())
 }
 
@@ -103,9 +105,16 @@ impl ExrPlanes {
 }
 
 /// Reads the first part of an OpenEXR file (for tests and comparisons).
-pub fn read_exr(path: &Path) -> anyhow::Result<ExrPlanes> {
+pub fn read_exr(path: &Path) -> Result<ExrPlanes, ExrError> {
     use exr::prelude::*;
-    let image = read().no_deep_data().largest_resolution_level().all_channels().first_valid_layer().all_attributes().from_file(path)?;
+    let image = read()
+        .no_deep_data()
+        .largest_resolution_level()
+        .all_channels()
+        .first_valid_layer()
+        .all_attributes()
+        .from_file(path)
+        .map_err(|why| ExrError::Read { path: path.into(), why })?;
     let layer = &image.layer_data;
     let half = layer.channel_data.list.iter().all(|c| matches!(c.sample_data, FlatSamples::F16(_)));
     let channels = layer.channel_data.list.iter().map(|c| (c.name.to_string(), c.sample_data.values_as_f32().collect())).collect();

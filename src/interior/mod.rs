@@ -15,11 +15,26 @@ pub mod trace;
 use crate::image_io::{self, Image};
 use crate::mesh::{Mesh, MeshColors};
 use crate::timing::Real;
-use anyhow::Result;
 pub use config::InteriorConfig;
 use scene::InteriorScene;
 use std::time::Instant;
 use trace::Tracer;
+
+/// Why a run made no image: the memory it would need, its mesh, its
+/// threads or the output (each says which).
+#[derive(Debug, thiserror::Error)]
+pub enum RunError {
+    #[error(transparent)]
+    Memory(#[from] crate::data::MemoryError),
+    #[error(transparent)]
+    Mesh(#[from] crate::mesh::MeshError),
+    #[error(transparent)]
+    Threads(#[from] rayon::ThreadPoolBuildError),
+    #[error(transparent)]
+    Write(#[from] image_io::WriteError),
+}
+
+type Result<T> = std::result::Result<T, RunError>;
 
 /// What a run measured and made.
 pub struct RunReport {

@@ -191,8 +191,8 @@ impl Run {
     /// Writes the image to `out` (its format by the extension).
     pub fn write(&self, out: &Path) -> Result<()> {
         match &self.report {
-            Report::Interior(r) => crate::image_io::write_image(out, &r.image),
-            Report::Prism { report, gamut, exr } => report.render.image.write(out, report.exposure, *gamut, *exr),
+            Report::Interior(r) => Ok(crate::image_io::write_image(out, &r.image)?),
+            Report::Prism { report, gamut, exr } => Ok(report.render.image.write(out, report.exposure, *gamut, *exr)?),
         }
     }
 

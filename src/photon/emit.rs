@@ -18,8 +18,7 @@
 use super::bands::CLASSES;
 use super::beam::LANES;
 use super::landing::{store, Emitted, MAX_BOUNCES};
-pub use super::landing::{Deposit, LightStats};
-use super::map::Photon;
+pub use super::landing::{Deposit, Keep, LightPass, LightStats, Shared, Sink};
 use super::train::Start;
 use crate::progress::Progress;
 use crate::sampling::{radical_inverse, rotate, RadicalInverses, Rng};
@@ -175,78 +174,49 @@ impl Deposit for &Grids {
     }
 }
 
-/// Photons per matte surface (in `scene.maps` order) and the counts.
-pub struct LightPass {
-    pub photons: Vec<Vec<Photon>>,
-    pub stats: LightStats,
-}
-
 const CHUNK: u64 = 8192;
 
-/// Traces `total` photons, shared among the lights by power. The result
-/// depends only on the scene, `total` and `seed`, not on thread count.
-pub fn light_pass(scene: &World, total: u64, seed: u64, colours: ColorMap, progress: &dyn Progress) -> LightPass {
-    light_pass_from(scene, total, seed, 0, colours, progress)
+/// Which photons a light pass traces: `total` photons shared among the
+/// lights by power (or `World::photon_shares`), the `pass`-th batch of one
+/// low-discrepancy sequence (photon indices pass n .. (pass + 1) n for
+/// each light's n: successive passes of progressive photon mapping
+/// continue the sequence, so their union is as evenly spread as one pass
+/// with all the photons), carrying the colour weights `colours`.
+#[derive(Clone, Copy, Debug)]
+pub struct Batch {
+    pub total: u64,
+    pub seed: u64,
+    pub pass: u64,
+    pub colours: ColorMap,
 }
 
-/// The `pass`-th batch of `total` photons of one low-discrepancy sequence
-/// (photon indices pass n .. (pass + 1) n for each light's n): successive
-/// passes of progressive photon mapping continue the sequence, so their
-/// union is as evenly spread as one pass with all the photons.
-pub fn light_pass_from(scene: &World, total: u64, seed: u64, pass: u64, colours: ColorMap, progress: &dyn Progress) -> LightPass {
-    let mut out = LightPass { photons: vec![Vec::new(); scene.map_slots()], stats: LightStats::default() };
-    let results = trace_lights(scene, total, seed, pass, colours, progress, || vec![Vec::new(); scene.map_slots()]);
-    // Each map's photons in one allocation, not grown by doubling: no
-    // copies, and half the pages touched.
-    for (slot, dst) in out.photons.iter_mut().enumerate() {
-        dst.reserve_exact(results.iter().map(|(maps, _)| maps[slot].len()).sum());
+impl Batch {
+    /// The first (or only) pass of `total` photons.
+    pub fn new(total: u64, seed: u64, colours: ColorMap) -> Batch {
+        Batch { total, seed, pass: 0, colours }
     }
-    for (maps, stats) in results {
-        for (dst, src) in out.photons.iter_mut().zip(maps) {
-            dst.extend(src);
-        }
-        out.stats.add(&stats);
-    }
-    out
 }
 
-/// The light pass straight into the buffer map's texels (`grids`): no
-/// photon is kept, so memory does not grow with `total`. Otherwise as
-/// `light_pass_from`.
-pub fn light_pass_into(scene: &World, total: u64, seed: u64, pass: u64, colours: ColorMap, grids: &Grids, progress: &dyn Progress) -> LightStats {
-    light_pass_with(scene, total, seed, pass, colours, progress, || grids)
-}
-
-/// The light pass into any sink (`sink()` makes one per chunk of photons
-/// traced in parallel; it must not depend on their order): for sinks that
-/// share their sums, such as the buffer map's texels and the film.
-pub fn light_pass_with<D: Deposit + Send>(
-    scene: &World,
-    total: u64,
-    seed: u64,
-    pass: u64,
-    colours: ColorMap,
-    progress: &dyn Progress,
-    sink: impl Fn() -> D + Sync,
-) -> LightStats {
+/// The light pass: traces `batch`'s photons into `sink` (kept, `Keep`, or
+/// added into shared sums, `Shared`) and returns what the sink makes of
+/// them with the counts. The result depends only on the scene and the
+/// batch, not on the thread count.
+pub fn light_pass<S: Sink>(scene: &World, batch: Batch, sink: S, progress: &dyn Progress) -> S::Out {
     let mut stats = LightStats::default();
-    for (_, s) in trace_lights(scene, total, seed, pass, colours, progress, sink) {
-        stats.add(&s);
-    }
-    stats
+    let chunks = trace_lights(scene, batch, progress, &sink)
+        .into_iter()
+        .map(|(chunk, s)| {
+            stats.add(&s);
+            chunk
+        })
+        .collect();
+    sink.finish(scene, chunks, stats)
 }
 
-/// Traces the photons in fixed chunks (in parallel), each chunk into the
-/// sink `sink()` makes; returns each chunk's sink and counts, in order.
-fn trace_lights<D: Deposit + Send>(
-    scene: &World,
-    total: u64,
-    seed: u64,
-    pass: u64,
-    colours: ColorMap,
-    progress: &dyn Progress,
-    sink: impl Fn() -> D + Sync,
-) -> Vec<(D, LightStats)> {
+/// Traces the photons in fixed chunks (in parallel), each chunk into its
+/// own `sink.chunk`; returns each chunk's deposit and counts, in order.
+fn trace_lights<S: Sink>(scene: &World, batch: Batch, progress: &dyn Progress, sink: &S) -> Vec<(S::Chunk, LightStats)> {
+    let Batch { total, seed, pass, colours } = batch;
     let mut out = Vec::new();
     let power: f64 = scene.lights.iter().map(|l| l.power).sum();
     if scene.maps.is_empty() || power <= 0.0 {
@@ -284,61 +254,12 @@ fn trace_lights<D: Deposit + Send>(
         let photon = Emitted { power: per_photon, ..source };
         // A beam through a prism train: four photons at a time (`beam`).
         let beam = train.as_ref().and_then(|t| super::beam::Beam::new(t, emission, &photon, colours));
-        let results: Vec<(D, LightStats)> = chunks
+        let photons = LightPhotons { scene, emission, photon, colours, light: li, seed, first: pass * n, offsets, train: train.as_ref(), beam: beam.as_ref() };
+        let results: Vec<(S::Chunk, LightStats)> = chunks
             .par_iter()
             .map(|&(a, b)| {
-                let mut maps = sink();
-                let mut stats = LightStats::default();
-                let (mut by3, mut by5) = (RadicalInverses::new(3, a + pass * n), RadicalInverses::new(5, a + pass * n));
-                // Photons waiting for a group of four (`beam`).
-                let mut group: [Start; LANES] = std::array::from_fn(|_| Start { o: DVec3::ZERO, d: DVec3::ZERO, u_lambda: 0.0, rng: Rng::new(0, 0, 0) });
-                let (mut index, mut grouped) = ([0; LANES], 0);
-                for i in (a + pass * n)..(b + pass * n) {
-                    let u = [rotate(by3.value(), offsets[0]), rotate(by5.value(), offsets[1]), rotate(radical_inverse(i, 2), offsets[2])];
-                    by3.advance();
-                    by5.advance();
-                    let mut rng = Rng::new(seed, i, 1 + li as u64);
-                    // Beams take stratified positions; lights that emit in all
-                    // directions take random ones (a Halton lattice folded by
-                    // mirrors shows as a checkerboard on the walls).
-                    let (a, b) = match emission {
-                        Emission::Beam { .. } => (u[0], u[1]),
-                        _ => (rng.f64(), rng.f64()),
-                    };
-                    match (&beam, &train) {
-                        (Some(beam), _) => {
-                            // Field by field, the start and direction straight
-                            // into the group: a whole `Start`, or the pair, built
-                            // on the stack and copied had loads that waited on
-                            // the stores.
-                            let g = &mut group[grouped];
-                            (g.o, g.d) = emit(scene, emission, a, b, &mut rng);
-                            (g.u_lambda, g.rng, index[grouped]) = (u[2], rng, i);
-                            grouped += 1;
-                            if grouped == LANES {
-                                beam.trace(&index, &group, &photon, colours, &mut maps, &mut stats);
-                                grouped = 0;
-                            }
-                        }
-                        (None, Some(t)) => {
-                            let (o, d) = emit(scene, emission, a, b, &mut rng);
-                            maps.photon(i);
-                            t.trace(&Start { o, d, u_lambda: u[2], rng }, &photon, colours, &mut maps, &mut stats);
-                        }
-                        (None, None) => {
-                            let (o, d) = emit(scene, emission, a, b, &mut rng);
-                            maps.photon(i);
-                            trace_photon(scene, o, d, &photon, colours, u[2], &mut rng, &mut maps, &mut stats);
-                        }
-                    }
-                }
-                // The last photons of the chunk, fewer than a group.
-                if let Some(t) = &train {
-                    for (&i, start) in index.iter().zip(&group).take(grouped) {
-                        maps.photon(i);
-                        t.trace(start, &photon, colours, &mut maps, &mut stats);
-                    }
-                }
+                let mut maps = sink.chunk(scene);
+                let stats = photons.trace_chunk(a, b, &mut maps);
                 progress.advance("light", b - a);
                 (maps, stats)
             })
@@ -347,6 +268,84 @@ fn trace_lights<D: Deposit + Send>(
     }
     progress.finish("light");
     out
+}
+
+/// One light's photons of a batch as its chunks trace them: what each
+/// carries, where the batch starts in the light's sequence, and the
+/// tracer that takes them (a beam's four lanes, the prism train's
+/// shortcut, or the general tracer).
+struct LightPhotons<'a> {
+    scene: &'a World,
+    emission: &'a Emission,
+    photon: Emitted<'a>,
+    colours: ColorMap,
+    /// The light's index in the scene.
+    light: usize,
+    seed: u64,
+    /// The batch's first photon index (pass n).
+    first: u64,
+    /// The light's rotations of the stratified numbers (Cranley-Patterson).
+    offsets: [f64; 3],
+    train: Option<&'a super::train::Train<'a>>,
+    beam: Option<&'a super::beam::Beam<'a>>,
+}
+
+impl LightPhotons<'_> {
+    /// Traces photons `a..b` of the batch into `maps`; returns the counts.
+    fn trace_chunk(&self, a: u64, b: u64, maps: &mut impl Deposit) -> LightStats {
+        let mut stats = LightStats::default();
+        let (mut by3, mut by5) = (RadicalInverses::new(3, a + self.first), RadicalInverses::new(5, a + self.first));
+        // Photons waiting for a group of four (`beam`).
+        let mut group: [Start; LANES] = std::array::from_fn(|_| Start { o: DVec3::ZERO, d: DVec3::ZERO, u_lambda: 0.0, rng: Rng::new(0, 0, 0) });
+        let (mut index, mut grouped) = ([0; LANES], 0);
+        for i in (a + self.first)..(b + self.first) {
+            let u = [rotate(by3.value(), self.offsets[0]), rotate(by5.value(), self.offsets[1]), rotate(radical_inverse(i, 2), self.offsets[2])];
+            by3.advance();
+            by5.advance();
+            let mut rng = Rng::new(self.seed, i, 1 + self.light as u64);
+            // Beams take stratified positions; lights that emit in all
+            // directions take random ones (a Halton lattice folded by
+            // mirrors shows as a checkerboard on the walls).
+            let (a, b) = match self.emission {
+                Emission::Beam { .. } => (u[0], u[1]),
+                _ => (rng.f64(), rng.f64()),
+            };
+            match (self.beam, self.train) {
+                (Some(beam), _) => {
+                    // Field by field, the start and direction straight
+                    // into the group: a whole `Start`, or the pair, built
+                    // on the stack and copied had loads that waited on
+                    // the stores.
+                    let g = &mut group[grouped];
+                    (g.o, g.d) = emit(self.scene, self.emission, a, b, &mut rng);
+                    (g.u_lambda, g.rng, index[grouped]) = (u[2], rng, i);
+                    grouped += 1;
+                    if grouped == LANES {
+                        beam.trace(&index, &group, &self.photon, self.colours, maps, &mut stats);
+                        grouped = 0;
+                    }
+                }
+                (None, Some(t)) => {
+                    let (o, d) = emit(self.scene, self.emission, a, b, &mut rng);
+                    maps.photon(i);
+                    t.trace(&Start { o, d, u_lambda: u[2], rng }, &self.photon, self.colours, maps, &mut stats);
+                }
+                (None, None) => {
+                    let (o, d) = emit(self.scene, self.emission, a, b, &mut rng);
+                    maps.photon(i);
+                    trace_photon(self.scene, o, d, &self.photon, self.colours, u[2], &mut rng, maps, &mut stats);
+                }
+            }
+        }
+        // The last photons of the chunk, fewer than a group.
+        if let Some(t) = self.train {
+            for (&i, start) in index.iter().zip(&group).take(grouped) {
+                maps.photon(i);
+                t.trace(start, &self.photon, self.colours, maps, &mut stats);
+            }
+        }
+        stats
+    }
 }
 
 #[cfg(test)]
@@ -535,6 +534,7 @@ fn trace_photon(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::photon::map::Photon;
     use crate::spectrum::Spectrum;
     use crate::world::{Face, Light, Medium};
 
@@ -558,6 +558,41 @@ mod tests {
         }
         assert_eq!(crate::photon::map::texels(glam::DVec2::new(1.0, 0.25), 0.1), [10, 3]);
         assert_eq!(crate::photon::map::texels(glam::DVec2::new(1.0, 1e-9), 1e-5), [4096, 1]);
+    }
+
+    /// One batch lands the same photons whichever sink takes them: kept
+    /// (`Keep`), added into the texels (`Shared` over `Grids`) or counted
+    /// by a sink of the test's own, with the same counts; the next batch
+    /// of the sequence (`pass` 1) lands other photons.
+    #[test]
+    fn every_sink_takes_the_same_photons() {
+        use std::sync::atomic::{AtomicU64, Ordering::Relaxed};
+        struct Count<'a>(&'a AtomicU64);
+        impl Deposit for Count<'_> {
+            fn deposit(&mut self, _: usize, _: [f32; 2], _: [f32; 3], _: u8, _: f32) {
+                self.0.fetch_add(1, Relaxed);
+            }
+        }
+        let scene = crate::scenes::build(&crate::scenes::SceneOptions::new(crate::scenes::SceneKind::CornellPointlight)).unwrap();
+        let batch = Batch::new(20_000, 5, ColorMap::Cie);
+        let silent = &crate::progress::Silent;
+        let kept = light_pass(&scene, batch, Keep, silent);
+        let landed: usize = kept.photons.iter().map(Vec::len).sum();
+        assert!(landed > 5_000 && kept.stats.emitted == 20_000, "{landed} photons landed");
+        let most = 100.0 * kept.photons.iter().flatten().map(|p| p.xyz().iter().fold(0.0f64, |m, &v| m.max(v.abs() as f64))).sum::<f64>();
+        let grids = Grids::new(&scene, 0.05, most, false, |_| false);
+        assert_eq!(light_pass(&scene, batch, Shared(|| &grids), silent), kept.stats);
+        for (m, photons) in kept.photons.iter().enumerate() {
+            let want: f64 = photons.iter().map(|p| p.xyz()[1] as f64).sum();
+            let got: f64 = grids.flux(m).iter().map(|t| t[1] as f64).sum();
+            assert!((got - want).abs() <= 1e-3 * want.max(1e-9), "map {m}: {got} in the texels, {want} kept");
+        }
+        let count = AtomicU64::new(0);
+        assert_eq!(light_pass(&scene, batch, Shared(|| Count(&count)), silent), kept.stats);
+        assert_eq!(count.load(Relaxed), landed as u64);
+        let next = light_pass(&scene, Batch { pass: 1, ..batch }, Keep, silent);
+        assert_eq!(next.stats.emitted, 20_000);
+        assert_ne!(next.photons[0].first().map(|p| p.pos), kept.photons[0].first().map(|p| p.pos));
     }
 
     /// Wavelengths drawn by importance (spectrum x colour weight) and
@@ -630,16 +665,22 @@ mod tests {
             spectrum: Spectrum::Constant(1.0),
             power: 3.0,
         });
-        let flux =
-            |w: &World| light_pass(w, 100_000, 2, ColorMap::Cie, &crate::progress::Silent).photons.iter().flatten().map(|p| p.xyz()[1] as f64).sum::<f64>();
+        let flux = |w: &World| {
+            light_pass(w, Batch::new(100_000, 2, ColorMap::Cie), Keep, &crate::progress::Silent)
+                .photons
+                .iter()
+                .flatten()
+                .map(|p| p.xyz()[1] as f64)
+                .sum::<f64>()
+        };
         let by_power = flux(&two);
         two.photon_shares = Some(vec![1.0, 1.0]);
-        let (shared, counts) = (flux(&two), light_pass(&two, 100_000, 2, ColorMap::Cie, &crate::progress::Silent).stats.emitted);
+        let (shared, counts) = (flux(&two), light_pass(&two, Batch::new(100_000, 2, ColorMap::Cie), Keep, &crate::progress::Silent).stats.emitted);
         assert!((shared / by_power - 1.0).abs() < 0.01, "{shared} vs {by_power}");
         assert_eq!(counts, 100_000);
         for bounces in [0u32, 4] {
             s.bounces = bounces;
-            let pass = light_pass(&s, 200_000, 1, ColorMap::Cie, &crate::progress::Silent);
+            let pass = light_pass(&s, Batch::new(200_000, 1, ColorMap::Cie), Keep, &crate::progress::Silent);
             let stored: f64 = pass.photons.iter().flatten().map(|p| p.xyz()[1] as f64).sum();
             let emitted = WavelengthSampler::new(&Spectrum::Constant(1.0)).mean_cmf().y;
             let want: f64 = (1..=bounces + 1).map(|k| rho.powi(k as i32)).sum();
@@ -662,7 +703,10 @@ mod tests {
         let mut one = split.clone();
         one.indirect_gather = 1.0;
         let progress = crate::progress::Silent;
-        let (a, b) = (light_pass(&split, 200_000, 3, ColorMap::Cie, &progress), light_pass(&one, 200_000, 3, ColorMap::Cie, &progress));
+        let (a, b) = (
+            light_pass(&split, Batch::new(200_000, 3, ColorMap::Cie), Keep, &progress),
+            light_pass(&one, Batch::new(200_000, 3, ColorMap::Cie), Keep, &progress),
+        );
         let n = split.maps.len();
         assert_eq!((a.photons.len(), b.photons.len()), (2 * n, n));
         let total = |maps: &[Vec<Photon>]| maps.iter().flatten().map(|p| p.xyz()[1] as f64).sum::<f64>();

@@ -1,7 +1,9 @@
 //! Where the light pass's photons go, shared by its driver (`emit`) and
 //! its two tracers (`train`, `beam`): what a photon leaves its light with
-//! (`Emitted`), the sink it lands in (`Deposit`), the storing of a photon
-//! on a matte surface (`store`) and the pass's counts (`LightStats`).
+//! (`Emitted`), the deposit it lands in (`Deposit`), the sink a pass is
+//! given (`Sink`: photons kept, `Keep`, or added into shared sums,
+//! `Shared`), the storing of a photon on a matte surface (`store`) and the
+//! pass's counts (`LightStats`).
 
 use super::map::Photon;
 use crate::spectrum::colormap::ColorMap;
@@ -55,6 +57,68 @@ pub trait Deposit {
 impl Deposit for Vec<Vec<Photon>> {
     fn deposit(&mut self, map: usize, pos: [f32; 2], xyz: [f32; 3], class: u8, _sigma: f32) {
         self[map].push(Photon::with_class(pos, xyz, class));
+    }
+}
+
+/// What a light pass is given to put its photons in. The photons are
+/// traced in fixed chunks, in parallel: each chunk deposits into a
+/// `Chunk` of its own (`chunk`), and `finish` gets the chunks in chunk
+/// order with the pass's counts, so the result does not depend on the
+/// order chunks ran in.
+pub trait Sink: Sync {
+    type Chunk: Deposit + Send;
+    /// What the pass returns.
+    type Out;
+    /// A chunk's deposit, for the maps of `scene`.
+    fn chunk(&self, scene: &World) -> Self::Chunk;
+    /// The pass's result from its chunks (none where no light shines).
+    fn finish(self, scene: &World, chunks: Vec<Self::Chunk>, stats: LightStats) -> Self::Out;
+}
+
+/// Keeps every photon (for a kd-tree): a pass returns `LightPass`.
+pub struct Keep;
+
+/// Photons per matte surface (in `scene.maps` order) and the counts.
+pub struct LightPass {
+    pub photons: Vec<Vec<Photon>>,
+    pub stats: LightStats,
+}
+
+impl Sink for Keep {
+    type Chunk = Vec<Vec<Photon>>;
+    type Out = LightPass;
+    fn chunk(&self, scene: &World) -> Self::Chunk {
+        vec![Vec::new(); scene.map_slots()]
+    }
+    fn finish(self, scene: &World, chunks: Vec<Self::Chunk>, stats: LightStats) -> LightPass {
+        let mut photons = self.chunk(scene);
+        // Each map's photons in one allocation, not grown by doubling: no
+        // copies, and half the pages touched.
+        for (slot, dst) in photons.iter_mut().enumerate() {
+            dst.reserve_exact(chunks.iter().map(|maps| maps[slot].len()).sum());
+        }
+        for maps in chunks {
+            for (dst, src) in photons.iter_mut().zip(maps) {
+                dst.extend(src);
+            }
+        }
+        LightPass { photons, stats }
+    }
+}
+
+/// Adds the photons into sums the chunks share (the buffer map's texels,
+/// the film): `F` makes each chunk's handle on them; no photon is kept, so
+/// memory does not grow with the photon count. A pass returns its counts.
+pub struct Shared<F>(pub F);
+
+impl<D: Deposit + Send, F: Fn() -> D + Sync> Sink for Shared<F> {
+    type Chunk = D;
+    type Out = LightStats;
+    fn chunk(&self, _scene: &World) -> D {
+        (self.0)()
+    }
+    fn finish(self, _scene: &World, _chunks: Vec<D>, stats: LightStats) -> LightStats {
+        stats
     }
 }
 

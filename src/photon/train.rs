@@ -239,7 +239,7 @@ pub(super) struct Path {
 mod tests {
     use super::*;
     use crate::photon::beam::{LANDED, PORTABLE};
-    use crate::photon::emit::{light_pass, LightPass, GENERAL_ONLY};
+    use crate::photon::emit::{light_pass, Batch, Keep, LightPass, GENERAL_ONLY};
     use crate::scenes::{build, SceneKind, SceneOptions};
 
     /// A light pass on one thread of its own, and how many of its photons
@@ -250,7 +250,7 @@ mod tests {
             GENERAL_ONLY.with(|g| g.set(general));
             PORTABLE.with(|p| p.set(portable));
             LANDED.with(|n| n.set(0));
-            let p = light_pass(w, n, seed, colours, &crate::progress::Silent);
+            let p = light_pass(w, Batch::new(n, seed, colours), Keep, &crate::progress::Silent);
             GENERAL_ONLY.with(|g| g.set(false));
             PORTABLE.with(|p| p.set(false));
             (p, LANDED.with(|n| n.get()))

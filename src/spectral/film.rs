@@ -3,13 +3,26 @@
 //! PNG and PPM are display images; PFM keeps linear sRGB for measurement,
 //! OpenEXR linear sRGB and the film's XYZ.
 
-use crate::image_io::openexr::{write_exr, ExrSample, Plane};
-use crate::image_io::{atomic_write, write_rgb8};
+use crate::image_io::openexr::{write_exr, ExrError, ExrSample, Plane};
+use crate::image_io::{atomic_write, write_rgb8, WriteError};
 use crate::spectrum::cie::{desaturate, to_srgb8, GamutMap, Xyz};
-use anyhow::Result;
 use glam::DVec3;
 use std::io::Write;
-use std::path::Path;
+use std::path::{Path, PathBuf};
+
+/// Why the film was not written, naming the file.
+#[derive(Debug, thiserror::Error)]
+pub enum FilmError {
+    #[error(
+        "{}: {bad} of {total} pixels came out NaN or infinite (exposure {exposure:e}); nothing written. A gather radius far below the photon spacing or an extreme exposure does this",
+        .path.display()
+    )]
+    NonFinite { path: PathBuf, bad: usize, total: usize, exposure: f64 },
+    #[error(transparent)]
+    Exr(#[from] ExrError),
+    #[error(transparent)]
+    Write(#[from] WriteError),
+}
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct XyzImage {
@@ -48,23 +61,19 @@ impl XyzImage {
     /// .exr (`write_exr`). Refuses, naming the count, an image with NaN or
     /// infinite pixels (before or after the exposure): they would
     /// otherwise show as black.
-    pub fn write(&self, path: &Path, exposure: f64, gamut: GamutMap, exr: ExrSample) -> Result<()> {
+    pub fn write(&self, path: &Path, exposure: f64, gamut: GamutMap, exr: ExrSample) -> Result<(), FilmError> {
         // Finite in f32 too: the PFM stores f32.
         let finite = |v: f64| v.is_finite() && (v as f32).is_finite();
         let bad = (0..self.xyz.len()).map(|i| self.linear_srgb(i) * exposure).filter(|c| !(finite(c.x) && finite(c.y) && finite(c.z))).count();
         if bad > 0 {
-            anyhow::bail!(
-                "{}: {bad} of {} pixels came out NaN or infinite (exposure {exposure:e}); nothing written. A gather radius far below the photon spacing or an extreme exposure does this",
-                path.display(),
-                self.xyz.len()
-            );
+            return Err(FilmError::NonFinite { path: path.into(), bad, total: self.xyz.len(), exposure });
         }
         let ext = path.extension().map(|e| e.to_string_lossy().to_ascii_lowercase()).unwrap_or_default();
         if ext == "exr" {
             Ok(self.write_exr(path, exposure, exr)?)
         } else if ext == "pfm" {
             // Portable float map: little-endian, rows bottom to top.
-            atomic_write(path, |f| {
+            Ok(atomic_write(path, |f| {
                 write!(f, "PF\n{} {}\n-1.0\n", self.width, self.height)?;
                 for y in (0..self.height).rev() {
                     for x in 0..self.width {
@@ -75,9 +84,9 @@ impl XyzImage {
                     }
                 }
                 Ok(())
-            })
+            })?)
         } else {
-            write_rgb8(path, self.width, self.height, &self.to_srgb8(exposure, gamut))
+            Ok(write_rgb8(path, self.width, self.height, &self.to_srgb8(exposure, gamut))?)
         }
     }
 
@@ -86,7 +95,7 @@ impl XyzImage {
     /// CIE XYZ times the same exposure as XYZ.X, XYZ.Y, XYZ.Z, so that
     /// R, G, B = M (X, Y, Z) with M sRGB's matrix (IEC 61966-2-1); the
     /// exposure is the attribute `refract.exposure`, to undo it.
-    fn write_exr(&self, path: &Path, exposure: f64, sample: ExrSample) -> Result<(), crate::image_io::openexr::ExrError> {
+    fn write_exr(&self, path: &Path, exposure: f64, sample: ExrSample) -> Result<(), ExrError> {
         let n = self.xyz.len();
         let mut planes: [Vec<f32>; 6] = std::array::from_fn(|_| Vec::with_capacity(n));
         for (i, v) in self.xyz.iter().enumerate() {

@@ -24,7 +24,6 @@ use crate::progress::Progress;
 use crate::scenes::SceneOptions;
 use crate::spectrum::cie::GamutMap;
 use crate::timing::Real;
-use anyhow::Result;
 use options::{EyeMode, RenderOptions};
 use render::SpectralRender;
 use std::path::PathBuf;
@@ -129,6 +128,28 @@ pub enum ConfigError {
     #[error("--k and --radius exclude each other")]
     KWithRadius,
 }
+
+/// Why a run made no image: its settings, its scene, the memory it would
+/// need, its threads, the exact image or the output (each says which).
+#[derive(Debug, thiserror::Error)]
+pub enum RunError {
+    #[error(transparent)]
+    Config(#[from] ConfigError),
+    #[error(transparent)]
+    Scene(#[from] crate::scenes::SceneError),
+    #[error(transparent)]
+    Memory(#[from] crate::data::MemoryError),
+    #[error(transparent)]
+    Threads(#[from] rayon::ThreadPoolBuildError),
+    #[error(transparent)]
+    Exact(#[from] exact::ExactError),
+    #[error(transparent)]
+    Film(#[from] film::FilmError),
+    #[error(transparent)]
+    Write(#[from] crate::image_io::WriteError),
+}
+
+type Result<T> = std::result::Result<T, RunError>;
 
 /// Everything a run measured.
 pub struct SpectralReport {

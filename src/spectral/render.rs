@@ -7,7 +7,7 @@ use super::film::XyzImage;
 use super::haze::Haze;
 use super::options::{EyeMode, RenderOptions};
 use super::splat::{FilmAndBuffer, Splat};
-use crate::photon::emit::{light_pass_from, light_pass_into, light_pass_with, Grids, LightStats};
+use crate::photon::emit::{light_pass, Batch, Grids, Keep, LightStats, Shared};
 use crate::photon::map::MapKind;
 use crate::photon::map::SurfaceMap;
 use crate::progress::Progress;
@@ -66,51 +66,62 @@ fn render_with(scene: &World, opts: &RenderOptions, place: Option<PassPlace>, pr
     } else {
         scene
     };
-    let offset = place.map(|p| p.offset);
-    let eye_seed = place.map_or(opts.seed, |p| p.eye_seed);
+    let batch = Batch { total: opts.photons, seed: opts.seed, pass: place.map_or(0, |p| p.index), colours: opts.colours };
+    let Lit { stats, maps, film, film_kernel, trace_s, build_s } = light_maps(scene, opts, batch, progress);
+    let map_bytes = maps.iter().map(SurfaceMap::bytes).sum();
+    let eye = eye_for(scene, opts, maps, film.is_some());
+    let haze = Haze::new(scene, opts.colours);
+
+    let cam = &scene.camera;
+    progress.start("eye", cam.height as u64);
+    let t = Instant::now();
+    // An eye path gathers light only from the maps, from lights by shadow
+    // rays, from emitting surfaces and from haze (under --map film the
+    // first maps, the caustics, are empty when the camera sees no glass or
+    // mirror: see `unused_first`). With none of them lit the eye pass
+    // would add zero to every pixel: the image is the film's, the same
+    // bytes, without it (most of a small film render's time).
+    let nothing_to_gather = eye.maps.iter().all(SurfaceMap::is_dark) && !scene.direct_lighting && !scene.has_emitting_surface() && haze.segments.is_empty();
+    let (xyz, eye_rays) = match &film {
+        Some(f) if nothing_to_gather && may_skip_eye => {
+            progress.advance("eye", cam.height as u64);
+            (f.iter().map(|v| DVec3::ZERO + *v).collect(), 0)
+        }
+        _ => eye_pass(&eye, &haze, place, film.as_deref(), progress),
+    };
+    progress.finish("eye");
+    let render_s = t.elapsed().as_secs_f64();
+    SpectralRender { image: XyzImage { width: cam.width, height: cam.height, xyz }, stats, trace_s, build_s, render_s, map_bytes, film_kernel, eye_rays }
+}
+
+/// What the light pass leaves the eye pass: the matte surfaces' maps,
+/// under --map film the film's image and its kernel's radius in pixels,
+/// and the pass's counts and times (tracing, then building the maps).
+struct Lit {
+    stats: LightStats,
+    maps: Vec<SurfaceMap>,
+    film: Option<Vec<DVec3>>,
+    film_kernel: Option<f64>,
+    trace_s: f64,
+    build_s: f64,
+}
+
+/// The light pass and the maps made of it. The buffer map is filled as
+/// photons land (no photon is kept); the kd-tree keeps every photon and is
+/// built from them. Under --map film, photons the camera sees land on the
+/// film too.
+fn light_maps(scene: &World, opts: &RenderOptions, batch: Batch, progress: &dyn Progress) -> Lit {
     let t = Instant::now();
     let texel = (opts.lookup.radius() / 2.0).max(1e-5);
-    let index = place.map_or(0, |p| p.index);
-    let size = |f: usize| {
-        let (_, eu, ev) = scene.faces[f].frame.expect("matte surfaces are parallelograms");
-        DVec2::new(eu.length(), ev.length())
-    };
-    // The buffer map is filled as photons land (no photon is kept); the
-    // kd-tree keeps every photon and is built from them. Under --map film,
-    // photons the camera sees land on the film too.
-    let mut film: Option<Vec<DVec3>> = None;
-    let mut film_kernel = None;
-    let mut halves = None;
-    let spectral = keeps_classes(scene);
-    let (stats, maps, trace_s, build_s): (LightStats, Vec<SurfaceMap>, f64, f64) = if scene.maps.is_empty() {
-        (LightStats::default(), Vec::new(), 0.0, 0.0)
-    } else if opts.map != MapKind::Kdtree {
-        let most = max_flux(scene, opts.colours);
-        // Under --map film the first maps (the caustics, on the film too)
-        // are read only by eye paths through glass or off a mirror: with
-        // none in view they are not kept.
-        let unused_first = opts.map == MapKind::Film && !scene.camera_may_see_specular();
-        let grids = Grids::new(scene, texel, most, spectral, |slot| unused_first && slot < scene.maps.len());
-        let stats = if opts.map == MapKind::Film {
-            let splat = Splat::new(scene, most, opts.photons);
-            let stats =
-                light_pass_with(scene, opts.photons, opts.seed, index, opts.colours, progress, || FilmAndBuffer { grids: &grids, splat: &splat, half: 0 });
-            halves = Some(splat.halves());
-            stats
-        } else {
-            light_pass_into(scene, opts.photons, opts.seed, index, opts.colours, &grids, progress)
+    if scene.maps.is_empty() {
+        return Lit { stats: LightStats::default(), maps: Vec::new(), film: None, film_kernel: None, trace_s: 0.0, build_s: 0.0 };
+    }
+    if opts.map == MapKind::Kdtree {
+        let size = |f: usize| {
+            let (_, eu, ev) = scene.faces[f].frame.expect("matte surfaces are parallelograms");
+            DVec2::new(eu.length(), ev.length())
         };
-        let trace_s = t.elapsed().as_secs_f64();
-        let t = Instant::now();
-        if let Some(halves) = halves {
-            let g = super::bandwidth::Grid { width: scene.camera.width, height: scene.camera.height };
-            let (img, r) = super::bandwidth::film_image(&halves, g, opts.film_kernel);
-            (film, film_kernel) = (Some(img), Some(r));
-        }
-        let maps = grids.grids.iter().enumerate().map(|(m, g)| SurfaceMap::buffer(g.size, g.nu, g.nv, grids.flux(m), grids.classes(m))).collect();
-        (stats, maps, trace_s, t.elapsed().as_secs_f64())
-    } else {
-        let pass = light_pass_from(scene, opts.photons, opts.seed, index, opts.colours, progress);
+        let pass = light_pass(scene, batch, Keep, progress);
         let trace_s = t.elapsed().as_secs_f64();
         let t = Instant::now();
         let maps = pass
@@ -119,10 +130,39 @@ fn render_with(scene: &World, opts: &RenderOptions, place: Option<PassPlace>, pr
             .enumerate()
             .map(|(slot, photons)| SurfaceMap::build(opts.map, size(scene.slot_face(slot)), photons, texel * scene.slot_scale(slot)))
             .collect();
-        (pass.stats, maps, trace_s, t.elapsed().as_secs_f64())
+        return Lit { stats: pass.stats, maps, film: None, film_kernel: None, trace_s, build_s: t.elapsed().as_secs_f64() };
+    }
+    let most = max_flux(scene, opts.colours);
+    // Under --map film the first maps (the caustics, on the film too)
+    // are read only by eye paths through glass or off a mirror: with
+    // none in view they are not kept.
+    let unused_first = opts.map == MapKind::Film && !scene.camera_may_see_specular();
+    let grids = Grids::new(scene, texel, most, keeps_classes(scene), |slot| unused_first && slot < scene.maps.len());
+    let (stats, halves) = if opts.map == MapKind::Film {
+        let splat = Splat::new(scene, most, opts.photons);
+        let stats = light_pass(scene, batch, Shared(|| FilmAndBuffer { grids: &grids, splat: &splat, half: 0 }), progress);
+        (stats, Some(splat.halves()))
+    } else {
+        (light_pass(scene, batch, Shared(|| &grids), progress), None)
     };
-    let map_bytes = maps.iter().map(SurfaceMap::bytes).sum();
+    let trace_s = t.elapsed().as_secs_f64();
+    let t = Instant::now();
+    let (film, film_kernel) = match halves {
+        Some(halves) => {
+            let g = super::bandwidth::Grid { width: scene.camera.width, height: scene.camera.height };
+            let (img, r) = super::bandwidth::film_image(&halves, g, opts.film_kernel);
+            (Some(img), Some(r))
+        }
+        None => (None, None),
+    };
+    let maps = grids.grids.iter().enumerate().map(|(m, g)| SurfaceMap::buffer(g.size, g.nu, g.nv, grids.flux(m), grids.classes(m))).collect();
+    Lit { stats, maps, film, film_kernel, trace_s, build_s: t.elapsed().as_secs_f64() }
+}
 
+/// The eye pass's view of the world: its wavelengths (following the
+/// lights' spectra), each light's radiance and what one watt of it leaves
+/// each matte surface with, over the light pass's `maps`.
+fn eye_for<'a>(scene: &'a World, opts: &'a RenderOptions, maps: Vec<SurfaceMap>, film: bool) -> Eye<'a> {
     // Eye wavelengths follow the lights' spectra.
     let eye_spectrum = Spectrum::Sum(scene.lights.iter().map(|l| l.spectrum.clone()).collect());
     let lights: Vec<(f64, WavelengthSampler, DVec3)> = scene
@@ -152,35 +192,18 @@ fn render_with(scene: &World, opts: &RenderOptions, place: Option<PassPlace>, pr
     // What one watt of each light leaves each matte surface with.
     let direct: Vec<Vec<DVec3>> = lights.iter().map(|(_, sampler, _)| scene.reflected_per_map(sampler, opts.colours)).collect();
     let (white_reflected, band_mass) = Eye::spectral_tables(&direct, scene.maps.len(), &sampler);
-    let eye = Eye { scene, maps, opts, sampler, components, lights, direct, film: film.is_some(), white_reflected, band_mass };
-    let haze = Haze::new(scene, opts.colours);
+    Eye { scene, maps, opts, sampler, components, lights, direct, film, white_reflected, band_mass }
+}
 
+/// The eye pass proper: every pixel's samples through the camera (at
+/// `place`'s sample position and seed in a progressive pass), plus the
+/// film's light where there is a film. Returns the image and the rays
+/// traced.
+fn eye_pass(eye: &Eye, haze: &Haze, place: Option<PassPlace>, film: Option<&[DVec3]>, progress: &dyn Progress) -> (Vec<DVec3>, u64) {
+    let (scene, opts) = (eye.scene, eye.opts);
+    let offset = place.map(|p| p.offset);
+    let eye_seed = place.map_or(opts.seed, |p| p.eye_seed);
     let cam = &scene.camera;
-    progress.start("eye", cam.height as u64);
-    let t = Instant::now();
-    // An eye path gathers light only from the maps, from lights by shadow
-    // rays, from emitting surfaces and from haze (under --map film the
-    // first maps, the caustics, are empty when the camera sees no glass or
-    // mirror: see `unused_first`). With none of them lit the eye pass
-    // would add zero to every pixel: the image is the film's, the same
-    // bytes, without it (most of a small film render's time).
-    let nothing_to_gather = eye.maps.iter().all(SurfaceMap::is_dark) && !scene.direct_lighting && !scene.has_emitting_surface() && haze.segments.is_empty();
-    if let (Some(f), true) = (&film, nothing_to_gather && may_skip_eye) {
-        progress.advance("eye", cam.height as u64);
-        progress.finish("eye");
-        let xyz = f.iter().map(|v| DVec3::ZERO + *v).collect();
-        let render_s = t.elapsed().as_secs_f64();
-        return SpectralRender {
-            image: XyzImage { width: cam.width, height: cam.height, xyz },
-            stats,
-            trace_s,
-            build_s,
-            render_s,
-            map_bytes,
-            film_kernel,
-            eye_rays: 0,
-        };
-    }
     let mut xyz = vec![DVec3::ZERO; cam.width * cam.height];
     let rays: u64 = xyz
         .par_chunks_mut(cam.width)
@@ -225,9 +248,7 @@ fn render_with(scene: &World, opts: &RenderOptions, place: Option<PassPlace>, pr
             rays
         })
         .sum();
-    progress.finish("eye");
-    let render_s = t.elapsed().as_secs_f64();
-    SpectralRender { image: XyzImage { width: cam.width, height: cam.height, xyz }, stats, trace_s, build_s, render_s, map_bytes, film_kernel, eye_rays: rays }
+    (xyz, rays)
 }
 
 /// The most XYZ flux the matte surfaces can receive in all: every light's
