@@ -224,7 +224,14 @@ pub fn soup_warning(cfg: &SpectralConfig, scene: &crate::world::World) -> Option
         let (mut n, mut traced, mut took) = (PILOT_PHOTONS, 0, 0.0);
         while took < PILOT_SECONDS && traced < cfg.photons / 10 {
             let t = std::time::Instant::now();
-            let pilot = pool.install(|| crate::photon::emit::light_pass(scene, n, cfg.seed, cfg.colours, &crate::progress::Silent));
+            let pilot = pool.install(|| {
+                crate::photon::emit::light_pass(
+                    scene,
+                    crate::photon::emit::Batch::new(n, cfg.seed, cfg.colours),
+                    crate::photon::emit::Keep,
+                    &crate::progress::Silent,
+                )
+            });
             (traced, took) = (pilot.stats.emitted.max(1), t.elapsed().as_secs_f64());
             n *= 4;
         }
