@@ -213,6 +213,20 @@ pub fn light_pass<S: Sink>(scene: &World, batch: Batch, sink: S, progress: &dyn 
     sink.finish(scene, chunks, stats)
 }
 
+/// Light `li`'s emission as its photons leave it, and the fraction of its
+/// power they carry: a beam with a `photon_aperture` narrowed to that part
+/// of its aperture (its power in proportion to the part's area).
+fn photon_emission(scene: &World, li: usize) -> (Emission, f64) {
+    let e = scene.lights[li].emission.clone();
+    match (e, scene.photon_aperture.iter().find(|p| p.0 == li)) {
+        (Emission::Beam { centre, dir, u, v, half, disc, polarisation }, Some(&(_, c, h))) => {
+            let h = h.min(half);
+            (Emission::Beam { centre: centre + u * c.x + v * c.y, dir, u, v, half: h, disc, polarisation }, h.x * h.y / (half.x * half.y))
+        }
+        (e, _) => (e, 1.0),
+    }
+}
+
 /// Traces the photons in fixed chunks (in parallel), each chunk into its
 /// own `sink.chunk`; returns each chunk's deposit and counts, in order.
 fn trace_lights<S: Sink>(scene: &World, batch: Batch, progress: &dyn Progress, sink: &S) -> Vec<(S::Chunk, LightStats)> {
@@ -231,7 +245,8 @@ fn trace_lights<S: Sink>(scene: &World, batch: Batch, progress: &dyn Progress, s
     let train = super::train::Train::new(scene).filter(|_| !general_only());
     for (li, light) in scene.lights.iter().enumerate() {
         let n = ((total as f64 * shares[li]).round() as u64).max(1);
-        let emission = &light.emission;
+        let (emission, part) = photon_emission(scene, li);
+        let emission = &emission;
         let sampler = WavelengthSampler::new(&light.spectrum);
         // Wavelengths are drawn in proportion to the spectrum times how much
         // they show (the colour map's weights), each photon's flux weighted
@@ -247,7 +262,7 @@ fn trace_lights<S: Sink>(scene: &World, batch: Batch, progress: &dyn Progress, s
             _ => None,
         };
         let source = Emitted { power: 0.0, light: li, colours, white, reflected: &reflected, sampler: &sampler, importance: &importance, polarisation };
-        let per_photon = light.power / n as f64;
+        let per_photon = light.power * part / n as f64;
         let mut key = Rng::new(seed, li as u64, 0xfeed);
         let offsets = [key.f64(), key.f64(), key.f64()];
         let chunks: Vec<(u64, u64)> = (0..n.div_ceil(CHUNK)).map(|c| (c * CHUNK, ((c + 1) * CHUNK).min(n))).collect();
@@ -537,6 +552,23 @@ mod tests {
     use crate::photon::map::Photon;
     use crate::spectrum::Spectrum;
     use crate::world::{Face, Light, Medium};
+
+    /// A beam's photon aperture: photons leave only that part of it, each
+    /// carrying the part's share of the power (its area over the whole).
+    #[test]
+    fn a_photon_aperture_narrows_the_beam_and_its_power() {
+        let mut scene = World::new("t", vec![Medium::Air], 8, 8);
+        let (u, v) = (glam::DVec3::Y, glam::DVec3::Z);
+        let half = glam::DVec2::new(1.0, 0.5);
+        let emission = Emission::Beam { centre: glam::DVec3::ZERO, dir: glam::DVec3::X, u, v, half, disc: false, polarisation: None };
+        scene.lights.push(Light { name: "window".into(), emission, spectrum: Spectrum::Constant(1.0), power: 1.0 });
+        assert!(matches!(photon_emission(&scene, 0), (Emission::Beam { half: h, .. }, f) if h == half && f == 1.0));
+        scene.photon_aperture.push((0, glam::DVec2::new(0.5, -0.25), glam::DVec2::new(0.1, 0.05)));
+        let (Emission::Beam { centre, half: h, .. }, f) = photon_emission(&scene, 0) else { panic!("a beam") };
+        assert_eq!(centre, glam::DVec3::new(0.0, 0.5, -0.25));
+        assert_eq!(h, glam::DVec2::new(0.1, 0.05));
+        assert!((f - 0.01).abs() < 1e-12, "{f}");
+    }
 
     /// The light pass's grids, the buffer maps built from photons and the
     /// memory check (`slot_texels`) size a surface's texels alike: a

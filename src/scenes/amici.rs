@@ -166,7 +166,7 @@ fn add_screen(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism, design: &
         corner,
         DVec3::new(0.0, -width, 0.0),
         DVec3::new(0.0, 0.0, tall),
-        Surface::Diffuse { albedo: Albedo::new([0.8; 3]), map: 0 },
+        Surface::Diffuse { albedo: Albedo::new([0.9; 3]), map: 0 },
     ));
     scene.maps.push(scene.faces.len() - 1);
     let cam = centre - DVec3::X * 1.0;
@@ -182,28 +182,31 @@ fn add_screen(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism, design: &
     Ok(())
 }
 
-/// How far the bench view's screen stands past the prism, m: near enough
-/// that prism and strip are both large in one view.
-const BENCH_SCREEN_DISTANCE: f64 = 0.8;
+/// How far the bench view's screen stands past the prism, m: far enough
+/// that the strip (about 19 cm across) is large beside the prism seen from
+/// 0.7 m behind it.
+const BENCH_SCREEN_DISTANCE: f64 = 1.6;
 /// The window light's power over a table-sized footprint, W: the room
 /// clearly seen under the figures' display (AgX with its print look at
 /// exposure 0.005), the strip still far brighter than the screen around it.
-const WINDOW_POWER: f64 = 600.0;
+const WINDOW_POWER: f64 = 900.0;
 /// The height of the room's walls around the bench, m.
 const WALL_HEIGHT: f64 = 0.6;
 
 /// Pictures 3-6 as photographs of an optics bench would show them: a grey
-/// table under the prism (which stands on it); a lamp housing whose slit
-/// sends the white beam (4 mm x 2 cm here, wide enough to see as a patch
-/// on the screen) down the bench; the beam's path shown by a thin haze,
-/// white up to the prism and a narrow fan of colours after it; a white
-/// screen standing on the table 0.8 m past the prism; grey walls behind
-/// the screen and along the bench's far side, so the glass shows a room;
-/// the room lit dimly from above, behind and the near side by a broad
-/// collimated light (daylight through a window: every photon lands where
-/// the camera looks, and the haze leaves it out). The view (`View`) is the bench from behind and above the lamp
-/// (Pictures 4-6), the screen close up, or the whole bench from high above
-/// its side (Picture 3).
+/// table under the prism (which stands on it), dark lines ruled across it
+/// under the prism; a lamp housing whose slit sends the white beam (6 mm x
+/// 3 cm here, wide enough to see as a patch on the screen) down the bench;
+/// the beam's path shown by a thin haze, white up to the prism and a
+/// narrow fan of colours after it; a white screen standing on the table
+/// 1.6 m past the prism (`BENCH_SCREEN_DISTANCE`), 15 % wider than the
+/// strip; grey walls behind the screen and along the bench's far side, so
+/// the glass shows a room; the room lit from above, behind and the near
+/// side by a broad collimated light (daylight through a window: every
+/// photon lands where the camera looks, and the haze leaves it out). The
+/// view (`View`) is the bench from low beside the lamp (Pictures 4-6), the
+/// screen close up, or the whole bench from above its near side
+/// (Picture 3).
 fn add_bench(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism) -> Result<()> {
     // `add_screen` has just made the screen and the slit beam (`build`).
     let screen = *scene.maps.first().expect("the bench view is built on the screen");
@@ -213,20 +216,34 @@ fn add_bench(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism) -> Result<
     let z = -prism.size / 2.0 - 1e-4;
     // The screen: 24 cm wide, standing on the table, 14 cm tall, centred
     // across the strip. Normal -x (facing the prism): u along -y, v up.
-    let (sw, sh) = (0.24, 0.14);
+    let sw = eu.length() * 1.15;
+    let sh = sw * 0.55;
     let surface = scene.faces[screen].surface.clone();
     scene.faces[screen] =
         Face::rect("screen", DVec3::new(strip_centre.x, strip_centre.y + sw / 2.0, z), DVec3::new(0.0, -sw, 0.0), DVec3::new(0.0, 0.0, sh), surface);
-    // The slit: the beam 4 mm wide.
+    // The slit: the beam 6 mm wide and 3 cm tall, its image on the screen
+    // large enough to read from the camera of Pictures 4-6.
     let Emission::Beam { centre: start, half, .. } = &mut scene.lights[0].emission else { unreachable!("the bench's first light is the slit beam") };
-    *half = DVec2::new(0.002, half.y);
+    *half = DVec2::new(0.003, 0.015);
     let start = *start;
-    // The camera of Pictures 4-6: behind the lamp and to its side, above
-    // the table, looking down the bench.
-    let bench_cam = DVec3::new(start.x - 0.54, -0.37, 0.32);
+    // The camera of Pictures 4-6: low over the table (6.5 cm above it),
+    // beside the lamp and 18 cm to the side of the beam, looking down the
+    // bench with a long lens (18 degrees across): the prism whole in the
+    // near left, the screen and its strip large on the right, the beam
+    // coming in from the left edge (the lamp itself just out of view).
+    let bench_cam = DVec3::new(-0.7, -0.18, 0.04);
     let (x0, x1) = (bench_cam.x - 0.5, strip_centre.x + 0.06);
-    let (y0, y1) = (strip_centre.y.min(0.0) - 0.8, strip_centre.y.max(0.0) + 0.3);
-    super::matte(scene, "table", DVec3::new(x0, y0, z), DVec3::new(x1 - x0, 0.0, 0.0), DVec3::new(0.0, y1 - y0, 0.0), [0.35; 3]);
+    let (y0, y1) = (strip_centre.y.min(0.0) - 1.3, strip_centre.y.max(0.0) + 0.3);
+    super::matte(scene, "table", DVec3::new(x0, y0, z), DVec3::new(x1 - x0, 0.0, 0.0), DVec3::new(0.0, y1 - y0, 0.0), [0.45; 3]);
+    // Ruled across it under the prism, as on a cutting mat: ten dark lines
+    // 2.5 mm wide, 5 cm apart, 0.05 mm above it; seen through the glass
+    // they bend and break, as through a real prism. (Ten: with more faces
+    // the scene would leave the prism-train shortcut for a BVH, five times
+    // slower.)
+    for k in 0..10 {
+        let x = -0.225 + 0.05 * k as f64;
+        super::matte(scene, "table rule", DVec3::new(x, -0.2, z + 5e-5), DVec3::new(0.0025, 0.0, 0.0), DVec3::new(0.0, 0.5, 0.0), [0.1; 3]);
+    }
     // The lamp housing: a dark box whose front face (with the slit) stands
     // 1 mm behind where the beam starts, so the beam leaves through it.
     let (bx, bd, bw, bh) = (start.x - 0.001, 0.12, 0.08, 0.07);
@@ -242,17 +259,17 @@ fn add_bench(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism) -> Result<
     // what the prism's faces reflect and what is seen through them, so the
     // glass shows the room as a photograph's would, not black sky.
     // They reach down to the floor, a table's height (0.75 m) below.
-    let (wall, floor) = ([0.7; 3], z - 0.75);
+    let (wall, floor) = ([0.5; 3], z - 0.75);
     let up = DVec3::new(0.0, 0.0, WALL_HEIGHT + 0.75);
     super::matte(scene, "back wall", DVec3::new(x1, y0, floor), up, DVec3::new(0.0, y1 - y0, 0.0), wall);
     super::matte(scene, "far side wall", DVec3::new(x0, y1, floor), DVec3::new(x1 - x0, 0.0, 0.0), up, wall);
-    // The window light: down onto the table, 20 degrees from behind the
+    // The window light: down onto the table, 35 degrees from behind the
     // lamp, so the screen's face and the back wall are lit too. Its
-    // footprint covers the table and reaches the back wall's top; photons
-    // are shared half and half with the beam.
-    // Tipped 20 degrees from the vertical toward +x and 15 toward +y, so
+    // footprint covers the table and reaches the back wall's top; it has
+    // a fifth of the photons, the beam the rest.
+    // Tipped 35 degrees from the vertical toward +x and 15 toward +y, so
     // that the back wall and the far side wall are lit as well.
-    let dir = DVec3::new(20f64.to_radians().tan(), 15f64.to_radians().tan(), -1.0).normalize();
+    let dir = DVec3::new(35f64.to_radians().tan(), 15f64.to_radians().tan(), -1.0).normalize();
     let u = (DVec3::Y - dir * dir.y).normalize();
     let v = u.cross(dir);
     // The footprint: the table's corners and the lit walls' tops, seen
@@ -268,7 +285,18 @@ fn add_bench(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism) -> Result<
     let centre = dir * (table_mid.dot(dir) - 1.5) + u * mid.x + v * mid.y;
     // WINDOW_POWER over a table-sized footprint (its extents plus 2 cm and
     // 5 cm); the same power per area over this larger one.
-    let power = WINDOW_POWER * half.x * half.y / (((y1 - y0) / 2.0 + 0.02) * ((x1 - x0) / 2.0 * 20f64.to_radians().cos() + 0.05));
+    let power = WINDOW_POWER * half.x * half.y / (((y1 - y0) / 2.0 + 0.02) * ((x1 - x0) / 2.0 * 35f64.to_radians().cos() + 0.05));
+    // Its photons matter only where they cross the prism (elsewhere its
+    // light is direct, by shadow rays): they leave the part of the window
+    // whose light meets the prism, 2 cm to spare (a two-hundredth of the
+    // window's area), so its caustics and what is seen through it are
+    // gathered from that many times more photons per area.
+    let glass = prism.parts.iter().flatten().flat_map(|p| [-1.0, 1.0].map(|s| DVec3::new(p.x, p.y, s * prism.size / 2.0)));
+    let (glo, ghi) = glass.fold((DVec2::splat(f64::MAX), DVec2::splat(f64::MIN)), |(lo, hi), c| {
+        let p = DVec2::new((c - centre).dot(u), (c - centre).dot(v));
+        (lo.min(p), hi.max(p))
+    });
+    scene.photon_aperture.push((scene.lights.len(), (glo + ghi) / 2.0, (ghi - glo) / 2.0 + 0.02));
     scene.haze_skip.push(scene.lights.len());
     scene.lights.push(Light {
         name: "window light".into(),
@@ -276,7 +304,7 @@ fn add_bench(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism) -> Result<
         spectrum: light_spectrum(o, "D65")?,
         power,
     });
-    scene.photon_shares = Some(vec![0.5, 0.5]);
+    scene.photon_shares = Some(vec![0.8, 0.2]);
     // Light straight from either beam by shadow rays (docs/physics.md
     // §13): the table and the white slit image come out without photon
     // noise; the photons carry what crosses the prism.
@@ -286,13 +314,14 @@ fn add_bench(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism) -> Result<
     scene.haze = if o.view == View::Screen { 0.0 } else { BENCH_HAZE };
     let aspect = o.width as f64 / o.height as f64;
     let (cam, target, hfov): (DVec3, DVec3, f64) = match o.view {
-        // Behind the lamp and to its side, above the table: the lamp near,
-        // the beam running away down the bench, the prism, the screen.
-        View::Scene => (bench_cam, DVec3::new(0.15, strip_centre.y * 0.5, -0.04), 50.0),
+        // Low beside the lamp (`bench_cam`): the prism near, the strip on
+        // the screen large beyond it.
+        View::Scene => (bench_cam, DVec3::new(0.5, 0.04, 0.0), 18.0),
         // Square on to the strip from 40 cm: the strip across the frame.
-        View::Screen => (strip_centre - DVec3::new(0.4, 0.0, 0.0), strip_centre, 2.0 * (0.5 * 0.17 / 0.4f64).atan().to_degrees()),
-        // High above the bench's side, the camera of Pictures 4-6 in view.
-        View::Overview => (DVec3::new(-0.16, -1.5, 1.2), DVec3::new(-0.14, -0.1, 0.0), 66.0),
+        View::Screen => (strip_centre - DVec3::new(0.4, 0.0, 0.0), strip_centre, 2.0 * (0.5 * 0.7 * sw / 0.4).atan().to_degrees()),
+        // Above the bench's near side, behind the prism: the camera of
+        // Pictures 4-6, the lamp, the prism, the fan and the screen all in view.
+        View::Overview => (DVec3::new(-0.4, -1.4, 1.3), DVec3::new(0.3, 0.0, 0.0), 65.0),
     };
     if o.view == View::Overview {
         // That camera drawn where it stands: a grey body 8 x 5 x 5 cm on a
@@ -319,8 +348,9 @@ fn add_bench(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism) -> Result<
 }
 
 /// The bench's haze, per metre: enough that the beam shows over the
-/// table's dim light, too little to veil the screen.
-const BENCH_HAZE: f64 = 9.0;
+/// table's light, too little to veil the screen or, seen along the fan,
+/// to outshine the strip.
+const BENCH_HAZE: f64 = 3.0;
 
 /// Picture 1: a compact fluorescent lamp across the room past the prism,
 /// and the camera just before the entry face looking back through the

@@ -190,8 +190,8 @@ impl GamutMap {
                     v
                 }
             }
-            GamutMap::Agx => agx(desaturate(v)),
-            GamutMap::AgxPunchy => punchy(agx(desaturate(v))),
+            GamutMap::Agx => agx(v),
+            GamutMap::AgxPunchy => punchy(agx(v)),
             GamutMap::Camera => camera(v),
         }
     }
@@ -235,11 +235,41 @@ pub fn camera(v: DVec3) -> DVec3 {
     rgb * ((m - CAMERA_BLACK) / (1.0 - CAMERA_BLACK) / m)
 }
 
-/// AgX's inset (docs/physics.md §23): each colour mixed 20 % of the way
-/// toward a weighted grey of itself, white unmoved (Sobotka's matrix has
-/// this form: 1 - s on the diagonal plus s times the weights).
-const AGX_INSET: f64 = 0.2;
-const AGX_WEIGHTS: DVec3 = DVec3::new(0.2117, 0.3922, 0.3961);
+/// Linear sRGB to linear Rec. 2020 (ITU-R BT.2087-0, eq. 1), rows
+/// summing to 1 so white stays white; AgX works on these primaries
+/// (docs/physics.md §23), which hold every spectral colour from about 460
+/// to 680 nm, so a prism's red end is not first pushed toward magenta.
+const SRGB_TO_REC2020: DMat3 =
+    DMat3::from_cols_array(&[0.627403896, 0.069097289, 0.016391439, 0.329283039, 0.919540395, 0.088013307, 0.043313065, 0.011362316, 0.895595254]);
+/// Rec. 2020's luma weights (ITU-R BT.2020, table 4).
+const REC2020_LUMA: DVec3 = DVec3::new(0.2627, 0.6780, 0.0593);
+/// AgX's inset and outset on Rec. 2020 (Blender 4.0's AgX, from E. Chow's
+/// AgX_LUT_Gen; §23): each primary drawn toward the others and slightly
+/// rotated (red toward yellow, so bright red bleaches through orange,
+/// not pink), and, after the curve, pushed back out unrotated. Rows sum to
+/// 1: greys stay grey.
+const AGX_INSET: DMat3 = DMat3::from_cols_array(&[
+    0.856627153315983,
+    0.137318972929847,
+    0.11189821299995,
+    0.0951212405381588,
+    0.761241990602591,
+    0.0767994186031903,
+    0.0482516061458583,
+    0.101439036467562,
+    0.811302368396859,
+]);
+const AGX_OUTSET: DMat3 = DMat3::from_cols_array(&[
+    1.1271005818144368,
+    -0.1413297634984383,
+    -0.14132976349843826,
+    -0.11060664309660323,
+    1.157823702216272,
+    -0.11060664309660294,
+    -0.016493938717834573,
+    -0.016493938717834257,
+    1.2519364065950405,
+]);
 /// The log encoding's range in stops about 1.0: 0.18 (mid grey) lands at
 /// 10 / 16.5 of it, as in Blender's AgX (log2 range -10 to +6.5 about 0.18).
 const AGX_MIN_EV: f64 = -12.473931188332412;
@@ -249,18 +279,17 @@ const AGX_MAX_EV: f64 = 4.026068811667588;
 /// white, at about 92 % of full scale: what is brighter still rolls on.
 const AGX_HEADROOM: f64 = 4.0;
 
-/// The filmic curve on linear sRGB with no negative channel: inset, log2
-/// encoding, sigmoid per channel, outset (§23). Returns display-linear
-/// values in [0, 1].
+/// The filmic curve on linear sRGB (§23): to Rec. 2020, hue and luminance
+/// kept while a negative channel is lifted, inset, log2 encoding, sigmoid
+/// per channel, outset, back to sRGB (any colour outside it desaturated
+/// at its luminance). Returns display-linear values in [0, 1].
 pub fn agx(v: DVec3) -> DVec3 {
-    let s = AGX_INSET;
-    let inset = |c: DVec3| (1.0 - s) * c + DVec3::splat(s * AGX_WEIGHTS.dot(c));
-    // The inverse of the inset (Sherman-Morrison; the weights sum to 1).
-    let outset = |c: DVec3| (c - DVec3::splat(s * AGX_WEIGHTS.dot(c))) / (1.0 - s);
-    let c = inset(v.max(DVec3::ZERO) * AGX_HEADROOM);
+    let c = desaturate_about(SRGB_TO_REC2020 * v, REC2020_LUMA);
+    let c = AGX_INSET * (c * AGX_HEADROOM);
     let encode = |x: f64| ((x.max(1e-10).log2() - AGX_MIN_EV) / (AGX_MAX_EV - AGX_MIN_EV)).clamp(0.0, 1.0);
     let y = DVec3::new(agx_sigmoid(encode(c.x)), agx_sigmoid(encode(c.y)), agx_sigmoid(encode(c.z)));
-    outset(y.powf(2.4)).clamp(DVec3::ZERO, DVec3::ONE)
+    let out = SRGB_TO_REC2020.inverse() * (AGX_OUTSET * y.powf(2.4)).max(DVec3::ZERO);
+    desaturate(out).clamp(DVec3::ZERO, DVec3::ONE)
 }
 
 /// The print look's power and saturation (§23): an ASC CDL with slope 1
@@ -296,7 +325,12 @@ pub fn agx_sigmoid(x: f64) -> f64 {
 /// that no channel is negative (black if its luminance is not positive).
 /// Scale-invariant: exposure can be chosen after it.
 pub fn desaturate(v: DVec3) -> DVec3 {
-    let y = SRGB_LUMA.dot(v);
+    desaturate_about(v, SRGB_LUMA)
+}
+
+/// `desaturate` with the luma weights of the colour's own primaries.
+fn desaturate_about(v: DVec3, luma: DVec3) -> DVec3 {
+    let y = luma.dot(v);
     if !(y > 0.0) || !v.is_finite() {
         return DVec3::ZERO;
     }
@@ -453,6 +487,25 @@ mod tests {
         let (clip, agx) = (runs(GamutMap::Clip), runs(GamutMap::Agx));
         assert!(clip >= 10, "clip's longest flat run: {clip} nm");
         assert!(agx <= 4 && agx * 3 <= clip, "AgX's longest flat run: {agx} nm, clip's {clip} nm");
+    }
+
+    #[test]
+    fn agx_keeps_the_spectrum_red_end_red_not_magenta() {
+        // 610-700 nm at 1 nm, each dim to eight times over-exposed: in 8-bit
+        // display values red leads and the hue stays within 18 degrees of
+        // red on the magenta side (on sRGB primaries, hue-keeping
+        // desaturation then the curve per channel made 620-660 nm pink:
+        // 255, 0, 109 at 650 nm, 26 degrees).
+        for nm in 610..=700 {
+            let c = Xyz(cmf(nm as f64)).to_linear_srgb();
+            for e in [0.3, 1.0, 3.0, 8.0] {
+                for map in [GamutMap::Agx, GamutMap::AgxPunchy] {
+                    let [r, g, b] = to_srgb8(LinearRgb(c.0 / c.0.max_element()), e, map).map(f64::from);
+                    let hue = 60.0 * (g - b) / (r - g.min(b)).max(1.0);
+                    assert!(r >= g && r >= b && hue > -18.0, "{nm} nm at {e}: {r} {g} {b}, hue {hue:.1}");
+                }
+            }
+        }
     }
 
     #[test]

@@ -60,6 +60,14 @@ pub struct World {
     /// (or out of date): a ray's face is found through the cells
     /// (`cells`), trying one by one only the faces of no convex solid.
     pub accel: Option<face_bvh::FaceBvh>,
+    /// Beams whose photons are emitted over part of their aperture only:
+    /// (light, centre, half-extents), in metres along the beam's u and v
+    /// from its centre, each photon carrying its share of that part's
+    /// power. For a broad fill under `direct_lighting` with no diffuse
+    /// bounce, whose only photons kept are those that cross glass: the
+    /// part is the glass's shadow, so the caustics come out as dense as if
+    /// the light were no larger than the glass (docs/physics.md §13).
+    pub photon_aperture: Vec<(usize, glam::DVec2, glam::DVec2)>,
     /// Scattering coefficient of a thin haze in the air (per metre) that
     /// shows the beams' paths to the camera; 0 is clear air
     /// (`spectral::haze`).
@@ -130,6 +138,7 @@ impl World {
             accel: None,
             haze: 0.0,
             haze_skip: Vec::new(),
+            photon_aperture: Vec::new(),
             indirect_gather: 1.0,
             caustics_apart: false,
             cells: Cells::default(),
