@@ -520,9 +520,9 @@ fn span_text(vals: &[String]) -> String {
             n.sort_by(f64::total_cmp);
             format!("from {} to {}", tick(&n[0]), tick(&n[n.len() - 1]))
         }
-        Some(n) => n.iter().map(tick).collect::<Vec<_>>().join(", "),
-        // A size "64 64" reads 64×64.
-        None => vals
+        // A few values as written (a tick would round 1.0001 to 1); a size
+        // "64 64" reads 64×64.
+        _ => vals
             .iter()
             .map(|v| match v.split_once(' ') {
                 Some((a, b)) if a.parse::<u64>().is_ok() && b.parse::<u64>().is_ok() => format!("{a}×{b}"),
@@ -766,6 +766,10 @@ pub fn axis_title(column: &str) -> String {
     }
 }
 
+/// Characters of the stability table's first column (15 px type in the
+/// 740 px before the result column).
+const LABEL_CHARS: usize = 100;
+
 /// One row per run: its case and parameters, then whether it failed, its
 /// NaN/inf pixels, fireflies and fraction of rays in total internal
 /// reflection, coloured red (failed or NaN), amber (fireflies), green.
@@ -777,7 +781,27 @@ fn status_table(p: &PlotSpec, dir: &Path, header: &[String], rows: &[Vec<String>
     let (w, line) = (1400u32, 26u32);
     // A failed run's error is written in full beneath its row, wrapped.
     let wrap = |t: &str| -> Vec<String> { t.chars().collect::<Vec<_>>().chunks(150).map(|c| c.iter().collect()).collect() };
-    let extra: Vec<u32> = rows.iter().map(|r| if r[status] != "ok" { wrap(&format!("error: {}", r[error])).len() as u32 } else { 0 }).collect();
+    // A run's case and parameters, broken at spaces to fit their column.
+    let labels: Vec<Vec<String>> = rows
+        .iter()
+        .map(|r| {
+            let label = std::iter::once(r[case].clone())
+                .chain(
+                    params
+                        .iter()
+                        .filter(|&&c| !r[c].is_empty())
+                        .map(|&c| format!("{}={}", header[c].trim_start_matches("param_"), span_text(std::slice::from_ref(&r[c])))),
+                )
+                .collect::<Vec<_>>()
+                .join("  ");
+            super::plot::wrap_text(&label, LABEL_CHARS)
+        })
+        .collect();
+    let extra: Vec<u32> = rows
+        .iter()
+        .zip(&labels)
+        .map(|(r, l)| l.len() as u32 - 1 + if r[status] != "ok" { wrap(&format!("error: {}", r[error])).len() as u32 } else { 0 })
+        .collect();
     let h = 80 + line * (rows.len() as u32 + extra.iter().sum::<u32>());
     let mut buf = vec![255u8; (w * h * 3) as usize];
     {
@@ -785,7 +809,7 @@ fn status_table(p: &PlotSpec, dir: &Path, header: &[String], rows: &[Vec<String>
         root.fill(&WHITE).map_err(|e| anyhow!("{e}"))?;
         let font = ("sans-serif", 15).into_font();
         root.draw(&Text::new(p.title.clone(), (10, 10), ("sans-serif", 22).into_font())).map_err(|e| anyhow!("{e}"))?;
-        let heads = ["case / parameters", "result", "NaN px", "fireflies", "TIR"];
+        let heads = ["case / parameters", "result", "NaN px", "fireflies", "TIR (fraction)"];
         let xs = [10, 760, 1010, 1110, 1210];
         for (t, x) in heads.iter().zip(xs) {
             root.draw(&Text::new(t.to_string(), (x, 48), font.clone())).map_err(|e| anyhow!("{e}"))?;
@@ -805,18 +829,18 @@ fn status_table(p: &PlotSpec, dir: &Path, header: &[String], rows: &[Vec<String>
             };
             let tall = line as i32 * (1 + extra[i] as i32);
             root.draw(&Rectangle::new([(5, y - 2), (w as i32 - 5, y + tall - 4)], colour.filled())).map_err(|e| anyhow!("{e}"))?;
-            let label = std::iter::once(r[case].clone())
-                .chain(params.iter().filter(|&&c| !r[c].is_empty()).map(|&c| format!("{}={}", header[c].trim_start_matches("param_"), r[c])))
-                .collect::<Vec<_>>()
-                .join("  ");
             let result = if failed { "error (below)".to_string() } else { "ok".into() };
-            let cells = [label, result, r[nan].clone(), r[ff].clone(), r[tir].chars().take(6).collect()];
-            for (t, x) in cells.iter().zip(xs) {
-                root.draw(&Text::new(t.chars().take(100).collect::<String>(), (x, y + 2), font.clone())).map_err(|e| anyhow!("{e}"))?;
+            for (k, part) in labels[i].iter().enumerate() {
+                root.draw(&Text::new(part.clone(), (xs[0], y + 2 + line as i32 * k as i32), font.clone())).map_err(|e| anyhow!("{e}"))?;
+            }
+            let cells = [result, r[nan].clone(), r[ff].clone(), r[tir].chars().take(6).collect()];
+            for (t, x) in cells.iter().zip(&xs[1..]) {
+                root.draw(&Text::new(t.clone(), (*x, y + 2), font.clone())).map_err(|e| anyhow!("{e}"))?;
             }
             if failed {
+                let below = labels[i].len() as i32;
                 for (k, part) in wrap(&format!("error: {}", r[error])).into_iter().enumerate() {
-                    root.draw(&Text::new(part, (30, y + 2 + line as i32 * (k as i32 + 1)), font.clone())).map_err(|e| anyhow!("{e}"))?;
+                    root.draw(&Text::new(part, (30, y + 2 + line as i32 * (k as i32 + below)), font.clone())).map_err(|e| anyhow!("{e}"))?;
                 }
             }
         }

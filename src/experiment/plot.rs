@@ -129,6 +129,11 @@ fn size_of(chart: &LineChart) -> (u32, u32) {
 const NOTE_CHARS: usize = 115;
 
 /// Text broken at spaces into lines of at most `width` characters.
+pub fn wrap_text(text: &str, width: usize) -> Vec<String> {
+    wrap(text, width)
+}
+
+/// Text broken at spaces into lines of at most `width` characters.
 fn wrap(text: &str, width: usize) -> Vec<String> {
     let mut lines: Vec<String> = Vec::new();
     for word in text.split(' ') {
