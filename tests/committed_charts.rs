@@ -21,7 +21,7 @@ fn every_committed_timing_chart_has_error_bars_and_its_fitted_line() {
             assert!(dir.join(format!("{}.png", p.file)).is_file(), "{}: no PNG beside the SVG", svg_path.display());
             assert!(e.repeats >= 3, "{}: timings need repeats (has {})", file.display(), e.repeats);
             assert!(svg.contains("error bars: least to greatest of the repeats"), "{}: no error bars", svg_path.display());
-            assert!(svg.contains(&format!("the median of {} repeats", e.repeats)), "{}: does not say its points are medians", svg_path.display());
+            assert!(svg.contains(&format!("median of {} repeats", e.repeats)), "{}: does not say its points are medians", svg_path.display());
             if p.fit {
                 assert!(
                     svg.contains("fitted line (least squares)") && svg.contains("slope") && svg.contains("R²"),

@@ -550,6 +550,7 @@ fn the_colour_map_tiles_are_cropped_to_the_fan_and_labelled() {
         only: vec!["pm-spectra-compare".into()],
         out: dir.path().to_path_buf(),
         scenes: repo("scenes"),
+        gallery_only: false,
     };
     refract::experiment::figures::run(&o).unwrap();
     let img = image::open(dir.path().join("figures/pm-spectra-compare.png")).unwrap().to_rgb8();

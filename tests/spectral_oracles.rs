@@ -100,6 +100,18 @@ fn accuracy_report_writes_csvs_and_plots() {
     // N-BK7 two-point C-F, max |error| 400-700 nm = 7.31e-05).
     let cauchy = summary.rows.iter().position(|r| r[0] == "cauchy").unwrap();
     assert!((summary.numbers("max_abs_err_400_700").unwrap()[cauchy] - 7.31e-5).abs() < 1e-6);
+    // The hue error chart is colour_maps.csv's rows: every nanometre of
+    // 400-700 for every map, whose mean is the summary's.
+    let maps = Table::parse(&std::fs::read_to_string(out.join("colour_maps.csv")).unwrap());
+    let sums = Table::parse(&std::fs::read_to_string(out.join("colour_maps_summary.csv")).unwrap());
+    let (nm, hue) = (maps.numbers("wavelength_nm").unwrap(), maps.numbers("hue_err_deg").unwrap());
+    let means = sums.numbers("mean_hue_err_deg_400_700").unwrap();
+    for (k, row) in sums.rows.iter().enumerate() {
+        let of: Vec<usize> = (0..maps.rows.len()).filter(|&i| maps.rows[i][1] == row[0] && (400.0..=700.0).contains(&nm[i])).collect();
+        assert_eq!(of.len(), 301, "{}: a row per nm over 400-700", row[0]);
+        let mean = of.iter().map(|&i| hue[i]).sum::<f64>() / of.len() as f64;
+        assert!((mean - means[k]).abs() < 2e-3, "{}: CSV mean {mean} against the summary's {}", row[0], means[k]);
+    }
     for png in ["ior_models.png", "ior_models_error.png", "colour_maps.png", "colour_maps_error.png"] {
         let img = image::open(out.join(png)).unwrap().to_rgb8();
         let first = img.get_pixel(0, 0);

@@ -42,6 +42,9 @@ pub enum Command {
         /// Results folder [default: results, or results/quick with --quick so the committed full-quality set stays]
         #[arg(long)]
         out: Option<PathBuf>,
+        /// Only rewrite the gallery (index.html) from the files already in the results folder: nothing is rendered or run
+        #[arg(long, conflicts_with = "only")]
+        gallery_only: bool,
         /// Folder of the scene files and FIGURES.md
         #[arg(long = "scene-dir", alias = "scenes", value_name = "DIR", default_value = "scenes")]
         scenes: PathBuf,
@@ -520,9 +523,9 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Interior(args) => run_interior(args),
         Command::Meshes { dir } => modes::meshes::write(&dir, &mut |path| eprintln!("wrote {}", path.display())),
         Command::Prism(args) => run_prism(args),
-        Command::Figures { quick, only, out, scenes } => {
+        Command::Figures { quick, only, out, scenes, gallery_only } => {
             let out = out.unwrap_or_else(|| PathBuf::from(if quick { "results/quick" } else { "results" }));
-            let outcome = crate::experiment::figures::run(&crate::experiment::figures::FigureOptions { quick, only, out, scenes })?;
+            let outcome = crate::experiment::figures::run(&crate::experiment::figures::FigureOptions { quick, only, out, scenes, gallery_only })?;
             eprintln!("{outcome}");
             if !outcome.failed.is_empty() {
                 bail!("{} of the figures failed (see above)", outcome.failed.len());

@@ -70,12 +70,23 @@ fn fixed_text(e: &Experiment) -> String {
         .fixed
         .iter()
         .filter(|(k, _)| !e.cases.iter().any(|c| c.params.iter().any(|(q, _)| q == k)))
-        .map(|(k, v)| format!("{} {}", k.replace('_', " "), super::params::cell(v)))
+        .map(|(k, v)| format!("{} {}", k.replace('_', " "), fixed_value(v)))
         .collect();
     if parts.is_empty() {
         String::new()
     } else {
         format!("fixed: {}", parts.join(", "))
+    }
+}
+
+/// A fixed value as a reader writes it: a file by its name (the key
+/// already says what it is: "off icosphere.off"), a pair of numbers as
+/// a size ("301×301").
+fn fixed_value(v: &toml::Value) -> String {
+    match v {
+        toml::Value::Array(a) if a.len() == 2 && a.iter().all(|x| x.is_integer()) => format!("{}×{}", super::params::cell(&a[0]), super::params::cell(&a[1])),
+        toml::Value::String(t) if t.contains('/') => t.rsplit('/').next().unwrap_or(t).to_string(),
+        other => super::params::cell(other),
     }
 }
 
@@ -186,6 +197,8 @@ struct Point {
     measured: f64,
     /// The run's parameters, where x is a timing (repeats share them).
     place: String,
+    /// The runs behind the point (indices into the chart's ok rows).
+    runs: Vec<usize>,
 }
 
 pub fn line_chart(p: &PlotSpec, header: &[String], rows: &[Vec<String>]) -> Result<LineChart> {
@@ -195,13 +208,10 @@ pub fn line_chart(p: &PlotSpec, header: &[String], rows: &[Vec<String>]) -> Resu
 fn line_chart_of(e: &Experiment, p: &PlotSpec, header: &[String], rows: &[Vec<String>], reference_noise: Option<f64>) -> Result<LineChart> {
     let axes: Vec<String> = e.param_names();
     let mut chart = line_chart_with(p, header, rows, e.quick, &axes, reference_noise)?;
-    if e.repeats > 1 && (is_timing(&p.x) || is_timing(&p.y)) && !e.quick {
-        let lengthened = if e.min_time > 0.0 {
-            format!("; a run shorter than {} s is rendered again inside one timing, and its time is the mean", tick(&e.min_time))
-        } else {
-            String::new()
-        };
-        chart.notes.insert(0, (format!("each point: the median of {} repeats{lengthened}", e.repeats), RGBColor(60, 60, 60)));
+    if e.min_time > 0.0 && (is_timing(&p.x) || is_timing(&p.y)) && !e.quick {
+        if let Some(n) = chart.notes.iter_mut().find(|n| n.0.starts_with("each point: the median")) {
+            n.0.push_str(&format!("; a run shorter than {} s is rendered again inside one timing, and its time is the mean", tick(&e.min_time)));
+        }
     }
     Ok(chart)
 }
@@ -216,6 +226,10 @@ fn line_chart_with(p: &PlotSpec, header: &[String], rows: &[Vec<String>], quick:
     let renders = header.iter().position(|h| h == "renders");
     let timing = [timing_of(&p.x), timing_of(&p.y)].into_iter().flatten().next().map(|c| col(header, c)).transpose()?;
     let ok_rows: Vec<&Vec<String>> = rows.iter().filter(|r| r[status] == "ok").collect();
+    // A parameter the run also measured (`param_photons`: photons a pass
+    // emits; `photons`: photons traced over every pass) is placed at what
+    // was measured, as its axis title says.
+    let xi = measured_column(header, &p.x).unwrap_or(xi);
     // A column of text (a glass, a map, a scene) is drawn as categories.
     let categorical = ok_rows.iter().any(|r| !r[xi].is_empty() && r[xi].parse::<f64>().is_err());
     let mut categories: Vec<String> = Vec::new();
@@ -230,7 +244,7 @@ fn line_chart_with(p: &PlotSpec, header: &[String], rows: &[Vec<String>], quick:
     // Group rows into series, and repeats into points at equal x.
     let mut groups: Vec<(String, Vec<Point>)> = Vec::new();
     let mut not_positive = 0usize;
-    for r in &ok_rows {
+    for (ri, r) in ok_rows.iter().enumerate() {
         let x = if categorical { categories.iter().position(|c| *c == r[xi]).map(|k| k as f64) } else { r[xi].parse::<f64>().ok() };
         let (Some(x), Ok(y)) = (x, r[yi].parse::<f64>()) else { continue };
         let key = si.iter().zip(&p.series).map(|(&i, n)| format!("{}={}", n.trim_start_matches("param_"), r[i])).collect::<Vec<_>>().join(", ");
@@ -261,49 +275,27 @@ fn line_chart_with(p: &PlotSpec, header: &[String], rows: &[Vec<String>], quick:
                 pt.xs.push(x);
                 pt.ys.push(y);
                 pt.measured = pt.measured.min(measured);
+                pt.runs.push(ri);
             }
-            None => g.push(Point { x, xs: vec![x], ys: vec![y], measured, place }),
+            None => g.push(Point { x, xs: vec![x], ys: vec![y], measured, place, runs: vec![ri] }),
         }
     }
     let mut notes: Vec<(String, RGBColor)> = Vec::new();
-    // What varies along each curve: a parameter neither on the x axis nor
-    // naming the series, that takes more than one value within a series.
-    let along: Vec<String> = axes
+    let mut short = 0usize;
+    let mut below_reference = 0usize;
+    // The parameters that may vary along a curve or within a point: the
+    // experiment's, but for the x axis and those naming the series.
+    let free: Vec<(String, usize)> = axes
         .iter()
         .filter(|a| format!("param_{a}") != p.x && !p.series.contains(&format!("param_{a}")))
         .filter_map(|a| {
-            let c = header.iter().position(|h| *h == format!("param_{a}"))?;
-            let mut vals: Vec<&str> = Vec::new();
-            let mut varies = false;
-            for (key, _) in &groups {
-                let mut within: Vec<&str> = Vec::new();
-                for r in ok_rows.iter().filter(|r| {
-                    si.iter().zip(&p.series).map(|(&i, n)| format!("{}={}", n.trim_start_matches("param_"), r[i])).collect::<Vec<_>>().join(", ") == *key
-                }) {
-                    if !within.contains(&r[c].as_str()) {
-                        within.push(&r[c]);
-                    }
-                    if !vals.contains(&r[c].as_str()) {
-                        vals.push(&r[c]);
-                    }
-                }
-                varies |= within.len() > 1;
-            }
-            let nums: Option<Vec<f64>> = vals.iter().map(|v| v.parse::<f64>().ok()).collect();
-            varies.then(|| match nums {
-                Some(mut n) if n.len() > 2 => {
-                    n.sort_by(f64::total_cmp);
-                    format!("{} from {} to {}", a.replace('_', " "), tick(&n[0]), tick(&n[n.len() - 1]))
-                }
-                _ => format!("{} ({})", a.replace('_', " "), vals.join(", ")),
-            })
+            header.iter().position(|h| *h == format!("param_{a}")).map(|c| (a.clone(), measured_column(header, &format!("param_{a}")).unwrap_or(c)))
         })
+        .filter(|(_, c)| values_of(&(0..ok_rows.len()).collect::<Vec<_>>(), &ok_rows, *c).len() > 1)
         .collect();
-    if !along.is_empty() {
-        notes.push((format!("along each curve: {}", along.join("; ")), RGBColor(60, 60, 60)));
-    }
-    let mut short = 0usize;
-    let mut below_reference = 0usize;
+    // Each series' drawn points (their runs), and the points left out.
+    let mut kept: Vec<(String, Vec<Vec<usize>>)> = Vec::new();
+    let mut dropped: Vec<(String, Vec<usize>)> = Vec::new();
     let floor = reference_noise.filter(|n| *n > 0.0).map(|n| 10.0 * n);
     let mut verdicts: Vec<(String, RGBColor)> = Vec::new();
     let mut series: Vec<Series> = Vec::new();
@@ -311,6 +303,7 @@ fn line_chart_with(p: &PlotSpec, header: &[String], rows: &[Vec<String>], quick:
         // Too short to time (not in a quick run, whose every time is).
         if !quick {
             let before = pts.len();
+            dropped.extend(pts.iter().filter(|pt| pt.measured < SHORTEST_TIMING_S).map(|pt| (name.clone(), pt.runs.clone())));
             pts.retain(|pt| !(pt.measured < SHORTEST_TIMING_S));
             short += before - pts.len();
         }
@@ -325,6 +318,7 @@ fn line_chart_with(p: &PlotSpec, header: &[String], rows: &[Vec<String>], quick:
             });
             below_reference += before - pts.len();
         }
+        kept.push((name.clone(), pts.iter().map(|pt| pt.runs.clone()).collect()));
         let mut out = Series::new(if name.is_empty() { axis_title(&p.y) } else { name }, Vec::new(), PALETTE[k % PALETTE.len()]);
         let mut sorted: Vec<(f64, f64, Spread, Spread)> = pts
             .iter()
@@ -360,12 +354,16 @@ fn line_chart_with(p: &PlotSpec, header: &[String], rows: &[Vec<String>], quick:
                         };
                     let name = if p.series.is_empty() { String::new() } else { format!(" for {}", out.name.split(':').next().unwrap_or_default()) };
                     let (word, colour) = if holds { ("HOLDS", RGBColor(0, 120, 40)) } else { ("DOES NOT HOLD", RGBColor(190, 0, 0)) };
-                    let rule = match p.claim_slope {
-                        Some(s) => format!("R² ≥ {CLAIM_R2} and slope within its 95 % interval, or {CLAIM_SLOPE_TOLERANCE}, of {}", sig(s)),
-                        None => format!("R² ≥ {CLAIM_R2} and slope above 0 at 95 %"),
-                    };
                     verdicts.push((
-                        format!("The report's claim \"{}\" {word}{name}: slope {} ± {}, R² {:.3} (the test: {rule})", p.claim, sig(f.b), sig(f.b_ci), f.r2),
+                        format!(
+                            "The report's claim \"{}\", tested on {} against {}, {word}{name}: slope {} ± {}, R² {:.3}",
+                            p.claim,
+                            axis_title(&p.y),
+                            axis_title(&p.x),
+                            sig(f.b),
+                            sig(f.b_ci),
+                            f.r2,
+                        ),
                         colour,
                     ));
                 }
@@ -390,6 +388,10 @@ fn line_chart_with(p: &PlotSpec, header: &[String], rows: &[Vec<String>], quick:
     if quick && (is_timing(&p.x) || is_timing(&p.y)) {
         notes.push(("quick run: its runs are too short for their times to be measurements; no claim is judged".into(), RGBColor(190, 0, 0)));
     }
+    notes.splice(0..0, point_notes(&free, &kept, &ok_rows, header, &p.x, &p.y, quick));
+    if !verdicts.is_empty() {
+        verdicts.push((format!("the test: {}", claim_rule(p.claim_slope, log_x && log_y)), RGBColor(60, 60, 60)));
+    }
     notes.extend(verdicts);
     if !p.note.is_empty() {
         notes.push((p.note.clone(), RGBColor(60, 60, 60)));
@@ -401,8 +403,9 @@ fn line_chart_with(p: &PlotSpec, header: &[String], rows: &[Vec<String>], quick:
         let (whose, verb) = if short == 1 { ("its", "was") } else { ("their", "were") };
         notes.push((
             format!(
-                "{} not plotted: {whose} renders together, repeats inside one timing included, {verb} timed over less than {} ms",
+                "{} not plotted{}: {whose} renders together, repeats inside one timing included, {verb} timed over less than {} ms",
                 count(short, "point"),
+                which_points(&free, &dropped, &kept, &ok_rows, header, &p.x),
                 SHORTEST_TIMING_S * 1e3
             ),
             RGBColor(60, 60, 60),
@@ -419,7 +422,66 @@ fn line_chart_with(p: &PlotSpec, header: &[String], rows: &[Vec<String>], quick:
             notes.push((text, RGBColor(60, 60, 60)));
         }
     }
+    // Why time follows or leaves the claim: the rays the runs traced, where
+    // the claim is about something else that drives them.
+    if !p.claim.is_empty() && is_timing(&p.y) && p.x != "rays" && !is_timing(&p.x) {
+        if let (Some(c), Some((name, pts))) = (header.iter().position(|h| h == "rays"), kept.first()) {
+            let xs = header.iter().position(|h| *h == p.x);
+            let parts: Vec<String> = pts
+                .iter()
+                .filter_map(|runs| {
+                    let mut r: Vec<f64> = runs.iter().filter_map(|&i| ok_rows[i][c].parse::<f64>().ok()).collect();
+                    r.sort_by(f64::total_cmp);
+                    let x = xs.map(|xi| ok_rows[runs[0]][xi].clone())?;
+                    (!r.is_empty()).then(|| format!("{x}: {}", median(&r).round()))
+                })
+                .collect();
+            let rays: Vec<f64> = parts.iter().filter_map(|t| t.rsplit(' ').next().and_then(|v| v.parse::<f64>().ok())).collect();
+            let varies = rays.iter().copied().reduce(f64::max).zip(rays.iter().copied().reduce(f64::min)).is_some_and(|(hi, lo)| hi > 1.1 * lo);
+            if varies {
+                let of = if name.is_empty() { String::new() } else { format!(" ({name})") };
+                notes.push((
+                    format!(
+                        "rays traced per run{of}, by {}: {}",
+                        axis_title(&p.x),
+                        parts
+                            .iter()
+                            .map(|t| match t.rsplit_once(' ') {
+                                Some((a, v)) => format!("{a} {}", v.parse::<f64>().map(|v| tick(&v)).unwrap_or_default()),
+                                None => t.clone(),
+                            })
+                            .collect::<Vec<_>>()
+                            .join(", ")
+                    ),
+                    RGBColor(60, 60, 60),
+                ));
+            }
+        }
+    }
+    // Where x steps unevenly, a change from the previous value spans more
+    // than one step: say which points do.
+    if p.y == "changed_px" {
+        if let Some((_, pts)) = series.first().map(|s| ((), &s.points)) {
+            let steps: Vec<(f64, f64)> = pts.windows(2).map(|w| (w[1].0, w[1].0 - w[0].0)).collect();
+            if let Some(least) = steps.iter().map(|s| s.1).reduce(f64::min) {
+                let wide: Vec<String> =
+                    steps.iter().filter(|s| s.1 > least * 1.001).map(|s| format!("{} ({} steps)", tick(&s.0), tick(&(s.1 / least)))).collect();
+                if !wide.is_empty() {
+                    notes.push((
+                        format!(
+                            "each point: the change from the previous point, {} {} on; but the points at {} span more",
+                            tick(&least),
+                            axis_title(&p.x),
+                            wide.join(", ")
+                        ),
+                        RGBColor(60, 60, 60),
+                    ));
+                }
+            }
+        }
+    }
     Ok(LineChart {
+        y_from_zero: !p.claim.is_empty() && !log_y,
         title: p.title.clone(),
         subtitle: String::new(),
         notes,
@@ -430,6 +492,215 @@ fn line_chart_with(p: &PlotSpec, header: &[String], rows: &[Vec<String>], quick:
         categories,
         series,
     })
+}
+
+/// The column a parameter was also measured in (`param_photons`:
+/// `photons`), if runs.csv has one.
+fn measured_column(header: &[String], x: &str) -> Option<usize> {
+    let name = x.strip_prefix("param_")?;
+    header.iter().position(|h| h == name)
+}
+
+/// The distinct values of column `c` over `runs`, in the order met.
+fn values_of(runs: &[usize], ok_rows: &[&Vec<String>], c: usize) -> Vec<String> {
+    let mut v: Vec<String> = Vec::new();
+    for &r in runs {
+        if !v.contains(&ok_rows[r][c]) {
+            v.push(ok_rows[r][c].clone());
+        }
+    }
+    v
+}
+
+/// Values for a reader: a range for more than two numbers, else a list.
+fn span_text(vals: &[String]) -> String {
+    let nums: Option<Vec<f64>> = vals.iter().map(|v| v.parse::<f64>().ok()).collect();
+    match nums {
+        Some(mut n) if n.len() > 2 => {
+            n.sort_by(f64::total_cmp);
+            format!("from {} to {}", tick(&n[0]), tick(&n[n.len() - 1]))
+        }
+        // A few values as written (a tick would round 1.0001 to 1); a size
+        // "64 64" reads 64×64.
+        _ => vals
+            .iter()
+            .map(|v| match v.split_once(' ') {
+                Some((a, b)) if a.parse::<u64>().is_ok() && b.parse::<u64>().is_ok() => format!("{a}×{b}"),
+                _ => v.clone(),
+            })
+            .collect::<Vec<_>>()
+            .join(", "),
+    }
+}
+
+/// What a free parameter is called in a note: the measured column's axis
+/// title where it was measured ("photons traced"), else its name.
+fn free_name(a: &str, c: usize, header: &[String]) -> String {
+    if header[c] == format!("param_{a}") {
+        a.replace('_', " ")
+    } else {
+        axis_title(&header[c])
+    }
+}
+
+/// The notes on the points as drawn: how many runs each is the median of
+/// (the repeats, and any parameter pooled within it), and what varies
+/// along each curve, series by series where they differ; both from the
+/// points plotted, not from the experiment file.
+fn point_notes(
+    free: &[(String, usize)],
+    kept: &[(String, Vec<Vec<usize>>)],
+    ok_rows: &[&Vec<String>],
+    header: &[String],
+    x: &str,
+    y: &str,
+    quick: bool,
+) -> Vec<(String, RGBColor)> {
+    let grey = RGBColor(60, 60, 60);
+    let mut out = Vec::new();
+    // Pooled: a parameter taking more than one value within a point.
+    let pooled: Vec<&(String, usize)> =
+        free.iter().filter(|(_, c)| kept.iter().any(|(_, pts)| pts.iter().any(|r| values_of(r, ok_rows, *c).len() > 1))).collect();
+    let timing = is_timing(x) || is_timing(y);
+    let per_series: Vec<(String, String)> = kept
+        .iter()
+        .filter(|(_, pts)| !pts.is_empty())
+        .map(|(name, pts)| {
+            let (lo, hi) = pts.iter().map(Vec::len).fold((usize::MAX, 0), |a, n| (a.0.min(n), a.1.max(n)));
+            let runs = if lo == hi { lo.to_string() } else { format!("{lo} to {hi}") };
+            let mut what = Vec::new();
+            for (a, c) in &pooled {
+                let all: Vec<usize> = pts.iter().flatten().copied().collect();
+                let vals = values_of(&all, ok_rows, *c);
+                if vals.len() > 1 {
+                    what.push(format!("{} ({})", free_name(a, *c, header), vals.join(", ")));
+                }
+            }
+            let text = if what.is_empty() {
+                format!("the median of {runs} {}", if hi == 1 { "run" } else { "repeats" })
+            } else {
+                format!("the median of {runs} runs, every repeat of every {} pooled", what.join(" and "))
+            };
+            (name.clone(), text)
+        })
+        .collect();
+    let most = kept.iter().flat_map(|(_, pts)| pts.iter().map(Vec::len)).max().unwrap_or(0);
+    if (timing && !quick && most > 1) || !pooled.is_empty() {
+        out.push((format!("each point: {}", grouped(&per_series)), grey));
+    }
+    // Along a curve: a parameter constant within each point that takes
+    // more than one value within a series.
+    let mut along = Vec::new();
+    for (a, c) in free.iter().filter(|f| !pooled.iter().any(|p| p.0 == f.0)) {
+        let per: Vec<(String, Vec<String>)> = kept
+            .iter()
+            .filter(|(_, pts)| !pts.is_empty())
+            .map(|(name, pts)| (name.clone(), values_of(&pts.iter().flatten().copied().collect::<Vec<_>>(), ok_rows, *c)))
+            .collect();
+        if per.iter().any(|(_, v)| v.len() > 1) {
+            let texts: Vec<(String, String)> = per.iter().map(|(n, v)| (n.clone(), span_text(v))).collect();
+            along.push(format!("{} {}", free_name(a, *c, header), grouped(&texts)));
+        }
+    }
+    if !along.is_empty() {
+        out.push((format!("along each curve: {}", along.join("; ")), grey));
+    }
+    out
+}
+
+/// One text if every series has it, else each text with the series it
+/// belongs to: "a (s1, s2); b (s3)".
+fn grouped(per: &[(String, String)]) -> String {
+    let mut groups: Vec<(String, Vec<String>)> = Vec::new();
+    for (name, text) in per {
+        match groups.iter_mut().find(|g| g.0 == *text) {
+            Some(g) => g.1.push(name.clone()),
+            None => groups.push((text.clone(), vec![name.clone()])),
+        }
+    }
+    if groups.len() == 1 {
+        return groups.remove(0).0;
+    }
+    // A group named by what only its series share ("case=progressive x8"),
+    // or, once, as the other curves; else by every series' name.
+    let parts = |n: &str| n.split(", ").map(str::to_string).collect::<Vec<_>>();
+    let mut labelled: Vec<(String, Option<String>)> = groups
+        .iter()
+        .map(|(t, names)| {
+            let common: Vec<String> = parts(&names[0]).into_iter().filter(|q| names.iter().all(|n| parts(n).contains(q))).collect();
+            let own: Vec<String> = common.into_iter().filter(|q| per.iter().filter(|(n, _)| !names.contains(n)).all(|(n, _)| !parts(n).contains(q))).collect();
+            (t.clone(), (!own.is_empty()).then(|| own.join(", ")))
+        })
+        .collect();
+    if labelled.iter().filter(|l| l.1.is_none()).count() > 1 {
+        return groups.iter().map(|(t, names)| format!("{t} ({})", names.join("; "))).collect::<Vec<_>>().join("; ");
+    }
+    labelled.sort_by_key(|l| l.1.is_none());
+    labelled.iter().map(|(t, l)| format!("{t} ({})", l.as_deref().unwrap_or("the other curves"))).collect::<Vec<_>>().join("; ")
+}
+
+/// Which points were left out, by series and the x or free parameters that
+/// place them: " (hero: spp 1, 2)".
+fn which_points(
+    free: &[(String, usize)],
+    dropped: &[(String, Vec<usize>)],
+    kept: &[(String, Vec<Vec<usize>>)],
+    ok_rows: &[&Vec<String>],
+    header: &[String],
+    x: &str,
+) -> String {
+    let mut per: Vec<(String, Vec<String>)> = Vec::new();
+    for (name, runs) in dropped {
+        // The series' every run, drawn or not: a parameter constant over
+        // them does not tell its points apart.
+        let all: Vec<usize> = kept
+            .iter()
+            .filter(|k| k.0 == *name)
+            .flat_map(|k| k.1.iter().flatten())
+            .chain(dropped.iter().filter(|d| d.0 == *name).flat_map(|d| d.1.iter()))
+            .copied()
+            .collect();
+        let place: Vec<String> = if is_timing(x) {
+            free.iter()
+                .filter(|(_, c)| values_of(&all, ok_rows, *c).len() > 1)
+                .map(|(a, c)| format!("{} {}", free_name(a, *c, header), values_of(runs, ok_rows, *c).join("/")))
+                .collect()
+        } else {
+            header
+                .iter()
+                .position(|h| h == x)
+                .map(|c| format!("{} {}", x.trim_start_matches("param_").replace('_', " "), values_of(runs, ok_rows, c).join("/")))
+                .into_iter()
+                .collect()
+        };
+        let place = place.join(" ");
+        match per.iter_mut().find(|g| g.0 == *name) {
+            Some(g) => g.1.push(place),
+            None => per.push((name.clone(), vec![place])),
+        }
+    }
+    if per.is_empty() {
+        return String::new();
+    }
+    format!(" ({})", per.iter().map(|(n, p)| if n.is_empty() { p.join(", ") } else { format!("{n}: {}", p.join(", ")) }).collect::<Vec<_>>().join("; "))
+}
+
+/// The test a claim is judged by, and why that one: on log-log axes a
+/// slope of 1 is proportionality (time = c x); on linear axes, where x
+/// starts at 0 with a cost already (trace 0 still traces the primary
+/// rays, so x = 0 cannot go on a log axis), a straight line rising
+/// (time = a + b x).
+fn claim_rule(claim_slope: Option<f64>, log_log: bool) -> String {
+    match (claim_slope, log_log) {
+        (Some(s), true) => format!(
+            "R² ≥ {CLAIM_R2} and log-log slope within its 95 % interval, or {CLAIM_SLOPE_TOLERANCE}, of {}: time proportional to x; stricter than a straight line with an offset",
+            sig(s)
+        ),
+        (Some(s), false) => format!("R² ≥ {CLAIM_R2} and slope within its 95 % interval, or {CLAIM_SLOPE_TOLERANCE}, of {}", sig(s)),
+        (None, _) => format!(
+            "R² ≥ {CLAIM_R2} and slope above 0 at 95 % on linear axes: time = a + b x, a straight line with an offset, since x = 0 costs time already and cannot go on a log axis"
+        ),
+    }
 }
 
 /// "1 point", "2 points".
@@ -495,6 +766,10 @@ pub fn axis_title(column: &str) -> String {
     }
 }
 
+/// Characters of the stability table's first column (15 px type in the
+/// 740 px before the result column).
+const LABEL_CHARS: usize = 100;
+
 /// One row per run: its case and parameters, then whether it failed, its
 /// NaN/inf pixels, fireflies and fraction of rays in total internal
 /// reflection, coloured red (failed or NaN), amber (fireflies), green.
@@ -506,7 +781,27 @@ fn status_table(p: &PlotSpec, dir: &Path, header: &[String], rows: &[Vec<String>
     let (w, line) = (1400u32, 26u32);
     // A failed run's error is written in full beneath its row, wrapped.
     let wrap = |t: &str| -> Vec<String> { t.chars().collect::<Vec<_>>().chunks(150).map(|c| c.iter().collect()).collect() };
-    let extra: Vec<u32> = rows.iter().map(|r| if r[status] != "ok" { wrap(&format!("error: {}", r[error])).len() as u32 } else { 0 }).collect();
+    // A run's case and parameters, broken at spaces to fit their column.
+    let labels: Vec<Vec<String>> = rows
+        .iter()
+        .map(|r| {
+            let label = std::iter::once(r[case].clone())
+                .chain(
+                    params
+                        .iter()
+                        .filter(|&&c| !r[c].is_empty())
+                        .map(|&c| format!("{}={}", header[c].trim_start_matches("param_"), span_text(std::slice::from_ref(&r[c])))),
+                )
+                .collect::<Vec<_>>()
+                .join("  ");
+            super::plot::wrap_text(&label, LABEL_CHARS)
+        })
+        .collect();
+    let extra: Vec<u32> = rows
+        .iter()
+        .zip(&labels)
+        .map(|(r, l)| l.len() as u32 - 1 + if r[status] != "ok" { wrap(&format!("error: {}", r[error])).len() as u32 } else { 0 })
+        .collect();
     let h = 80 + line * (rows.len() as u32 + extra.iter().sum::<u32>());
     let mut buf = vec![255u8; (w * h * 3) as usize];
     {
@@ -514,7 +809,7 @@ fn status_table(p: &PlotSpec, dir: &Path, header: &[String], rows: &[Vec<String>
         root.fill(&WHITE).map_err(|e| anyhow!("{e}"))?;
         let font = ("sans-serif", 15).into_font();
         root.draw(&Text::new(p.title.clone(), (10, 10), ("sans-serif", 22).into_font())).map_err(|e| anyhow!("{e}"))?;
-        let heads = ["case / parameters", "result", "NaN px", "fireflies", "TIR"];
+        let heads = ["case / parameters", "result", "NaN px", "fireflies", "TIR (fraction)"];
         let xs = [10, 760, 1010, 1110, 1210];
         for (t, x) in heads.iter().zip(xs) {
             root.draw(&Text::new(t.to_string(), (x, 48), font.clone())).map_err(|e| anyhow!("{e}"))?;
@@ -534,18 +829,18 @@ fn status_table(p: &PlotSpec, dir: &Path, header: &[String], rows: &[Vec<String>
             };
             let tall = line as i32 * (1 + extra[i] as i32);
             root.draw(&Rectangle::new([(5, y - 2), (w as i32 - 5, y + tall - 4)], colour.filled())).map_err(|e| anyhow!("{e}"))?;
-            let label = std::iter::once(r[case].clone())
-                .chain(params.iter().filter(|&&c| !r[c].is_empty()).map(|&c| format!("{}={}", header[c].trim_start_matches("param_"), r[c])))
-                .collect::<Vec<_>>()
-                .join("  ");
             let result = if failed { "error (below)".to_string() } else { "ok".into() };
-            let cells = [label, result, r[nan].clone(), r[ff].clone(), r[tir].chars().take(6).collect()];
-            for (t, x) in cells.iter().zip(xs) {
-                root.draw(&Text::new(t.chars().take(100).collect::<String>(), (x, y + 2), font.clone())).map_err(|e| anyhow!("{e}"))?;
+            for (k, part) in labels[i].iter().enumerate() {
+                root.draw(&Text::new(part.clone(), (xs[0], y + 2 + line as i32 * k as i32), font.clone())).map_err(|e| anyhow!("{e}"))?;
+            }
+            let cells = [result, r[nan].clone(), r[ff].clone(), r[tir].chars().take(6).collect()];
+            for (t, x) in cells.iter().zip(&xs[1..]) {
+                root.draw(&Text::new(t.clone(), (*x, y + 2), font.clone())).map_err(|e| anyhow!("{e}"))?;
             }
             if failed {
+                let below = labels[i].len() as i32;
                 for (k, part) in wrap(&format!("error: {}", r[error])).into_iter().enumerate() {
-                    root.draw(&Text::new(part, (30, y + 2 + line as i32 * (k as i32 + 1)), font.clone())).map_err(|e| anyhow!("{e}"))?;
+                    root.draw(&Text::new(part, (30, y + 2 + line as i32 * (k as i32 + below)), font.clone())).map_err(|e| anyhow!("{e}"))?;
                 }
             }
         }
@@ -637,7 +932,7 @@ mod tests {
         assert!(
             c.notes
                 .iter()
-                .any(|n| n.0.contains("1 point not plotted: its renders together, repeats inside one timing included, was timed over less than 50 ms")),
+                .any(|n| n.0.contains("1 point not plotted (n 4): its renders together, repeats inside one timing included, was timed over less than 50 ms")),
             "{:?}",
             c.notes
         );
@@ -665,6 +960,100 @@ mod tests {
         let c = line_chart_with(&spec("param_n", "rmse"), &header(), &rows, false, &[], Some(0.001)).unwrap();
         assert_eq!(c.series[0].points.len(), 2);
         assert!(c.notes.iter().any(|n| n.0.contains("own noise (two seeds): 0.00100; 1 point under ten times that left out")), "{:?}", c.notes);
+    }
+
+    fn photon_header() -> Vec<String> {
+        ["case", "param_photons", "param_filter", "param_passes", "status", "photons", "trace_s", "renders", "photons_per_s", "cpu_s", "rel_error"]
+            .iter()
+            .map(|s| s.to_string())
+            .collect()
+    }
+
+    fn photon_row(case: &str, photons: u32, filter: &str, passes: u32, rate: f64) -> Vec<String> {
+        let traced = photons * passes;
+        [case, &photons.to_string(), filter, &passes.to_string(), "ok", &traced.to_string(), "0.2", "1", &rate.to_string(), "0.3", "0.1"]
+            .iter()
+            .map(|s| s.to_string())
+            .collect()
+    }
+
+    /// The notes come from the points drawn: a point that pools a
+    /// parameter says so and counts its runs; a curve sits at the photons
+    /// traced; what runs along each curve is said series by series.
+    #[test]
+    fn notes_describe_the_points_drawn() {
+        let mut rows = Vec::new();
+        for n in [100, 200, 400] {
+            for f in ["box", "cone"] {
+                for rep in 0..3 {
+                    rows.push(photon_row("one", n, f, 1, 1000.0 + rep as f64));
+                }
+            }
+            for rep in 0..3 {
+                rows.push(photon_row("many", n, "box", 8, 900.0 + rep as f64));
+            }
+        }
+        let axes: Vec<String> = ["photons", "filter", "passes"].iter().map(|s| s.to_string()).collect();
+        let mut p = spec("param_photons", "photons_per_s");
+        p.series = vec!["case".into()];
+        let c = line_chart_with(&p, &photon_header(), &rows, false, &axes, None).unwrap();
+        let xs = |k: usize| c.series[k].points.iter().map(|p| p.0).collect::<Vec<_>>();
+        assert_eq!(xs(0), vec![100.0, 200.0, 400.0]);
+        assert_eq!(xs(1), vec![800.0, 1600.0, 3200.0], "eight passes: placed at the photons traced");
+        let each = c.notes.iter().find(|n| n.0.starts_with("each point")).map(|n| n.0.clone()).unwrap_or_default();
+        assert!(each.contains("the median of 6 runs, every repeat of every filter (box, cone) pooled (case=one)"), "{each}");
+        assert!(each.contains("the median of 3 repeats (case=many)"), "{each}");
+        assert!(!c.notes.iter().any(|n| n.0.contains("along each curve: filter")), "{:?}", c.notes);
+        // Along a timing axis: the photons traced, per series.
+        let mut q = spec("cpu_s", "rel_error");
+        q.series = vec!["case".into(), "param_filter".into()];
+        let d = line_chart_with(&q, &photon_header(), &rows, false, &axes, None).unwrap();
+        let along = d.notes.iter().find(|n| n.0.starts_with("along each curve")).map(|n| n.0.clone()).unwrap_or_default();
+        assert_eq!(along, "along each curve: photons traced from 100 to 400 (case=one); from 800 to 3200 (case=many)");
+    }
+
+    /// Points too short to time are named by series and place, and the
+    /// range along the curve is that of the points left.
+    #[test]
+    fn dropped_points_are_named() {
+        let mut rows = Vec::new();
+        for (n, t) in [(100, 0.01), (200, 0.2), (400, 0.4)] {
+            let mut r = photon_row("one", n, "box", 1, 1.0);
+            r[6] = t.to_string();
+            rows.push(r);
+        }
+        let axes: Vec<String> = ["photons", "filter", "passes"].iter().map(|s| s.to_string()).collect();
+        let mut p = spec("trace_s", "rel_error");
+        p.series = vec!["case".into()];
+        let c = line_chart_with(&p, &photon_header(), &rows, false, &axes, None).unwrap();
+        assert!(c.notes.iter().any(|n| n.0.starts_with("1 point not plotted (case=one: photons traced 100)")), "{:?}", c.notes);
+        assert!(c.notes.iter().any(|n| n.0 == "along each curve: photons traced 200, 400"), "{:?}", c.notes);
+    }
+
+    /// A fixed file is named by its file name, a size as width×height.
+    #[test]
+    fn fixed_values_read_as_written() {
+        assert_eq!(fixed_value(&toml::Value::String("off/icosphere.off".into())), "icosphere.off");
+        assert_eq!(fixed_value(&toml::Value::Array(vec![toml::Value::Integer(301), toml::Value::Integer(301)])), "301×301");
+        assert_eq!(fixed_value(&toml::Value::Float(1.4)), "1.4");
+        assert_eq!(span_text(&["64 64".into(), "128 128".into()]), "64×64, 128×128");
+    }
+
+    /// A judged claim on a linear axis starts y at 0 and names its test
+    /// once; the test differs by axes, and says why.
+    #[test]
+    fn a_claim_names_its_test_and_starts_at_zero() {
+        let rows: Vec<Vec<String>> = (0..4).map(|i| row(i, "a", i as u32, 1.0 + 0.1 * i as f64, 1, 0.0)).collect();
+        let mut p = spec("param_n", "render_s");
+        p.fit = true;
+        p.claim = "time grows with n".into();
+        let c = line_chart_with(&p, &header(), &rows, false, &[], None).unwrap();
+        assert!(c.y_from_zero);
+        assert!(c.notes.iter().any(|n| n.0.contains("tested on render time (s) against n")), "{:?}", c.notes);
+        assert_eq!(c.notes.iter().filter(|n| n.0.starts_with("the test:")).count(), 1);
+        assert!(claim_rule(None, false).contains("offset") && claim_rule(Some(1.0), true).contains("proportional"));
+        p.log_y = true;
+        assert!(!line_chart_with(&p, &header(), &rows, false, &[], None).unwrap().y_from_zero);
     }
 
     #[test]

@@ -33,8 +33,8 @@ const DRAWN: [(&str, &str, &str); 2] = [
 
 /// The sweeps whose plots the gallery shows, with what they stand for.
 const SWEEPS: [(&str, &str); 8] = [
-    ("lab-trace", "Report 004's timing figure: render time against trace count; image change against trace count"),
-    ("lab-timing", "Report 004's limitation: render time against polygons, linear scan against BVH"),
+    ("lab-trace", "Report 004's timing figure: render CPU time against trace count; image change against trace count"),
+    ("lab-timing", "Report 004's limitation: CPU time (every thread) against polygons, linear scan against BVH, to test the claim that render time is linear in the polygons"),
     ("lab-size", "Report 004's limitation: render time against pixels"),
     ("lab-ior", "Highlight area against refractive index"),
     ("lab-shininess", "Highlight area against shininess"),
@@ -59,6 +59,9 @@ pub struct FigureOptions {
     pub out: PathBuf,
     /// Folder holding the scene files and FIGURES.md.
     pub scenes: PathBuf,
+    /// Only rewrite the gallery from the files already there: nothing is
+    /// rendered or run.
+    pub gallery_only: bool,
 }
 
 /// Every figure id of FIGURES.md, in its order.
@@ -70,6 +73,15 @@ pub fn figure_ids(figures_md: &str) -> Vec<String> {
         .filter(|id| id.contains('-') && id.chars().all(|c| c.is_ascii_alphanumeric() || c == '-' || c == '.'))
         .map(str::to_string)
         .collect()
+}
+
+/// A figure's description in FIGURES.md's table (`| id | what it shows |`),
+/// for a figure the record has no caption of.
+pub fn figure_description(figures_md: &str, id: &str) -> Option<String> {
+    figures_md.lines().find_map(|l| {
+        let cells: Vec<&str> = l.strip_prefix("| ")?.split(" |").map(str::trim).collect();
+        (cells.first() == Some(&id) && cells.len() > 1 && !cells[1].is_empty()).then(|| cells[1].to_string())
+    })
 }
 
 /// One row of the gallery's record.
@@ -191,6 +203,18 @@ pub fn run(o: &FigureOptions) -> Result<Outcome> {
         crate::image_io::remove_stale_temps(&d);
     }
     let mut records = read_records(&o.out);
+    // Figures the record has no caption of take FIGURES.md's description.
+    for id in &ids {
+        if records.get(id).is_none_or(|r| r.caption.is_empty()) {
+            if let Some(d) = figure_description(&md, id) {
+                records.entry(id.clone()).or_default().caption = d;
+            }
+        }
+    }
+    if o.gallery_only {
+        write_index(&o.out, &ids, &records, o.quick)?;
+        return Ok(Outcome { dir, index: o.out.join("index.html"), failed: Vec::new() });
+    }
     // One bar for the figures, each figure's stages in turn on it; a line
     // per figure as it is written (on a terminal or not).
     let bar = crate::terminal::Bars::new();
@@ -310,9 +334,12 @@ fn picture_html(h: &mut String, out: &Path, rel: &str, id: &str, caption: &str) 
     let (w, hh) = image::image_dimensions(out.join(rel)).unwrap_or((640, 400));
     // A caption as wide as the picture, and never narrower than a line.
     let cw = w.max(480);
+    // Its SVG beside it, where one was written.
+    let svg = rel.trim_end_matches(".png").to_string() + ".svg";
+    let svg = if rel.ends_with(".png") && out.join(&svg).is_file() { format!(" (<a href=\"{svg}\">SVG</a>)") } else { String::new() };
     writeln!(
         h,
-        "<figure id=\"{id}\" style=\"width:{cw}px\"><a href=\"{rel}\"><img src=\"{rel}\" alt=\"{rel}\" width=\"{w}\" height=\"{hh}\"></a><figcaption><code>{rel}</code>: {caption}</figcaption></figure>"
+        "<figure id=\"{id}\" style=\"width:{cw}px\"><a href=\"{rel}\"><img src=\"{rel}\" alt=\"{rel}\" width=\"{w}\" height=\"{hh}\"></a><figcaption><code>{rel}</code>{svg}: {caption}</figcaption></figure>"
     )?;
     Ok(())
 }
@@ -532,7 +559,7 @@ fn write_index(out: &Path, ids: &[String], records: &BTreeMap<String, Record>, q
             writeln!(h, "<p class=\"missing\">not run yet: <code>refract sweep experiments/{name}.toml</code></p>")?;
             continue;
         }
-        writeln!(h, "<p>Data: <a href=\"{name}/runs.csv\"><code>{name}/runs.csv</code></a>, one row a run; the experiment: <code>experiments/{name}.toml</code>.</p><div class=\"charts\">")?;
+        writeln!(h, "<p>Data: <a href=\"{name}/runs.csv\"><code>{name}/runs.csv</code></a>, one row a run; the experiment: <a href=\"../experiments/{name}.toml\"><code>experiments/{name}.toml</code></a>.</p><div class=\"charts\">")?;
         for (rel, caption) in &charts {
             picture_html(&mut h, out, rel, &anchor_of(rel), caption)?;
         }
@@ -550,6 +577,17 @@ fn write_index(out: &Path, ids: &[String], records: &BTreeMap<String, Record>, q
             "bench-prism-error-vs-time",
             "every photon map, filter, light tracing and progressive photon mapping on the single-prism anchor scene, with Mitsuba 3.9.1's particle tracer (black) rendered in the same run on the same scene, its glass a Cauchy fit taken band by band (the floor its curve meets)",
         )?;
+        let dated = "bench/mitsuba-2026-11-25/prism-error-vs-time.png";
+        if out.join(dated).is_file() {
+            writeln!(h, "<p>A separate record of 2026-11-25 (<code>bench prism --film-only --peer mitsuba</code>, medians of 3 runs at another machine load, so its times differ from the chart above; data: <a href=\"bench/mitsuba-2026-11-25/prism-error-vs-time.csv\">its CSV</a>; see <a href=\"bench/README.md\">bench/README.md</a>):</p>")?;
+            picture_html(
+                &mut h,
+                out,
+                dated,
+                "bench-mitsuba-2026-11-25",
+                "2026-11-25: the film, with and without its chosen kernel, beside Mitsuba 3.9.1, film-only run",
+            )?;
+        }
     }
     if out.join("display/transforms.png").exists() {
         writeln!(h, "<h2 id=\"display\">Display transforms for spectral light</h2>")?;
@@ -558,6 +596,14 @@ fn write_index(out: &Path, ids: &[String], records: &BTreeMap<String, Record>, q
     }
     if !spectral_charts.is_empty() {
         writeln!(h, "<h2 id=\"spectral\">Spectral accuracy: IOR models and colour maps (<code>refract spectrum accuracy</code>)</h2><div class=\"charts\">")?;
+        let csvs: Vec<String> = ["ior_models.csv", "ior_models_summary.csv", "colour_maps.csv", "colour_maps_summary.csv"]
+            .iter()
+            .filter(|f| out.join("spectral").join(f).is_file())
+            .map(|f| format!("<a href=\"spectral/{f}\"><code>spectral/{f}</code></a>"))
+            .collect();
+        if !csvs.is_empty() {
+            writeln!(h, "<p>Data: {}.</p>", csvs.join(", "))?;
+        }
         for (f, caption) in spectral_charts {
             picture_html(&mut h, out, &format!("spectral/{f}"), &format!("spectral-{}", f.trim_end_matches(".png")), caption)?;
         }
@@ -743,5 +789,32 @@ mod tests {
         assert_eq!(ids[0], "css552-p1");
         assert!(ids.contains(&"lab-ior1.1-noatten".to_string()) && ids.contains(&"pm-spectra-compare".to_string()));
         assert_eq!(ids[28..], ["gltf-prism", "gltf-sphere"]);
+    }
+
+    /// A figure without a recorded caption takes its FIGURES.md description.
+    #[test]
+    fn every_figure_has_a_description() {
+        let md = include_str!("../../scenes/FIGURES.md");
+        assert!(figure_description(md, "gltf-prism").is_some_and(|d| d.contains("prism-table.glb")));
+        assert_eq!(figure_description(md, "no-such-figure"), None);
+    }
+
+    /// The gallery alone: every chart's SVG linked beside it, the spectral
+    /// CSVs linked, a figure without a record captioned; nothing rendered.
+    #[test]
+    fn the_gallery_links_svgs_and_data() {
+        let dir = tempfile::tempdir().unwrap();
+        let out = dir.path();
+        for f in ["lab-trace/time-vs-trace.png", "lab-trace/time-vs-trace.svg", "spectral/colour_maps.png", "spectral/colour_maps.csv"] {
+            std::fs::create_dir_all(out.join(f).parent().unwrap()).unwrap();
+            std::fs::copy(Path::new("results").join(f), out.join(f)).unwrap();
+        }
+        let o = FigureOptions { quick: false, only: Vec::new(), out: out.to_path_buf(), scenes: PathBuf::from("scenes"), gallery_only: true };
+        run(&o).unwrap();
+        let html = std::fs::read_to_string(out.join("index.html")).unwrap();
+        assert!(html.contains("<a href=\"lab-trace/time-vs-trace.svg\">SVG</a>"));
+        assert!(html.contains("<a href=\"spectral/colour_maps.csv\">"));
+        assert!(html.contains("scenes/gltf/prism-table.glb"));
+        assert!(!out.join("figures/gltf-prism.png").exists(), "nothing is rendered");
     }
 }

@@ -67,6 +67,9 @@ pub struct LineChart {
     /// as a dot plot (markers side by side, no lines between categories).
     pub categories: Vec<String>,
     pub series: Vec<Series>,
+    /// A linear y axis that starts at 0 (a claim of proportionality is
+    /// read against it; a cut axis exaggerates the first step).
+    pub y_from_zero: bool,
 }
 
 /// A tick label in real units: whole numbers without a decimal point (in
@@ -126,6 +129,11 @@ fn size_of(chart: &LineChart) -> (u32, u32) {
 const NOTE_CHARS: usize = 115;
 
 /// Text broken at spaces into lines of at most `width` characters.
+pub fn wrap_text(text: &str, width: usize) -> Vec<String> {
+    wrap(text, width)
+}
+
+/// Text broken at spaces into lines of at most `width` characters.
 fn wrap(text: &str, width: usize) -> Vec<String> {
     let mut lines: Vec<String> = Vec::new();
     for word in text.split(' ') {
@@ -156,9 +164,12 @@ fn range(values: impl Iterator<Item = f64>, log: bool) -> (f64, f64) {
     // would leave the plotting library looping forever).
     let (lo, hi) = if log { (lo.clamp(1e-300, 1e300), hi.clamp(1e-300, 1e300)) } else { (lo.clamp(-1e300, 1e300), hi.clamp(-1e300, 1e300)) };
     if log {
-        // Whole decades, so the axis is ticked at 1, 2, 5 ... of each.
-        let (a, b) = (lo.log10().floor(), hi.log10().ceil());
-        (10f64.powf(a), 10f64.powf(if b > a { b } else { a + 1.0 }))
+        // To the data, padded a twentieth of its span (at least a tenth of
+        // a decade) each side, so no third of the axis stands empty; ticked
+        // at 1, 2, 5 ... of each decade within.
+        let (a, b) = (lo.log10(), hi.log10());
+        let pad = ((b - a) * 0.05).max(0.1);
+        (10f64.powf(a - pad).max(1e-305), 10f64.powf(b + pad).min(1e305))
     } else {
         let hi = if hi > lo { hi } else { lo + 1.0 };
         let pad = (hi - lo) * 0.05;
@@ -211,7 +222,7 @@ mod range_tests {
 /// Ticks of a log axis over whole decades: 1, 2 and 5 of each (1 alone
 /// when the axis spans more than three decades).
 fn decade_ticks((lo, hi): (f64, f64)) -> Vec<f64> {
-    let (a, b) = (lo.log10().round() as i32, hi.log10().round() as i32);
+    let (a, b) = (lo.log10().floor() as i32, hi.log10().ceil() as i32);
     let steps: &[f64] = if b - a > 3 { &[1.0] } else { &[1.0, 2.0, 5.0] };
     (a..=b).flat_map(|k| steps.iter().map(move |m| m * 10f64.powi(k))).filter(|v| *v >= lo * 0.999 && *v <= hi * 1.001).collect()
 }
@@ -365,7 +376,11 @@ where
     let spreads_x = || chart.series.iter().flat_map(|s| s.spread_x.iter().flatten().flat_map(|&(a, b)| [a, b]));
     let spreads_y = || chart.series.iter().flat_map(|s| s.spread_y.iter().flatten().flat_map(|&(a, b)| [a, b]));
     let x = if chart.categories.is_empty() { range(pts().map(|p| p.0).chain(spreads_x()), chart.log_x) } else { (-0.5, chart.categories.len() as f64 - 0.5) };
-    let y = range(pts().map(|p| p.1).chain(spreads_y()), chart.log_y);
+    let zero = (chart.y_from_zero && !chart.log_y).then_some(0.0);
+    let mut y = range(pts().map(|p| p.1).chain(spreads_y()).chain(zero), chart.log_y);
+    if zero.is_some() && pts().map(|p| p.1).chain(spreads_y()).all(|v| v >= 0.0) {
+        y.0 = 0.0;
+    }
     let mut b = ChartBuilder::on(&root);
     b.margin(16).x_label_area_size(48).y_label_area_size(80);
     let lx = || (x.0..x.1).log_scale().with_key_points(decade_ticks(x));

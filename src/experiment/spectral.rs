@@ -141,15 +141,25 @@ fn write_ior_report(dir: &Path, glass: &Glass) -> Result<Vec<IorError>> {
     Ok(errors)
 }
 
+/// Wavelengths of the colour-map CSV: every nanometre, the grid the hue
+/// error chart is drawn on, so the chart can be redrawn from the CSV.
+pub const MAP_NM: std::ops::RangeInclusive<u32> = 380..=780;
+
 /// Every colour map against CIE: per-wavelength CSV, summary, strips and
-/// the Delta E plot.
+/// the hue error plot (drawn from the CSV's rows over 400-700 nm).
 fn write_colour_map_report(dir: &Path) -> Result<Vec<MapSummary>> {
     let mut csv = String::from("wavelength_nm,map,r_lin,g_lin,b_lin,delta_e,hue_err_deg\n");
-    for map in ColorMap::ALL {
-        for l in (380..=780).step_by(5) {
+    let mut hue: Vec<Vec<(f64, f64)>> = vec![Vec::new(); ColorMap::ALL.len()];
+    for (k, map) in ColorMap::ALL.into_iter().enumerate() {
+        for l in MAP_NM {
             let c = map.rgb(l as f64);
             let e = error_vs_cie(map, l as f64);
-            writeln!(csv, "{l},{},{},{},{},{},{}", map.name(), cell(c.x), cell(c.y), cell(c.z), cell(e.delta_e), cell(e.hue_deg))?;
+            let row = [cell(c.x), cell(c.y), cell(c.z), cell(e.delta_e), cell(e.hue_deg)];
+            writeln!(csv, "{l},{},{}", map.name(), row.join(","))?;
+            if (400..=700).contains(&l) {
+                // The value as written, so the chart is the CSV's.
+                hue[k].push((l as f64, row[4].parse().unwrap_or(f64::NAN)));
+            }
         }
     }
     write_text(&dir.join("colour_maps.csv"), &csv)?;
@@ -169,7 +179,7 @@ fn write_colour_map_report(dir: &Path) -> Result<Vec<MapSummary>> {
             title: "hue error against CIE: how far each map turns a wavelength's hue".into(),
             subtitle: "400-700 nm, where every map has a colour".into(),
             notes: vec![(
-                "the CIELAB hue angle of the map's colour minus CIE's (0 where either is grey); the legend adds each map's mean Delta E 1976, which also counts lightness and chroma".into(),
+                "the angle between the CIELAB hues of the map's colour and CIE's, unsigned (0 where either is grey); every point is a row of colour_maps.csv (1 nm steps); the legend adds each map's mean Delta E 1976, which also counts lightness and chroma".into(),
                 plotters::style::RGBColor(60, 60, 60),
             )],
             x_label: "wavelength (nm)".into(),
@@ -178,12 +188,9 @@ fn write_colour_map_report(dir: &Path) -> Result<Vec<MapSummary>> {
                 .iter()
                 .zip(PALETTE)
                 .zip(&maps[1..])
-                .map(|((&m, color), s)| {
-                    Series::new(
-                        format!("{} (mean hue error {:.1} deg, mean Delta E {:.1})", m.name(), s.mean_hue_deg, s.mean_delta_e),
-                        (400..=700).map(|l| (l as f64, error_vs_cie(m, l as f64).hue_deg)).collect(),
-                        color,
-                    )
+                .zip(&hue[1..])
+                .map(|(((&m, color), s), pts)| {
+                    Series::new(format!("{} (mean hue error {:.1} deg, mean Delta E {:.1})", m.name(), s.mean_hue_deg, s.mean_delta_e), pts.clone(), color)
                 })
                 .collect(),
             ..Default::default()
