@@ -225,7 +225,10 @@ pub fn camera_from_srgb() -> DMat3 {
 /// (m - b) / (1 - b).
 pub fn camera(v: DVec3) -> DVec3 {
     static M: OnceLock<(DMat3, DMat3)> = OnceLock::new();
-    let (to_cam, from_cam) = *M.get_or_init(|| (camera_from_srgb(), camera_from_srgb().inverse()));
+    let (to_cam, from_cam) = *M.get_or_init(|| {
+        let m = camera_from_srgb();
+        (m, m.inverse())
+    });
     let c = (to_cam * v).min(DVec3::ONE);
     let rgb = (from_cam * c).clamp(DVec3::ZERO, DVec3::ONE);
     let m = rgb.max_element();
