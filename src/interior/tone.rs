@@ -65,6 +65,11 @@ impl Tone {
     }
 }
 
+/// The image as shown: each pixel through `tone`, then to 8 bits.
+pub fn display(image: &crate::image_io::Image, tone: Tone) -> Vec<u8> {
+    image.pixels.iter().flat_map(|&p| tone.apply(p).to_u8()).collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -114,9 +119,4 @@ mod tests {
         assert_eq!(Tone::Shoulder.apply(Rgb(Vec3::new(f32::NAN, 2.0, 2.0))).0, Vec3::ZERO);
         assert_eq!(Tone::Shoulder.apply(Rgb(Vec3::new(-1.0, 0.3, 0.0))).0, Vec3::new(0.0, 0.3, 0.0));
     }
-}
-
-/// The image as shown: each pixel through `tone`, then to 8 bits.
-pub fn display(image: &crate::image_io::Image, tone: Tone) -> Vec<u8> {
-    image.pixels.iter().flat_map(|&p| tone.apply(p).to_u8()).collect()
 }
