@@ -295,7 +295,9 @@ pub static PARAMS: &[Param<InteriorConfig>] = &[
         auto: "",
         get: |c| Some(pick(c.tone)),
         set: |c, v| c.tone = v.choice(),
-        ignored: never,
+        ignored: |c| {
+            c.out.extension().is_some_and(|e| e.eq_ignore_ascii_case("pfm")).then(|| "a .pfm output holds the model's colours, before any tone".to_string())
+        },
     },
     Param {
         key: "scene",
