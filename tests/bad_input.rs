@@ -133,9 +133,9 @@ fn outputs_threads_and_csv_paths_are_checked_before_the_render() {
     std::fs::create_dir_all(d.join("taken/prism-error-vs-time.png")).unwrap();
     assert!(std::process::Command::new("mkfifo").arg(d.join("fifo.png")).status().unwrap().success());
     let cases: Vec<(Vec<&str>, &str, &str)> = vec![
-        (vec!["interior", "--off", c, "--out", "x.jpg"], "--out: `x.jpg` does not end in an image extension refract writes here (.png, .ppm)", "x.jpg"),
+        (vec!["interior", "--off", c, "--out", "x.jpg"], "--out: `x.jpg` does not end in an image extension refract writes here (.png, .ppm, .pfm)", "x.jpg"),
         (vec!["interior", "--off", c, "--out", "noext"], "--out: `noext` does not end in an image extension", "noext"),
-        (vec!["interior", "--off", c, "--out", "x.pfm"], "--out: `x.pfm` does not end in an image extension refract writes here (.png, .ppm)", "x.pfm"),
+        (vec!["interior", "--off", c, "--out", "x.pfm", "--tone", "shoulder"], "--tone: a .pfm output holds the model's colours, before any tone", "x.pfm"),
         (vec!["interior", "--off", c, "--out", "folder.png"], "--out: folder.png is a folder", ""),
         (vec!["interior", "--off", c, "--out", "fifo.png"], "--out: fifo.png is not a regular file", ""),
         (vec!["interior", "--off", c, "--out", "o.png", "--timing-csv", "no/such/t.csv"], "--timing-csv: folder no/such does not exist", "o.png"),

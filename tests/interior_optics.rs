@@ -71,3 +71,36 @@ fn light_leaves_the_cube_only_inside_the_tir_circle() {
     // A higher index traps more: its circle is smaller.
     assert!(front_face(3.0, 101).0.len() < front_face(1.8, 101).0.len());
 }
+
+#[test]
+fn a_pfm_holds_the_model_colours_that_the_8_bit_image_clamps() {
+    // The same run written as .ppm and .pfm: where the PPM shows 0-254 the
+    // PFM's value (bottom row first) rounds to it; the hot spot (Ks 3) is
+    // past white in the PFM, 255 in the PPM.
+    let dir = tempfile::tempdir().unwrap();
+    let cube = repo("off/cube.off");
+    let args = |out: &'static str| ["interior", "--off", cube.to_str().unwrap(), "--out", out, "--size", "41,41", "--ks", "3"].map(str::to_string);
+    for out in ["c.ppm", "c.pfm"] {
+        let a = args(out);
+        let o = run(&a.iter().map(String::as_str).collect::<Vec<_>>(), "", dir.path());
+        assert!(o.status.success(), "{}", stderr(&o));
+    }
+    let (w, h, px) = ppm(&dir.path().join("c.ppm"));
+    let bytes = std::fs::read(dir.path().join("c.pfm")).unwrap();
+    let header = b"PF\n41 41\n-1.0\n";
+    assert_eq!(&bytes[..header.len()], header);
+    let floats: Vec<f32> = bytes[header.len()..].chunks(4).map(|b| f32::from_le_bytes(b.try_into().unwrap())).collect();
+    assert_eq!(floats.len(), w * h * 3);
+    let mut past_white = 0;
+    for y in 0..h {
+        for x in 0..w {
+            for c in 0..3 {
+                let v = floats[((h - 1 - y) * w + x) * 3 + c];
+                let shown = px[(y * w + x) * 3 + c];
+                assert_eq!(shown, (v.clamp(0.0, 1.0) * 255.0 + 0.5) as u8, "pixel {x},{y} channel {c}: {v} shown as {shown}");
+                past_white += (v > 1.0) as usize;
+            }
+        }
+    }
+    assert!(past_white > 0, "no value past white in the PFM");
+}

@@ -680,7 +680,10 @@ fn run_interior(args: InteriorArgs) -> Result<()> {
         modes::interior::check_timing_csv(path).context("--timing-csv")?;
     }
     let cfg = if args.flag_mode() {
-        args.flag_config()?
+        // Again with the output named: a .pfm ignores the tone.
+        let cfg = args.flag_config()?;
+        args.params.check_used(&cfg).map_err(anyhow::Error::msg)?;
+        cfg
     } else {
         use std::io::IsTerminal;
         let stdin = std::io::stdin();

@@ -148,14 +148,36 @@ pub fn write_rgb8(path: &Path, width: usize, height: usize, bytes: &[u8]) -> Res
     })
 }
 
-/// Writes the image; refuses, naming the count, one with NaN or infinite
-/// pixels (they would otherwise show as black).
-pub fn write_image(path: &Path, img: &Image) -> Result<(), WriteError> {
+/// Writes `width` x `height` floats (three a pixel, `pixel(i)` for pixel
+/// `i` counted row-major from the top) as a portable float map:
+/// little-endian, rows bottom to top.
+pub fn write_pfm(path: &Path, width: usize, height: usize, pixel: impl Fn(usize) -> [f32; 3]) -> Result<(), WriteError> {
+    atomic_write(path, |f| {
+        write!(f, "PF\n{width} {height}\n-1.0\n")?;
+        for y in (0..height).rev() {
+            for x in 0..width {
+                for v in pixel(y * width + x) {
+                    f.write_all(&v.to_le_bytes())?;
+                }
+            }
+        }
+        Ok(())
+    })
+}
+
+/// Writes the image: `display` (8-bit RGB, the image as shown) to a .png
+/// or .ppm, the image's own values to a .pfm. Refuses, naming the count,
+/// an image with NaN or infinite pixels (they would otherwise show as
+/// black).
+pub fn write_image(path: &Path, img: &Image, display: &[u8]) -> Result<(), WriteError> {
     let bad = img.pixels.iter().filter(|p| !p.is_finite()).count();
     if bad > 0 {
         return Err(WriteError::NonFinite { path: path.into(), bad, total: img.pixels.len() });
     }
-    write_rgb8(path, img.width, img.height, &img.to_rgb8())
+    if path.extension().is_some_and(|e| e.eq_ignore_ascii_case("pfm")) {
+        return write_pfm(path, img.width, img.height, |i| img.pixels[i].0.to_array());
+    }
+    write_rgb8(path, img.width, img.height, display)
 }
 
 /// Writes text to `path` through a temporary file and a rename.
@@ -299,7 +321,7 @@ mod tests {
         let path = dir.path().join("a.png");
         let mut img = Image::new(3, 1);
         img.pixels[1] = Rgb::new(0.0, f32::NAN, 0.0);
-        let e = write_image(&path, &img).unwrap_err().to_string();
+        let e = write_image(&path, &img, &img.to_rgb8()).unwrap_err().to_string();
         assert_eq!(e, format!("{}: 1 of 3 pixels came out NaN or infinite; nothing written", path.display()));
         assert!(!path.exists());
     }

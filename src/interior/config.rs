@@ -67,6 +67,8 @@ pub struct InteriorConfig {
     /// before the 8-bit image is written (a display setting, not part of
     /// the report's model; 1 = the model's colour as it is).
     pub exposure: f32,
+    /// How colours brighter than white are shown (a display setting).
+    pub tone: super::tone::Tone,
     pub specular_opacity: SpecularOpacity,
     pub scene: SceneKind,
     pub accel: AccelKind,
@@ -119,6 +121,7 @@ impl InteriorConfig {
             height: 401,
             background: [0, 0, 0],
             exposure: 1.0,
+            tone: super::tone::Tone::Clip,
             specular_opacity: SpecularOpacity::Report,
             scene: SceneKind::Mesh,
             accel: AccelKind::Bvh,

@@ -10,6 +10,7 @@
 pub mod config;
 pub mod phong;
 pub mod scene;
+pub mod tone;
 pub mod trace;
 
 use crate::image_io::{self, Image};
@@ -38,7 +39,10 @@ type Result<T> = std::result::Result<T, RunError>;
 
 /// What a run measured and made.
 pub struct RunReport {
+    /// The model's colours times the exposure.
     pub image: Image,
+    /// The image as shown (8-bit RGB, through the configuration's tone).
+    pub display: Vec<u8>,
     pub triangles: usize,
     pub threads: usize,
     pub load_s: f64,
@@ -61,7 +65,7 @@ pub fn run(cfg: &InteriorConfig) -> Result<RunReport> {
     let load_s = t0.elapsed().as_secs_f64();
     let mut report = render_mesh(mesh, cfg)?;
     report.load_s = load_s;
-    image_io::write_image(&cfg.out, &report.image)?;
+    image_io::write_image(&cfg.out, &report.image, &report.display)?;
     Ok(report)
 }
 
@@ -94,14 +98,15 @@ pub fn render_mesh(mesh: Mesh, cfg: &InteriorConfig) -> Result<RunReport> {
         (build_s, render, t.elapsed().as_secs_f64())
     });
     // Never a silent black image: why it is black, and what to change.
-    if render.image.to_rgb8().iter().all(|&b| b == 0) {
+    let display = tone::display(&render.image, cfg.tone);
+    if display.iter().all(|&b| b == 0) {
         notes.push(if cfg.color == [0, 0, 0] {
             "the image is black: the object colour is black (--object-colour 0,0,0) against a black --background".to_string()
         } else {
             "the image is black: no light reaches the camera (check --light-pos, --ka, --kd, --ks and --exposure)".to_string()
         });
     }
-    Ok(RunReport { image: render.image, triangles, threads, load_s: 0.0, build_s, render_s, rays: render.rays, tir: render.tir, notes })
+    Ok(RunReport { image: render.image, display, triangles, threads, load_s: 0.0, build_s, render_s, rays: render.rays, tir: render.tir, notes })
 }
 
 /// One row of the interior mode's timing CSV (`--timing-csv`).

@@ -16,7 +16,7 @@ pub struct Interior;
 
 impl ModeKind for Interior {
     type Config = InteriorConfig;
-    const FORMATS: &'static [ImageFormat] = &[ImageFormat::Png, ImageFormat::Ppm];
+    const FORMATS: &'static [ImageFormat] = &[ImageFormat::Png, ImageFormat::Ppm, ImageFormat::Pfm];
 
     fn params() -> &'static [Param<InteriorConfig>] {
         params::interior::PARAMS

@@ -191,7 +191,7 @@ impl Run {
     /// Writes the image to `out` (its format by the extension).
     pub fn write(&self, out: &Path) -> Result<()> {
         match &self.report {
-            Report::Interior(r) => Ok(crate::image_io::write_image(out, &r.image)?),
+            Report::Interior(r) => Ok(crate::image_io::write_image(out, &r.image, &r.display)?),
             Report::Prism { report, gamut, exr } => Ok(report.render.image.write(out, report.exposure, *gamut, *exr)?),
         }
     }
@@ -202,7 +202,7 @@ impl Run {
             Report::Interior(r) => Frame {
                 width: r.image.width,
                 height: r.image.height,
-                display: r.image.to_rgb8(),
+                display: r.display.clone(),
                 luminance: r.image.pixels.iter().map(|p| p.0.dot(crate::spectrum::cie::SRGB_LUMA.as_vec3()) as f64).collect(),
                 xyz: Vec::new(),
             },

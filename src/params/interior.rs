@@ -5,6 +5,7 @@
 use super::{choices, never, pick, Kind, Param, Value, ValueError};
 use crate::geometry::AccelKind;
 use crate::interior::config::{InteriorConfig, SceneKind, SpecularOpacity};
+use crate::interior::tone::Tone;
 use crate::mesh::source::MeshSource;
 use std::path::PathBuf;
 
@@ -283,6 +284,20 @@ pub static PARAMS: &[Param<InteriorConfig>] = &[
         get: |c| Some(real(c.exposure)),
         set: |c, v| c.exposure = v.real() as f32,
         ignored: never,
+    },
+    Param {
+        key: "tone",
+        aliases: &[],
+        section: SCENE,
+        help: "How colours brighter than white are shown: clip (each channel at 1, the report) or shoulder (a film's roll toward white above 0.75)",
+        unit: "",
+        kind: Kind::Choice(choices::<Tone>),
+        auto: "",
+        get: |c| Some(pick(c.tone)),
+        set: |c, v| c.tone = v.choice(),
+        ignored: |c| {
+            c.out.extension().is_some_and(|e| e.eq_ignore_ascii_case("pfm")).then(|| "a .pfm output holds the model's colours, before any tone".to_string())
+        },
     },
     Param {
         key: "scene",

@@ -343,7 +343,7 @@ pub(crate) fn parse_real(s: &str) -> Result<f64, ValueError> {
     Ok(v)
 }
 
-/// An output image for the interior mode (.png or .ppm) whose folder
+/// An output image for the interior mode (.png, .ppm or .pfm) whose folder
 /// exists, and where nothing but a regular file stands.
 pub fn out_path(s: &str) -> Result<PathBuf, crate::image_io::OutputError> {
     let s = s.trim();
@@ -351,7 +351,7 @@ pub fn out_path(s: &str) -> Result<PathBuf, crate::image_io::OutputError> {
         return Err(crate::image_io::OutputError::Unnamed);
     }
     let p = PathBuf::from(s);
-    crate::image_io::check_output(&p, &[crate::image_io::ImageFormat::Png, crate::image_io::ImageFormat::Ppm]).map(|_| p)
+    crate::image_io::check_output(&p, &[crate::image_io::ImageFormat::Png, crate::image_io::ImageFormat::Ppm, crate::image_io::ImageFormat::Pfm]).map(|_| p)
 }
 
 /// A thread count for this machine: 0 (all cores) up to four times its

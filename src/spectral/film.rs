@@ -4,10 +4,9 @@
 //! OpenEXR linear sRGB and the film's XYZ.
 
 use crate::image_io::openexr::{write_exr, ExrError, ExrSample, Plane};
-use crate::image_io::{atomic_write, write_rgb8, WriteError};
+use crate::image_io::{write_rgb8, WriteError};
 use crate::spectrum::cie::{desaturate, to_srgb8, GamutMap, Xyz};
 use glam::DVec3;
-use std::io::Write;
 use std::path::{Path, PathBuf};
 
 /// Why the film was not written, naming the file.
@@ -72,19 +71,7 @@ impl XyzImage {
         if ext == "exr" {
             Ok(self.write_exr(path, exposure, exr)?)
         } else if ext == "pfm" {
-            // Portable float map: little-endian, rows bottom to top.
-            Ok(atomic_write(path, |f| {
-                write!(f, "PF\n{} {}\n-1.0\n", self.width, self.height)?;
-                for y in (0..self.height).rev() {
-                    for x in 0..self.width {
-                        let c = self.linear_srgb(y * self.width + x) * exposure;
-                        for v in [c.x, c.y, c.z] {
-                            f.write_all(&(v as f32).to_le_bytes())?;
-                        }
-                    }
-                }
-                Ok(())
-            })?)
+            Ok(crate::image_io::write_pfm(path, self.width, self.height, |i| (self.linear_srgb(i) * exposure).as_vec3().to_array())?)
         } else {
             Ok(write_rgb8(path, self.width, self.height, &self.to_srgb8(exposure, gamut))?)
         }
