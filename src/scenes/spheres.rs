@@ -62,14 +62,18 @@ fn area_light(s: &mut World, o: &SceneOptions) -> Result<()> {
     }
     // The sphere "hanging in front of a spherical area light source,
     // which is slightly off center" (report 001): a 6500 K black
-    // body of 12 cm radius, 1.2 m behind the sphere and 12 degrees
+    // body of 15 cm radius, 1.2 m behind the sphere and 16 degrees
     // up and to the left of its axis, so that from the camera it is
-    // hidden behind the sphere (1.7-5.1 degrees off the camera's
+    // hidden behind the sphere (2.5-6.6 degrees off the camera's
     // axis; the sphere covers 9.6) and shows only through it, as an
     // off-centre patch down and to the right, fringed violet-blue
     // on the edge toward the sphere's centre and orange-red on the
-    // outer one (docs/physics.md §22).
-    let (angle, distance, radius) = (12f64.to_radians(), 1.2, 0.12);
+    // outer one (docs/physics.md §22). The fringes' width grows with
+    // the patch's distance from the sphere's centre (the index
+    // changes the sphere's power, so the image of an edge a distance
+    // b from the centre moves by about b dn / (n (n - 1))): 16 degrees
+    // puts the patch at about 0.6 of the radius, still wide.
+    let (angle, distance, radius) = (16f64.to_radians(), 1.2, 0.15);
     let dir = DVec3::new(angle.cos(), angle.sin() * 0.8, angle.sin() * 0.6);
     sphere_light(s, o, DVec3::new(3.0, 0.0, 0.0) + distance * dir, radius, "blackbody:6500")?;
     // So that the glass itself is seen (a clear sphere before black
@@ -115,10 +119,12 @@ fn area_light(s: &mut World, o: &SceneOptions) -> Result<()> {
             });
         }
     }
-    // A 21.7 degree field: the whole sphere in the frame's height
-    // (its image 158 px in radius at 640x360), room beside it for
-    // the inset that magnifies a fringe (`inset` in the scene file).
-    s.camera = Camera::look_at(DVec3::ZERO, DVec3::new(3.0, 0.0, 0.0), DVec3::Z, 21.7, o.width, o.height);
+    // A 15 degree field aimed a little below and right of the
+    // sphere's centre: the sphere fills the frame as a lens ball does
+    // in a close-up (its image about 270 px in radius at 560x420, its
+    // rim in view left and right), and the fringes, which scale with
+    // it, are 3-4 px wide at 1:1 with no inset.
+    s.camera = Camera::look_at(DVec3::ZERO, DVec3::new(3.0, -0.06, -0.03), DVec3::Z, 15.0, o.width, o.height);
     Ok(())
 }
 
@@ -160,16 +166,23 @@ fn rainbow_card(s: &mut World, o: &SceneOptions) -> Result<()> {
     if !o.no_prism {
         glass_sphere(s, "glass sphere", centre, r);
     }
+    // A white card 1.2 m by 0.9 m (its edges in view, so it reads as
+    // a card; the ring, about 0.3 m in radius, lies well inside it)
+    // in four pieces round the hole, facing the sphere (+x).
     let (hole, beam) = (0.11, 0.7 * r);
-    // Four pieces round the hole, facing the sphere (+x).
+    let (half_w, half_h) = (0.6, 0.45);
     for (name, y0, y1, z0, z1) in [
-        ("card left of the hole", -1.6, -hole, -1.2, 1.2),
-        ("card right of the hole", hole, 1.6, -1.2, 1.2),
-        ("card below the hole", -hole, hole, -1.2, -hole),
-        ("card above the hole", -hole, hole, hole, 1.2),
+        ("card left of the hole", -half_w, -hole, -half_h, half_h),
+        ("card right of the hole", hole, half_w, -half_h, half_h),
+        ("card below the hole", -hole, hole, -half_h, -hole),
+        ("card above the hole", -hole, hole, hole, half_h),
     ] {
         matte(s, name, DVec3::new(0.0, y0, z0), DVec3::new(0.0, y1 - y0, 0.0), DVec3::new(0.0, 0.0, z1 - z0), [0.8; 3]);
     }
+    // A dark grey wall 1 m behind the card (albedo 0.2 against the
+    // card's 0.8): the card stands out from it, and the sphere shows
+    // the room, not a void, round the card's inverted image.
+    matte(s, "back wall", DVec3::new(-1.0, -5.0, -3.0), DVec3::new(0.0, 10.0, 0.0), DVec3::new(0.0, 0.0, 6.0), [0.2; 3]);
     s.lights.push(Light {
         name: "white beam".into(),
         emission: Emission::Beam {
@@ -194,8 +207,8 @@ fn rainbow_card(s: &mut World, o: &SceneOptions) -> Result<()> {
 /// The spheres-final card's two lamps, which send no photons: one over the
 /// card and one behind its hole.
 fn card_lamps(s: &mut World, o: &SceneOptions) -> Result<()> {
-    // A dim lamp in the ceiling over the card, so the card and the
-    // sphere show: its direct light by shadow rays (the sphere
+    // A lamp in the ceiling over the card, so the card, the wall and
+    // the sphere show (the card about 95 of 255, the wall 50): its direct light by shadow rays (the sphere
     // cannot shade the card from it), and no photons (the sphere
     // meets about 0.2 % of its light and reflects a few per cent of
     // that, over all directions: about 1e-4 of what the lamp gives
@@ -208,13 +221,23 @@ fn card_lamps(s: &mut World, o: &SceneOptions) -> Result<()> {
         DVec3::new(1.5, 0.0, 0.0),
         Surface::Emitter { light: lamp },
     ));
-    s.lights.push(Light { name: "ceiling lamp".into(), emission: Emission::Area { face: s.faces.len() - 1 }, spectrum: light_spectrum(o, "d65")?, power: 1.2 });
+    s.lights.push(Light {
+        name: "ceiling lamp".into(),
+        emission: Emission::Area { face: s.faces.len() - 1 },
+        spectrum: light_spectrum(o, "d65")?,
+        power: 12.0,
+    });
     // The beam's source seen through the hole, as the sun or a
     // projector is from the sphere's side of a card: a bright face
     // behind the card, lighting nothing the camera sees but the
     // hole (it sends no photons; its direct light falls on the
     // card's back and, through the hole, on the glass, which takes
-    // none).
+    // none). The glass shows it, and the ring, a second time, faint
+    // and small, above and right of its centre: the light that
+    // reflects twice inside the sphere (Fresnel R^2, about 0.6 % at
+    // N-SF11) before it leaves toward the camera. On the old dark
+    // card that copy showed as a ghost circle; on the lit card and
+    // wall it is under 5 of 255 levels.
     let source = s.lights.len();
     s.faces.push(Face::rect(
         "beam source",
