@@ -62,7 +62,7 @@ fn clip(a: (f64, f64), b: (f64, f64), xr: (f64, f64), yr: (f64, f64)) -> Option<
             }
         }
     }
-    (t0 < t1).then(|| [(a.0 + t0 * dx, a.1 + t0 * dy), (a.0 + t1 * dx, a.1 + t1 * dy)])
+    (t0 < t1).then_some([(a.0 + t0 * dx, a.1 + t0 * dy), (a.0 + t1 * dx, a.1 + t1 * dy)])
 }
 
 /// The line colour of a wavelength: its CIE colour at full brightness.
