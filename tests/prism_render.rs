@@ -195,6 +195,70 @@ fn cfl_lines_give_separate_tube_images_where_the_probe_says() {
     }
 }
 
+/// Picture 1 as printed (the figure's own exposure and display, its quick
+/// samples, a quarter of its size): the copies fill the frame's height, on
+/// black between them; the 546 nm copy's core bleaches toward white while
+/// 611 nm stays red and 435.8 nm blue; and the 611 nm copy shows its legs
+/// (a darker gap between them), not one clipped block.
+#[test]
+fn picture_1_prints_sharp_copies_on_black() {
+    let (cfg, s) = figure_p1(None, [320, 60]);
+    let exposure = cfg.exposure.expect("the figure fixes its exposure");
+    let mut o = opts(1, cfg.spp);
+    o.eye = cfg.eye;
+    o.split = cfg.split;
+    let r = render(&s, &o, &hidden());
+    let (w, h) = (r.image.width, r.image.height);
+    let px = r.image.to_srgb8(exposure, cfg.gamut);
+    let at = |x: usize, y: usize| -> DVec3 { DVec3::new(px[(y * w + x) * 3] as f64, px[(y * w + x) * 3 + 1] as f64, px[(y * w + x) * 3 + 2] as f64) / 255.0 };
+    // Where each line's copy stands (its centre column), by the probe.
+    let lamp_x = s.faces.iter().find(|f| f.name.starts_with("cfl tube")).unwrap().verts[0].x;
+    let column = |nm: f64| -> usize {
+        let a = refract::scenes::amici::lamp_image_angle(&s, s.camera.pos, lamp_x, nm).expect("the line is seen");
+        s.camera.project(s.camera.pos + DVec3::new(a.cos(), a.sin(), 0.0)).unwrap().x as usize
+    };
+    // The lamp's half width and its tube's width, in pixels.
+    let p = |t: f64| s.camera.project(s.camera.pos + DVec3::new(1.0, t, 0.0)).unwrap().x;
+    let half = (p(refract::scenes::amici::LAMP_WIDTH / 2.0 / refract::scenes::amici::LAMP_DISTANCE) - p(0.0)).abs();
+    // Rows with any printed light: the lamp's height, two thirds of the frame.
+    let lit_rows: Vec<usize> = (0..h).filter(|&y| (0..w).any(|x| at(x, y).max_element() > 0.0)).collect();
+    let span = lit_rows.last().unwrap() - lit_rows.first().unwrap() + 1;
+    assert!(span as f64 > 0.6 * h as f64, "the copies span {span} of {h} rows");
+    // Black between the green copies (Tb 541 nm, 3 fwhm short of it, is the
+    // nearest to the blue) and the 435.8 nm copy: the weak Tb 488 nm copy and
+    // the phosphor continuum print black, every row.
+    let (green, blue) = (column(546.075), column(435.834));
+    let lit: Vec<(usize, usize, DVec3)> = (column(536.0) + half as usize + 2..blue - half as usize - 1)
+        .flat_map(|x| (0..h).map(move |y| (x, y)))
+        .map(|(x, y)| (x, y, at(x, y)))
+        .filter(|p| p.2.max_element() > 0.0)
+        .collect();
+    assert!(lit.is_empty(), "light between the 546 and 436 nm copies (columns {green} and {blue}, half width {half:.1}): {lit:?}");
+    // Colours, on the copies' top bar (all of the lamp's width lights it):
+    // the bar's row is the first lit row's next.
+    let bar = lit_rows[0] + 1;
+    let brightest = |c: usize| {
+        (c - half as usize..=c + half as usize).map(|x| at(x, bar)).fold(DVec3::ZERO, |a, b| {
+            if b.max_element() + b.min_element() > a.max_element() + a.min_element() {
+                b
+            } else {
+                a
+            }
+        })
+    };
+    let (g, rd, b) = (brightest(green), brightest(column(611.0)), brightest(blue));
+    assert!(g.y > 0.95 && g.x > 0.7 && g.z > 0.3, "the 546 nm copy's core bleaches: {g:?}");
+    assert!(rd.x > 0.9 && rd.y < 0.3 && rd.z < 0.3, "the 611 nm copy is red: {rd:?}");
+    assert!(b.z > 0.8 && b.z > 2.0 * b.y, "the 435.8 nm copy is blue: {b:?}");
+    // The 611 nm copy's legs: across its width, in the middle of its legs'
+    // height, a column well darker than the brightest (its legs' gap).
+    let mid = (lit_rows[0] + lit_rows.last().unwrap()) / 2;
+    let red = column(611.0);
+    let row: Vec<f64> = (red - half as usize..=red + half as usize).map(|x| (mid - 2..=mid + 2).map(|y| at(x, y).x).sum::<f64>() / 5.0).collect();
+    let (lo, hi) = (row.iter().cloned().fold(1.0, f64::min), row.iter().cloned().fold(0.0, f64::max));
+    assert!(lo < 0.7 * hi, "the 611 nm copy is one block: {row:?}");
+}
+
 #[test]
 fn same_seed_same_image_whatever_the_thread_count() {
     let s = scene(SceneKind::AmiciScreen, None, [96, 36]);

@@ -5,12 +5,12 @@
 //!
 //! Renderings come from the scene files in `scenes/` (editable, and
 //! renderable alone with `refract render`); two figures are drawn here:
-//! the ray diagram (css552-p2) and the colour-map comparison
+//! the ray diagram (css552-p2, `ray_diagram`) and the colour-map comparison
 //! (pm-spectra-compare).
 
 use super::scene_file::SceneFile;
 use crate::image_io::{atomic_write, write_rgb8};
-use crate::scenes::{build, SceneKind, SceneOptions};
+use crate::scenes::build;
 use anyhow::{anyhow, Context, Result};
 use plotters::prelude::*;
 use std::collections::BTreeMap;
@@ -22,7 +22,7 @@ const DRAWN: [(&str, &str, &str); 2] = [
     (
         "css552-p2",
         "000",
-        "Picture 2: direction of a monochromatic ray by Snell's law (a white ray splitting through the Amici prism; angles past the prism drawn 5x larger)",
+        "Picture 2: direction of a monochromatic ray by Snell's law (a white ray splitting through the Amici prism; angles past the prism drawn 5x larger, the fan's true spread written beside it; an inset magnifies the prism's exit at true angles, where the wavelengths part)",
     ),
     (
         "pm-spectra-compare",
@@ -632,90 +632,13 @@ const SPECTRAL_CHARTS: [(&str, &str); 4] = [
 /// Draws one of the figures made in code; returns its parameter text.
 fn draw(id: &str, png: &Path, quick: bool, scenes: &Path) -> Result<String> {
     match id {
-        "css552-p2" => ray_diagram(png),
+        "css552-p2" => super::ray_diagram::draw(png),
         _ => colour_compare(png, quick, scenes),
     }
 }
 
-fn amici() -> Result<crate::world::World> {
-    Ok(build(&SceneOptions::new(SceneKind::AmiciScreen))?)
-}
-
-/// Prism faces in the z < 0 cap plane as segments (top view).
-fn outline(s: &crate::world::World) -> Vec<[(f64, f64); 2]> {
-    s.faces
-        .iter()
-        .filter(|f| matches!(f.surface, crate::world::Surface::Interface { .. }) && f.normal.z.abs() < 1e-9)
-        .map(|f| {
-            let low: Vec<_> = f.verts.iter().filter(|v| v.z < 0.0).collect();
-            [(low[0].x, low[0].y), (low[1].x, low[1].y)]
-        })
-        .collect()
-}
-
 fn plot_err<E: std::fmt::Display>(e: E) -> anyhow::Error {
     anyhow!("{e}")
-}
-
-fn ray_diagram(png: &Path) -> Result<String> {
-    super::plot::register();
-    let s = amici()?;
-    let (w, h) = (900u32, 520u32);
-    let mut buf = vec![0u8; (w * h * 3) as usize];
-    // Wavelengths whose CIE colours are told apart: violet, blue, azure,
-    // cyan-green, green, yellow, orange, red.
-    let lambdas = [404.7, 465.0, 485.0, 505.0, 546.1, 575.0, 600.0, 656.3];
-    {
-        let root = BitMapBackend::with_buffer(&mut buf, (w, h)).into_drawing_area();
-        root.fill(&WHITE).map_err(plot_err)?;
-        let mut c = ChartBuilder::on(&root)
-            .caption("A white ray split by the Amici prism (Snell's law per wavelength)", ("sans-serif", 20))
-            .margin(12)
-            .x_label_area_size(36)
-            .y_label_area_size(56)
-            .build_cartesian_2d(-0.12f64..0.26f64, -0.05f64..0.12f64)
-            .map_err(plot_err)?;
-        c.configure_mesh().x_desc("x (m)").y_desc("y (m)").label_style(("sans-serif", 13)).draw().map_err(plot_err)?;
-        for seg in outline(&s) {
-            c.draw_series(LineSeries::new(seg, BLACK.stroke_width(2))).map_err(plot_err)?;
-        }
-        for nm in lambdas {
-            let p = crate::world::probe::probe(&s, nm);
-            let rgb = crate::spectrum::colormap::ColorMap::Cie.rgb(nm);
-            let scale = 1.0 / rgb.max_element().max(1e-9);
-            let enc = |v: f64| (crate::spectrum::cie::srgb_encode((v * scale).clamp(0.0, 1.0)) * 255.0) as u8;
-            let colour = RGBColor(enc(rgb.x), enc(rgb.y), enc(rgb.z));
-            let mut pts: Vec<(f64, f64)> = p.path.iter().map(|v| (v.x, v.y)).collect();
-            // Past the prism, 5x the angle so the fan shows.
-            let end = p.exit_point;
-            let d = p.exit_dir;
-            let far = (end.x + 0.2, end.y + 0.2 * (d.y / d.x) * 5.0);
-            pts.push(far);
-            c.draw_series(LineSeries::new(pts, colour.stroke_width(2)))
-                .map_err(plot_err)?
-                .label(format!("{nm} nm"))
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], colour.stroke_width(3)));
-        }
-        // The white ray, one path for every wavelength up to the prism,
-        // drawn over them in grey.
-        let p = crate::world::probe::probe(&s, 587.6);
-        let white: Vec<(f64, f64)> = p.path.iter().take(2).map(|v| (v.x, v.y)).collect();
-        let grey = RGBColor(110, 110, 110);
-        c.draw_series(LineSeries::new(white, grey.stroke_width(3)))
-            .map_err(plot_err)?
-            .label("white light")
-            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], grey.stroke_width(3)));
-        c.configure_series_labels()
-            .position(SeriesLabelPosition::UpperLeft)
-            .background_style(WHITE.mix(0.9))
-            .border_style(BLACK)
-            .label_font(("sans-serif", 13))
-            .draw()
-            .map_err(plot_err)?;
-        root.present().map_err(plot_err)?;
-    }
-    write_rgb8(png, w as usize, h as usize, &buf)?;
-    Ok("N-BK7 | N-SF11 | N-BK7, flint apex 90 deg, Sellmeier; deviation past the prism drawn 5x".into())
 }
 
 fn colour_compare(png: &Path, quick: bool, scenes: &Path) -> Result<String> {

@@ -13,6 +13,7 @@ pub mod metrics;
 pub mod params;
 pub mod plan;
 pub mod plot;
+pub mod ray_diagram;
 pub mod reader;
 pub mod record;
 pub mod scene_file;

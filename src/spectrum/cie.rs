@@ -169,6 +169,11 @@ crate::named_enum! {
         /// photograph), back to sRGB, and a print's black point, so faint
         /// light a few per cent of white is black.
         Camera = "camera",
+        /// The camera's sensor with a hard print (§25): as `camera`, but
+        /// the print's black point at 30 % of white (`CAMERA_HARD_BLACK`),
+        /// as on a contrasty paper grade, so the smear of faint light
+        /// beside bright line copies prints black and their edges read sharp.
+        CameraHard = "camera-hard",
     }
 }
 
@@ -193,6 +198,7 @@ impl GamutMap {
             GamutMap::Agx => agx(v),
             GamutMap::AgxPunchy => punchy(agx(v)),
             GamutMap::Camera => camera(v),
+            GamutMap::CameraHard => camera_print(v, CAMERA_HARD_BLACK),
         }
     }
 }
@@ -203,6 +209,8 @@ const CAMERA_XYZ: [f64; 9] = [4716.0, 603.0, -830.0, -7798.0, 15474.0, 2480.0, -
 /// The print's black point: display-linear light below this fraction of
 /// white is black (§25).
 pub const CAMERA_BLACK: f64 = 0.1;
+/// The hard print's black point (`camera-hard`, §25).
+pub const CAMERA_HARD_BLACK: f64 = 0.3;
 
 /// Linear sRGB to the camera's white-balanced raw space (§25): the
 /// camera's matrix after sRGB-to-XYZ, each row scaled to sum to 1 so
@@ -224,6 +232,11 @@ pub fn camera_from_srgb() -> DMat3 {
 /// colour (hue kept) so that its largest channel m becomes
 /// (m - b) / (1 - b).
 pub fn camera(v: DVec3) -> DVec3 {
+    camera_print(v, CAMERA_BLACK)
+}
+
+/// The camera transform (§25) with the print's black point `black`.
+pub fn camera_print(v: DVec3, black: f64) -> DVec3 {
     static M: OnceLock<(DMat3, DMat3)> = OnceLock::new();
     let (to_cam, from_cam) = *M.get_or_init(|| {
         let m = camera_from_srgb();
@@ -232,10 +245,10 @@ pub fn camera(v: DVec3) -> DVec3 {
     let c = (to_cam * v).min(DVec3::ONE);
     let rgb = (from_cam * c).clamp(DVec3::ZERO, DVec3::ONE);
     let m = rgb.max_element();
-    if !(m > CAMERA_BLACK) {
+    if !(m > black) {
         return DVec3::ZERO;
     }
-    rgb * ((m - CAMERA_BLACK) / (1.0 - CAMERA_BLACK) / m)
+    rgb * ((m - black) / (1.0 - black) / m)
 }
 
 /// Linear sRGB to linear Rec. 2020 (ITU-R BT.2087-0, eq. 1), rows
@@ -411,6 +424,28 @@ mod tests {
         assert_eq!(camera(DVec3::splat(0.5 * CAMERA_BLACK)), DVec3::ZERO);
         let g = camera(DVec3::splat(0.55));
         assert!((g.x - 0.5).abs() < 1e-9 && (g.x - g.z).abs() < 1e-12, "{g:?}");
+    }
+
+    #[test]
+    fn the_hard_print_blacks_out_what_the_soft_one_shows_and_keeps_the_rest() {
+        let hard = |v: DVec3| GamutMap::CameraHard.apply(LinearRgb(v));
+        // A fifth of white: grey on the soft print, black on the hard one.
+        let fifth = DVec3::splat(0.2);
+        assert!(camera(fifth).x > 0.1 && hard(fifth) == DVec3::ZERO);
+        // Grey stays grey, white white; 65 % of white prints at half.
+        let g = hard(DVec3::splat(0.65));
+        assert!((g.x - 0.5).abs() < 1e-9 && (g.x - g.z).abs() < 1e-12, "{g:?}");
+        assert!((hard(DVec3::ONE) - DVec3::ONE).abs().max_element() < 1e-9);
+        // The sensor is the same: an over-exposed 546 nm line still turns
+        // yellow-green, a red line stays red.
+        let line = |nm: f64, k: f64| {
+            let c = Xyz(cmf(nm)).to_linear_srgb().0;
+            hard(c / desaturate(c).max_element() * k)
+        };
+        let b = line(546.075, 3.0);
+        assert!(b.x > 0.6 && b.y > 0.95 && b.z < b.x, "{b:?}");
+        let red = line(611.0, 10.0);
+        assert!(red.x > 0.99 && red.y < 0.05 && red.z < 0.05, "{red:?}");
     }
 
     #[test]
