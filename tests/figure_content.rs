@@ -614,3 +614,38 @@ fn the_sphere_before_the_metal_plate_runs_from_yellow_on_its_left_to_red_on_its_
     assert!(left > 0.85 && left_r > 240.0, "yellow on the sphere's left: G/R {left:.2}, R {left_r:.0}");
     assert!(right < 0.6 && right_r > 150.0, "red-orange on its right: G/R {right:.2}, R {right_r:.0}");
 }
+
+#[test]
+fn the_white_lasers_spectrum_is_a_band_on_the_back_wall() {
+    // pm-laser-prism at quick size, in clear air (so only the wall's
+    // light is coloured): the report's laser is white light, and the
+    // spectrum it paints on the back wall is a band, not a hairline. In
+    // the column where 550 nm lands, at least 8 strongly coloured pixels
+    // (max - min channel above 80) within 15 px of it; along its row, at
+    // least 50 within 80 px.
+    let s = SceneFile::load(&repo("scenes/pm-laser-prism.toml"), true).unwrap();
+    let cfg = refract::experiment::params::prism_config(&s.params).unwrap();
+    let mut scene = refract::scenes::build(&cfg.scene).unwrap();
+    scene.haze = 0.0;
+    let p = refract::world::probe::probe(&scene, 550.0);
+    let start = p.exit_point + p.exit_dir * 1e-9;
+    let hit = scene.intersect(start, p.exit_dir, None).expect("the fan reaches a wall");
+    assert_eq!(scene.name(hit.face), "back wall");
+    let at = scene.camera.project(start + p.exit_dir * hit.t).expect("in view");
+    let r = refract::spectral::render_world(&cfg, &scene, &refract::progress::Silent).unwrap();
+    let (w, h) = (r.render.image.width as i64, r.render.image.height as i64);
+    let img = r.render.image.to_srgb8(r.exposure, cfg.gamut);
+    let coloured = |x: i64, y: i64| {
+        if x < 0 || y < 0 || x >= w || y >= h {
+            return false;
+        }
+        let px = &img[((y * w + x) * 3) as usize..((y * w + x) * 3 + 3) as usize];
+        px.iter().max().unwrap() - px.iter().min().unwrap() > 80
+    };
+    let (x, y) = (at.x as i64, at.y as i64);
+    let tall = (-15..=15).filter(|&dy| coloured(x, y + dy)).count();
+    let long = (-80..=80).filter(|&dx| coloured(x + dx, y)).count();
+    eprintln!("the spectrum at {at:?}: {tall} px tall, {long} px long");
+    assert!(tall >= 8, "the spectrum on the back wall is {tall} px tall (a hairline)");
+    assert!(long >= 50, "the spectrum on the back wall is {long} px long");
+}
