@@ -341,8 +341,9 @@ fn the_album_cover_has_no_stray_beams() {
 #[test]
 fn the_laser_beam_shows_on_its_way_to_the_prism_and_beyond() {
     // pm-laser-prism at quick size, with its haze and in clear air: the
-    // pixels 30 cm before the prism on the laser's way, and half way from
-    // the prism to the wall (550 nm), are lit only by the haze.
+    // pixels half way from the laser to the prism on the laser's way, and
+    // half way from the prism to the wall (550 nm), are lit only by the
+    // haze.
     let s = SceneFile::load(&repo("scenes/pm-laser-prism.toml"), true).unwrap();
     let cfg = refract::experiment::params::prism_config(&s.params).unwrap();
     let hazy = refract::scenes::build(&cfg.scene).unwrap();
@@ -359,7 +360,7 @@ fn the_laser_beam_shows_on_its_way_to_the_prism_and_beyond() {
         (r.render.image.width, r.render.image.to_srgb8(r.exposure, cfg.gamut))
     };
     let ((w, with), (_, without)) = (render(&hazy), render(&clear));
-    for (what, point) in [("incoming beam", entry - dir * 0.3), ("fan", (p.exit_point + wall) / 2.0)] {
+    for (what, point) in [("incoming beam", (centre + entry) / 2.0), ("fan", (p.exit_point + wall) / 2.0)] {
         let at = hazy.camera.project(point).expect("in view");
         // The brightest pixel within 2 px (the line is thin).
         let lum = |img: &[u8]| {

@@ -85,6 +85,9 @@ pub fn build(o: &SceneOptions) -> Result<World> {
     let incidence = o.incidence_deg.map_or(default_incidence, f64::to_radians);
     let (aim, dir) = into_left_face(cross, incidence);
     let aim = aim + DVec3::Z * 0.25;
+    // The probe ray starts on the light's way in (the laser's: at its
+    // aperture, clear of its housing).
+    let mut probe_from = aim - dir * 0.5;
     match o.kind {
         SceneKind::CornellPointlight => {
             let pos = aim - dir * 0.55;
@@ -124,12 +127,13 @@ pub fn build(o: &SceneOptions) -> Result<World> {
             s.lights.push(Light { name: "point light in a mirror tube".into(), emission, spectrum: light_spectrum(o, "d65")?, power: 1.0 });
         }
         _ => {
-            // The laser's aperture 34 cm before the prism's face (the beam
+            // The laser's aperture 16 cm from the right wall (the beam
             // leaves it heading left, a little toward the camera); its
             // housing, a dark box 5 cm wide and 14 cm tall (tall enough to
             // catch the little the prism sends back), reaches back into
-            // the right wall.
+            // the wall.
             let start = aim - dir * ((0.84 - aim.x) / -dir.x);
+            probe_from = start + dir * 0.01;
             let u = DVec3::Z.cross(dir).normalize();
             let (hu, hw, w, dark) = (0.025, 0.07, DVec3::Z, [0.05; 3]);
             let front = start - dir * 0.001;
@@ -177,7 +181,7 @@ pub fn build(o: &SceneOptions) -> Result<World> {
             });
         }
     }
-    s.probe = (aim - dir * 0.5, dir);
+    s.probe = (probe_from, dir);
     s.camera = if laser {
         // Framed on the laser, the prism, the fan and the band on the back
         // wall, from a little left of centre (from in front, the prism's
