@@ -94,19 +94,20 @@ pub fn build(o: &SceneOptions) -> Result<World> {
             s.lights.push(Light { name: "point light".into(), emission: Emission::Point { pos }, spectrum: light_spectrum(o, "d65")?, power: 1.0 });
         }
         SceneKind::CornellMirrorTube => {
-            // A square mirror tube 8 cm across and 25 cm long along the
+            // A square mirror tube 2.5 cm across and 45 cm long along the
             // light's way into the prism, closed by a mirror behind a small
-            // frosted bulb (a sphere 2.4 cm across). Its mirrors make a
-            // lattice of images of the bulb, 8 cm apart; each lights the
-            // room through the tube's mouth, and neighbouring images' beams
-            // overlap in strips as wide as the mouth. With a bare point in
-            // a 45 cm tube those strips drew a lattice of bright lines over
-            // the walls (a kaleidoscope's pattern, not the gather's); the
-            // bulb's penumbra at the walls (its width times their distance
-            // over the tube's length, 20 cm or more) is wider than the
-            // strips, so the walls are lit smoothly, while the images stay
-            // small and apart as the prism sees them, each casting its arcs.
-            let (len, half) = (0.25, 0.04);
+            // frosted bulb (a sphere 1.6 cm across). Its mirrors make a
+            // lattice of images of the bulb, a tube's width apart; each
+            // lights the room through the tube's mouth, and neighbouring
+            // images' beams overlap in strips as wide as the mouth. With a
+            // bare point in a tube 8 cm across those strips drew a lattice
+            // of bright lines over the walls (a kaleidoscope's pattern, not
+            // the gather's). Here the bulb's penumbra at the walls (its
+            // width times their distance over the tube's length, 7 cm at
+            // 2 m) is wider than the strips, so the walls are lit smoothly;
+            // and the narrow mouth, seen from the prism, is a small source
+            // (about 5 degrees), so the arcs stay sharp and coloured.
+            let (len, half) = (0.45, 0.0125);
             let start = aim - dir * 0.75;
             let u = DVec3::Z.cross(dir).normalize();
             let w = DVec3::Z;
@@ -122,7 +123,7 @@ pub fn build(o: &SceneOptions) -> Result<World> {
             }
             s.faces.push(Face::rect("mirror tube end", corner(-1.0, -1.0), u * (2.0 * half), w * (2.0 * half), Surface::Mirror { reflectance: 0.95 }));
             let light = s.lights.len();
-            s.spheres.push(crate::world::Sphere { name: "bulb".into(), centre: start + dir * 0.014, radius: 0.012, surface: Surface::Emitter { light } });
+            s.spheres.push(crate::world::Sphere { name: "bulb".into(), centre: start + dir * 0.009, radius: 0.008, surface: Surface::Emitter { light } });
             let emission = Emission::Sphere { sphere: s.spheres.len() - 1 };
             s.lights.push(Light { name: "point light in a mirror tube".into(), emission, spectrum: light_spectrum(o, "d65")?, power: 1.0 });
         }
