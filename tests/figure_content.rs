@@ -543,8 +543,8 @@ fn the_colour_map_tiles_are_cropped_to_the_fan_and_labelled() {
     // each tile the lit pixels (max channel above 40) span at least 70 % of
     // its width and of its height (the prism and its fan fill the tile, not
     // a corner of it) and cover at least 4 % of it (a thin diagonal fan
-    // leaves black round it, as on the cover), and each label strip holds
-    // white text at least 8 px tall.
+    // leaves black round it, as on the cover), each label strip holds
+    // white text at least 8 px tall, and the fan runs out of the tile.
     let dir = tempfile::tempdir().unwrap();
     let o = refract::experiment::figures::FigureOptions {
         quick: true,
@@ -579,6 +579,14 @@ fn the_colour_map_tiles_are_cropped_to_the_fan_and_labelled() {
         assert!(span_x >= 0.7 && span_y >= 0.7, "tile {k}: the subject spans only {span_x:.2} x {span_y:.2} of it");
         assert!(frac >= 0.04, "tile {k}: only {frac:.3} of it lit");
         assert!(text_rows >= 8, "tile {k}: its label is {text_rows} px tall");
+        // The fan runs out of the tile (at its lower right), not ending in
+        // mid-air where its light comes down onto the backdrop: at least 20
+        // lit pixels on the tile's right and bottom edges, in their lower
+        // and right halves.
+        let lit_at = |x: usize, y: usize| img.get_pixel(x as u32, y as u32).0.iter().any(|&c| c > 40);
+        let (right, bottom) = (x0 + tw - 1, y0 + row_h - 1);
+        let edge = (y0 + row_h / 2..y0 + row_h).filter(|&y| lit_at(right, y)).count() + (x0 + tw / 2..x0 + tw).filter(|&x| lit_at(x, bottom)).count();
+        assert!(edge >= 20, "tile {k}: the fan reaches the tile's edge at only {edge} px");
     }
 }
 
