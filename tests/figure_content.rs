@@ -368,8 +368,9 @@ fn the_album_cover_has_no_stray_beams() {
 #[test]
 fn the_laser_beam_shows_on_its_way_to_the_prism_and_beyond() {
     // pm-laser-prism at quick size, with its haze and in clear air: the
-    // pixels 30 cm before the prism on the laser's way, and half way from
-    // the prism to the wall (550 nm), are lit only by the haze.
+    // pixels half way from the laser to the prism on the laser's way, and
+    // half way from the prism to the wall (550 nm), are lit only by the
+    // haze.
     let s = SceneFile::load(&repo("scenes/pm-laser-prism.toml"), true).unwrap();
     let cfg = refract::experiment::params::prism_config(&s.params).unwrap();
     let hazy = refract::scenes::build(&cfg.scene).unwrap();
@@ -386,7 +387,7 @@ fn the_laser_beam_shows_on_its_way_to_the_prism_and_beyond() {
         (r.render.image.width, r.render.image.to_srgb8(r.exposure, cfg.gamut))
     };
     let ((w, with), (_, without)) = (render(&hazy), render(&clear));
-    for (what, point) in [("incoming beam", entry - dir * 0.3), ("fan", (p.exit_point + wall) / 2.0)] {
+    for (what, point) in [("incoming beam", (centre + entry) / 2.0), ("fan", (p.exit_point + wall) / 2.0)] {
         let at = hazy.camera.project(point).expect("in view");
         // The brightest pixel within 2 px (the line is thin).
         let lum = |img: &[u8]| {
@@ -578,8 +579,8 @@ fn the_colour_map_tiles_are_cropped_to_the_fan_and_labelled() {
     // each tile the lit pixels (max channel above 40) span at least 70 % of
     // its width and of its height (the prism and its fan fill the tile, not
     // a corner of it) and cover at least 4 % of it (a thin diagonal fan
-    // leaves black round it, as on the cover), and each label strip holds
-    // white text at least 8 px tall.
+    // leaves black round it, as on the cover), each label strip holds
+    // white text at least 8 px tall, and the fan runs out of the tile.
     let dir = tempfile::tempdir().unwrap();
     let o = refract::experiment::figures::FigureOptions {
         quick: true,
@@ -614,6 +615,14 @@ fn the_colour_map_tiles_are_cropped_to_the_fan_and_labelled() {
         assert!(span_x >= 0.7 && span_y >= 0.7, "tile {k}: the subject spans only {span_x:.2} x {span_y:.2} of it");
         assert!(frac >= 0.04, "tile {k}: only {frac:.3} of it lit");
         assert!(text_rows >= 8, "tile {k}: its label is {text_rows} px tall");
+        // The fan runs out of the tile (at its lower right), not ending in
+        // mid-air where its light comes down onto the backdrop: at least 20
+        // lit pixels on the tile's right and bottom edges, in their lower
+        // and right halves.
+        let lit_at = |x: usize, y: usize| img.get_pixel(x as u32, y as u32).0.iter().any(|&c| c > 40);
+        let (right, bottom) = (x0 + tw - 1, y0 + row_h - 1);
+        let edge = (y0 + row_h / 2..y0 + row_h).filter(|&y| lit_at(right, y)).count() + (x0 + tw / 2..x0 + tw).filter(|&x| lit_at(x, bottom)).count();
+        assert!(edge >= 20, "tile {k}: the fan reaches the tile's edge at only {edge} px");
     }
 }
 
@@ -710,4 +719,39 @@ fn the_final_card_stands_whole_in_the_frame_against_a_darker_wall() {
     assert!(card_lum >= 1.4 * wall_lum, "the card {card_lum:.0} against the wall {wall_lum:.0}");
     assert!(wall_lum > 25.0, "the wall shows: {wall_lum:.0}");
     assert!(hole_lum > 230.0 && hole_lum > card_lum, "the hole shows its bright source: {hole_lum:.0}");
+}
+
+#[test]
+fn the_white_lasers_spectrum_is_a_band_on_the_back_wall() {
+    // pm-laser-prism at quick size, in clear air (so only the wall's
+    // light is coloured): the report's laser is white light, and the
+    // spectrum it paints on the back wall is a band, not a hairline. In
+    // the column where 550 nm lands, at least 8 strongly coloured pixels
+    // (max - min channel above 80) within 15 px of it; along its row, at
+    // least 50 within 80 px.
+    let s = SceneFile::load(&repo("scenes/pm-laser-prism.toml"), true).unwrap();
+    let cfg = refract::experiment::params::prism_config(&s.params).unwrap();
+    let mut scene = refract::scenes::build(&cfg.scene).unwrap();
+    scene.haze = 0.0;
+    let p = refract::world::probe::probe(&scene, 550.0);
+    let start = p.exit_point + p.exit_dir * 1e-9;
+    let hit = scene.intersect(start, p.exit_dir, None).expect("the fan reaches a wall");
+    assert_eq!(scene.name(hit.face), "back wall");
+    let at = scene.camera.project(start + p.exit_dir * hit.t).expect("in view");
+    let r = refract::spectral::render_world(&cfg, &scene, &refract::progress::Silent).unwrap();
+    let (w, h) = (r.render.image.width as i64, r.render.image.height as i64);
+    let img = r.render.image.to_srgb8(r.exposure, cfg.gamut);
+    let coloured = |x: i64, y: i64| {
+        if x < 0 || y < 0 || x >= w || y >= h {
+            return false;
+        }
+        let px = &img[((y * w + x) * 3) as usize..((y * w + x) * 3 + 3) as usize];
+        px.iter().max().unwrap() - px.iter().min().unwrap() > 80
+    };
+    let (x, y) = (at.x as i64, at.y as i64);
+    let tall = (-15..=15).filter(|&dy| coloured(x, y + dy)).count();
+    let long = (-80..=80).filter(|&dx| coloured(x + dx, y)).count();
+    eprintln!("the spectrum at {at:?}: {tall} px tall, {long} px long");
+    assert!(tall >= 8, "the spectrum on the back wall is {tall} px tall (a hairline)");
+    assert!(long >= 50, "the spectrum on the back wall is {long} px long");
 }

@@ -79,8 +79,12 @@ fn the_cornell_laser_lands_where_the_probe_says() {
 #[test]
 fn the_laser_spectrum_on_the_back_wall_is_long_enough_to_read() {
     // Where 400 and 700 nm land (the probe's optics), projected through the
-    // figure's camera (pm-laser-prism is 480x360): at least 80 px apart,
-    // both on the back wall.
+    // figure's camera (pm-laser-prism is 480x360): at least 50 px apart,
+    // both on the back wall. (57 px: the laser now comes in from the right
+    // wall, its beam seen entering the prism, and the fan meets the back
+    // wall's far left half; the spectrum there is a band 6 cm tall, not the
+    // 80 px hairline of a beam from the front; `figure_content` measures
+    // the band in the image.)
     let mut o = SceneOptions::new(SceneKind::CornellLaser);
     o.crown = refract::optics::glass::by_name("N-SF11").unwrap();
     o.ior = refract::optics::ior::IorKind::Musgrave;
@@ -95,7 +99,7 @@ fn the_laser_spectrum_on_the_back_wall_is_long_enough_to_read() {
         scene.camera.project(start + hit.t * p.exit_dir).expect("in view")
     };
     let length = (land(400.0) - land(700.0)).length();
-    assert!(length >= 80.0, "the spectrum is {length:.1} px long");
+    assert!(length >= 50.0, "the spectrum is {length:.1} px long");
 }
 
 /// A matte wall of `albedo` 1 m before the camera, lit from the side by a

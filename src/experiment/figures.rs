@@ -661,11 +661,13 @@ fn colour_compare(png: &Path, quick: bool, scenes: &Path) -> Result<String> {
     for (k, map) in maps.iter().enumerate() {
         cfg.colours = *map;
         let mut scene = build(&cfg.scene)?;
-        // The crop: the prism and the whole fan, the incoming beam's last
-        // part (the figure's own camera, 23 degrees instead of 24 and
-        // centred lower and to the right, on a wider tile).
-        let centre = glam::DVec3::new(0.33, -0.25, 0.0);
-        scene.camera = crate::world::Camera::look_at(centre + glam::DVec3::Z * 2.8, centre, glam::DVec3::Y, 23.0, tw, th);
+        // The crop: the prism filling the tile's upper left, the incoming
+        // beam's last part, and the fan running out of the tile at its
+        // lower right (the figure's own camera, 16 degrees instead of 19:
+        // a wider crop showed the fan end in mid-air where its light comes
+        // down onto the backdrop).
+        let centre = glam::DVec3::new(0.28, -0.17, 0.0);
+        scene.camera = crate::world::Camera::look_at(centre + glam::DVec3::Z * 2.8, centre, glam::DVec3::Y, 16.0, tw, th);
         let r = crate::spectral::render_world(&cfg, &scene, &crate::progress::Silent)?;
         let tile = r.render.image.to_srgb8(r.exposure, cfg.gamut);
         let (x0, y0) = ((k % cols) * tw, (k / cols) * (th + label_h) + label_h);

@@ -61,18 +61,20 @@ pub fn build(o: &SceneOptions) -> Result<World> {
     s.indirect_gather = 8.0;
     let n_d = o.crown.sellmeier(crate::optics::glass::lines::LD);
     let min_deviation = (n_d * 0.5f64).asin();
-    // The spectrum fans toward the back wall, a little to the right. The
-    // laser's prism stands at the front left, wholly in view, so the fan
-    // crosses the box and meets the back wall obliquely (its spectrum there
-    // over 80 px long at 480x360). The laser is polarised in the plane of
-    // incidence and meets the prism 2 degrees short of minimum deviation,
-    // at Brewster's angle (atan n = 61 degrees for N-SF11): its entry and
-    // exit reflect almost nothing, so no stray laser spots dot the walls
-    // (docs/physics.md §2); the fan spreads a little wider than at minimum
-    // deviation (§11: 9.3 instead of 8.6 degrees over 400-700 nm).
+    // The laser's prism stands at the front right, wholly in view, lit from
+    // the right by a laser on the right wall: its beam crosses the picture
+    // level, seen entering the prism's face. The fan crosses the box to the
+    // left half of the back wall, meets it at 35 degrees and paints the
+    // spectrum there, about 36 cm long. The laser is polarised in the plane
+    // of incidence and meets the prism 2 degrees short of minimum
+    // deviation, at Brewster's angle (atan n = 61 degrees for N-SF11): its
+    // entry and exit reflect almost nothing, so no stray laser spots dot
+    // the walls (docs/physics.md §2); the fan spreads a little wider than at
+    // minimum deviation (§11: 9.3 instead of 8.6 degrees over 400-700 nm).
+    // The other boxes' fan leaves toward the back wall, a little right.
     let laser = o.kind == SceneKind::CornellLaser;
     let (centre, exit, default_incidence) = if laser {
-        (DVec2::new(-0.7, -0.45), 48f64.to_radians(), min_deviation - 2f64.to_radians())
+        (DVec2::new(0.5, -0.5), 125f64.to_radians(), min_deviation - 2f64.to_radians())
     } else {
         (DVec2::new(-0.1, -0.3), 70f64.to_radians(), min_deviation)
     };
@@ -83,15 +85,29 @@ pub fn build(o: &SceneOptions) -> Result<World> {
     let incidence = o.incidence_deg.map_or(default_incidence, f64::to_radians);
     let (aim, dir) = into_left_face(cross, incidence);
     let aim = aim + DVec3::Z * 0.25;
+    // The probe ray starts on the light's way in (the laser's: at its
+    // aperture, clear of its housing).
+    let mut probe_from = aim - dir * 0.5;
     match o.kind {
         SceneKind::CornellPointlight => {
             let pos = aim - dir * 0.55;
             s.lights.push(Light { name: "point light".into(), emission: Emission::Point { pos }, spectrum: light_spectrum(o, "d65")?, power: 1.0 });
         }
         SceneKind::CornellMirrorTube => {
-            // A square mirror tube along the light's way into the prism,
-            // closed behind the light.
-            let (len, half) = (0.45, 0.04);
+            // A square mirror tube 2.5 cm across and 45 cm long along the
+            // light's way into the prism, closed by a mirror behind a small
+            // frosted bulb (a sphere 1.6 cm across). Its mirrors make a
+            // lattice of images of the bulb, a tube's width apart; each
+            // lights the room through the tube's mouth, and neighbouring
+            // images' beams overlap in strips as wide as the mouth. With a
+            // bare point in a tube 8 cm across those strips drew a lattice
+            // of bright lines over the walls (a kaleidoscope's pattern, not
+            // the gather's). Here the bulb's penumbra at the walls (its
+            // width times their distance over the tube's length, 7 cm at
+            // 2 m) is wider than the strips, so the walls are lit smoothly;
+            // and the narrow mouth, seen from the prism, is a small source
+            // (about 5 degrees), so the arcs stay sharp and coloured.
+            let (len, half) = (0.45, 0.0125);
             let start = aim - dir * 0.75;
             let u = DVec3::Z.cross(dir).normalize();
             let w = DVec3::Z;
@@ -106,16 +122,30 @@ pub fn build(o: &SceneOptions) -> Result<World> {
                 s.faces.push(Face::rect(&format!("mirror tube {i}"), c, dir * len, e, Surface::Mirror { reflectance: 0.95 }));
             }
             s.faces.push(Face::rect("mirror tube end", corner(-1.0, -1.0), u * (2.0 * half), w * (2.0 * half), Surface::Mirror { reflectance: 0.95 }));
-            s.lights.push(Light {
-                name: "point light in a mirror tube".into(),
-                emission: Emission::Point { pos: start + dir * 0.02 },
-                spectrum: light_spectrum(o, "d65")?,
-                power: 1.0,
-            });
+            let light = s.lights.len();
+            s.spheres.push(crate::world::Sphere { name: "bulb".into(), centre: start + dir * 0.009, radius: 0.008, surface: Surface::Emitter { light } });
+            let emission = Emission::Sphere { sphere: s.spheres.len() - 1 };
+            s.lights.push(Light { name: "point light in a mirror tube".into(), emission, spectrum: light_spectrum(o, "d65")?, power: 1.0 });
         }
         _ => {
-            let start = aim - dir * 2.5;
+            // The laser's aperture 16 cm from the right wall (the beam
+            // leaves it heading left, a little toward the camera); its
+            // housing, a dark box 5 cm wide and 14 cm tall (tall enough to
+            // catch the little the prism sends back), reaches back into
+            // the wall.
+            let start = aim - dir * ((0.84 - aim.x) / -dir.x);
+            probe_from = start + dir * 0.01;
             let u = DVec3::Z.cross(dir).normalize();
+            let (hu, hw, w, dark) = (0.025, 0.07, DVec3::Z, [0.05; 3]);
+            let front = start - dir * 0.001;
+            let body = dir * ((1.0 - front.x) / -dir.x + 0.01);
+            let back = front - body;
+            // Each face's normal (eu x ev) outward.
+            matte(&mut s, "laser top", back - u * hu + w * hw, body, u * (2.0 * hu), dark);
+            matte(&mut s, "laser bottom", back - u * hu - w * hw, u * (2.0 * hu), body, dark);
+            matte(&mut s, "laser side", back + u * hu - w * hw, w * (2.0 * hw), body, dark);
+            matte(&mut s, "laser side", back - u * hu - w * hw, body, w * (2.0 * hw), dark);
+            matte(&mut s, "laser front", front - u * hu - w * hw, u * (2.0 * hu), w * (2.0 * hw), dark);
             s.lights.push(Light {
                 name: "laser".into(),
                 emission: Emission::Beam {
@@ -123,8 +153,10 @@ pub fn build(o: &SceneOptions) -> Result<World> {
                     dir,
                     u,
                     v: DVec3::Z,
-                    half: DVec2::new(0.004, 0.004),
-                    disc: true,
+                    // 8 mm wide and 6 cm tall (a line laser's sheet): the
+                    // spectrum it paints is a band, not a hairline.
+                    half: DVec2::new(0.004, 0.03),
+                    disc: false,
                     polarisation: Some(Polarisation::P),
                 },
                 spectrum: light_spectrum(o, "d65")?,
@@ -150,12 +182,12 @@ pub fn build(o: &SceneOptions) -> Result<World> {
             });
         }
     }
-    s.probe = (aim - dir * 0.5, dir);
+    s.probe = (probe_from, dir);
     s.camera = if laser {
-        // Framed on the prism, the fan and its spectrum on the back wall:
-        // the whole prism in view at the left, the red and green walls on
-        // either side, the spectrum near the back wall's right corner.
-        Camera::look_at(DVec3::new(0.0, -3.0, 1.1), DVec3::new(-0.15, 0.0, 0.5), DVec3::Z, 29.0, o.width, o.height)
+        // Framed on the laser, the prism, the fan and the band on the back
+        // wall, from a little left of centre (from in front, the prism's
+        // entry face looked a dark block).
+        Camera::look_at(DVec3::new(-0.5, -3.0, 1.1), DVec3::new(0.15, 0.0, 0.45), DVec3::Z, 30.0, o.width, o.height)
     } else {
         // The box's front edges just outside the frame (35.5 degrees: at
         // 38 the dark outside showed down both sides).
