@@ -240,11 +240,13 @@ fn add_bench(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism) -> Result<
     let (y0, y1) = (strip_centre.y.min(0.0) - 1.3, strip_centre.y.max(0.0) + 0.3);
     super::matte(scene, "table", DVec3::new(x0, y0, z), DVec3::new(x1 - x0, 0.0, 0.0), DVec3::new(0.0, y1 - y0, 0.0), [0.45; 3]);
     // The prism table: a white card (20 x 8 cm) just under the prism's
-    // base, which the glass shows bent and fringed, on a dark post (6 x 3
-    // cm) down to the table. Outward normals: card +z; post front -y,
-    // back +y, ends -x / +x.
+    // base, which the glass shows bent and fringed, on a dark post (6 x 8
+    // cm) down to the table. The post's sides stand in the planes of the
+    // lamp housing's, so the fan's photons, traced four at a time, cross
+    // no new plane before the screen (`photon::beam`). Outward normals:
+    // card +z; post front -y, back +y, ends -x / +x.
     let card = -prism.size / 2.0 - 1e-4;
-    let (px, py, ph) = (0.03, 0.015, card - z);
+    let (px, py, ph) = (0.03, 0.04, card - z);
     super::matte(scene, "prism table card", DVec3::new(-0.1, -0.04, card), DVec3::new(0.2, 0.0, 0.0), DVec3::new(0.0, 0.08, 0.0), [0.85; 3]);
     let post = [0.12; 3];
     super::matte(scene, "prism table post", DVec3::new(-px, -py, z), DVec3::new(2.0 * px, 0.0, 0.0), DVec3::new(0.0, 0.0, ph), post);
