@@ -294,9 +294,9 @@ fn report_000_pictures_4_to_6_differ_where_their_captions_say() {
     assert!(span * 2 >= w, "the strip spans {span} of the close view's {w} columns");
     // The figures themselves: the prism is seen (Pictures 4 and 6 differ
     // by more than 30 levels in some channel over at least 2 % of the
-    // frame: the prism, 0.7 m from the camera, covers about a tenth of it,
-    // but it shows the room behind it, so only its edges, its shadow, its
-    // reflections and what it bends differ that much; measured 4.4 %),
+    // frame: the prism, 0.85 m from the camera, covers about a tenth of
+    // it, but it shows the room behind it, so only its edges, its shadow,
+    // its reflections and what it bends differ that much),
     // and in Picture 5 the haze shows the fan of colours between
     // prism and screen (at least 0.3 % of the frame saturated, of at least
     // four hues).
@@ -316,17 +316,48 @@ fn report_000_pictures_4_to_6_differ_where_their_captions_say() {
     assert!(fan.len() * 1000 > 3 * w * h && fan_hues.len() >= 4, "the fan of colours in Picture 5: {} px of {} hues", fan.len(), fan_hues.len());
     // The strip is large in the figure itself: along the row through the
     // screen at the beam's height, saturated pixels on the screen span at
-    // least a fifth of the frame's width (measured 113 of 480 columns at
-    // quick size; the view from behind the lamp gave about 25).
+    // least a sixth of the frame's width (measured 81 of 480 columns at
+    // quick size, with the camera 15 cm above the beam so the prism's top
+    // shows and the fan meets the strip from below; 113 from 4 cm above
+    // it; the view from behind the lamp gave about 25).
     let s = SceneFile::load(&repo("scenes/css552-p5.toml"), true).unwrap();
     let scene = refract::scenes::build(&refract::experiment::params::prism_config(&s.params).unwrap().scene).unwrap();
-    let (corner, eu, _) = scene.faces.iter().find(|f| f.name == "screen").and_then(|f| f.frame).expect("a screen");
+    let (corner, eu, ev) = scene.faces.iter().find(|f| f.name == "screen").and_then(|f| f.frame).expect("a screen");
     let at = |p: glam::DVec3| scene.camera.project(glam::DVec3::new(p.x, p.y, 0.0)).expect("the screen in view");
     let (a, b, mid) = (at(corner), at(corner + eu), at(corner + eu / 2.0));
     let y = mid.y as usize;
     let strip: Vec<usize> = (a.x.min(b.x).max(0.0) as usize..(a.x.max(b.x) as usize).min(w)).filter(|&x| hue_sector(rgb(&p5, x, y)).is_some()).collect();
     let span = strip.last().unwrap_or(&0) - strip.first().unwrap_or(&0);
-    assert!(span * 5 >= w, "the strip spans {span} of the frame's {w} columns on the screen's row {y}");
+    assert!(span * 6 >= w, "the strip spans {span} of the frame's {w} columns on the screen's row {y}");
+    // The strip lies across the screen's middle, not at its edge: the
+    // rows of the strip's saturated pixels in the screen's middle column
+    // centre within the middle third of the screen's height there.
+    let proj = |p: glam::DVec3| scene.camera.project(p).expect("the screen in view");
+    let (top, bottom) = (proj(corner + eu / 2.0 + ev).y, proj(corner + eu / 2.0).y);
+    let x = mid.x as usize;
+    let rows: Vec<f64> = (top.max(0.0) as usize..(bottom as usize).min(h)).filter(|&y| hue_sector(rgb(&p5, x, y)).is_some()).map(|y| y as f64).collect();
+    assert!(!rows.is_empty(), "the strip in the screen's middle column {x}");
+    let centre = (rows.iter().sum::<f64>() / rows.len() as f64 - top) / (bottom - top);
+    assert!((1.0 / 3.0..2.0 / 3.0).contains(&centre), "the strip at {centre:.2} of the screen's height from its top");
+    // Its brightest part is yellow-green, as in a photograph of a white
+    // light's spectrum: along the strip's row the brightest pixel (by
+    // luma) is yellow to green (hue 45-150 degrees), not violet or blue.
+    let ys = rows.iter().sum::<f64>() / rows.len() as f64;
+    let luma = |[r, g, b]: [i32; 3]| 0.2126 * r as f64 + 0.7152 * g as f64 + 0.0722 * b as f64;
+    let (a, b) = (a.x.min(b.x).max(0.0) as usize, (a.x.max(b.x) as usize).min(w));
+    let brightest = (a..b).map(|x| rgb(&p5, x, ys as usize)).max_by(|p, q| luma(*p).total_cmp(&luma(*q))).unwrap();
+    let [r, g, bl] = brightest;
+    let (max, min) = (r.max(g).max(bl), r.min(g).min(bl));
+    let hue = if max == min {
+        -1
+    } else if max == r {
+        (60 * (g - bl) / (max - min) + 360) % 360
+    } else if max == g {
+        60 * (bl - r) / (max - min) + 120
+    } else {
+        60 * (r - g) / (max - min) + 240
+    };
+    assert!((45..=150).contains(&hue), "the strip's brightest pixel {brightest:?} has hue {hue}");
 }
 
 #[test]

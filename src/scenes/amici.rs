@@ -188,14 +188,15 @@ fn add_screen(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism, design: &
 const BENCH_SCREEN_DISTANCE: f64 = 1.6;
 /// The window light's power over a table-sized footprint, W: the room
 /// clearly seen under the figures' display (AgX with its print look at
-/// exposure 0.005), the strip still far brighter than the screen around it.
-const WINDOW_POWER: f64 = 900.0;
+/// exposure 0.0075), the strip's yellow-green middle rolling toward white
+/// while the screen around it stays mid grey.
+const WINDOW_POWER: f64 = 600.0;
 /// The height of the room's walls around the bench, m.
 const WALL_HEIGHT: f64 = 0.6;
 
 /// Pictures 3-6 as photographs of an optics bench would show them: a grey
-/// table under the prism (which stands on it), dark lines ruled across it
-/// under the prism; a lamp housing whose slit sends the white beam (6 mm x
+/// table; the prism on a white card on a dark post (a prism table), so
+/// the beam runs half the screen's height above the table; a lamp housing whose slit sends the white beam (6 mm x
 /// 3 cm here, wide enough to see as a patch on the screen) down the bench;
 /// the beam's path shown by a thin haze, white up to the prism and a
 /// narrow fan of colours after it; a white screen standing on the table
@@ -204,21 +205,23 @@ const WALL_HEIGHT: f64 = 0.6;
 /// the glass shows a room; the room lit from above, behind and the near
 /// side by a broad collimated light (daylight through a window: every
 /// photon lands where the camera looks, and the haze leaves it out). The
-/// view (`View`) is the bench from low beside the lamp (Pictures 4-6), the
-/// screen close up, or the whole bench from above its near side
-/// (Picture 3).
+/// view (`View`) is the bench from beside the lamp (Pictures 4-6), the
+/// screen close up, or the whole bench from above, behind the lamp and to
+/// its near side (Picture 3).
 fn add_bench(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism) -> Result<()> {
     // `add_screen` has just made the screen and the slit beam (`build`).
     let screen = *scene.maps.first().expect("the bench view is built on the screen");
     let (corner, eu, ev) = scene.faces[screen].frame.expect("the screen is a parallelogram");
     let strip_centre = corner + (eu + ev) / 2.0;
-    // The table top, just under the prism's base.
-    let z = -prism.size / 2.0 - 1e-4;
-    // The screen: 24 cm wide, standing on the table, 14 cm tall, centred
-    // across the strip. Normal -x (facing the prism): u along -y, v up.
+    // The screen: 15 % wider than the strip (about 35 cm), 40 % as tall,
+    // centred on the strip. Normal -x (facing the prism): u along -y, v up.
     let sw = eu.length() * 1.15;
-    let sh = sw * 0.55;
+    let sh = sw * 0.4;
     let surface = scene.faces[screen].surface.clone();
+    // The table lies half the screen's height under the beam, so the
+    // screen stands on it with the strip across its middle; the prism
+    // stands on a white card on a post (a prism table) up to the beam.
+    let z = -sh / 2.0;
     scene.faces[screen] =
         Face::rect("screen", DVec3::new(strip_centre.x, strip_centre.y + sw / 2.0, z), DVec3::new(0.0, -sw, 0.0), DVec3::new(0.0, 0.0, sh), surface);
     // The slit: the beam 6 mm wide and 3 cm tall, its image on the screen
@@ -226,27 +229,33 @@ fn add_bench(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism) -> Result<
     let Emission::Beam { centre: start, half, .. } = &mut scene.lights[0].emission else { unreachable!("the bench's first light is the slit beam") };
     *half = DVec2::new(0.003, 0.015);
     let start = *start;
-    // The camera of Pictures 4-6: low over the table (6.5 cm above it),
-    // beside the lamp and 18 cm to the side of the beam, looking down the
-    // bench with a long lens (18 degrees across): the prism whole in the
-    // near left, the screen and its strip large on the right, the beam
-    // coming in from the left edge (the lamp itself just out of view).
-    let bench_cam = DVec3::new(-0.7, -0.18, 0.04);
+    // The camera of Pictures 4-6: beside the lamp, 25 cm to the side of
+    // the beam and 15 cm above it, looking down the bench with a long lens
+    // (24 degrees across): the prism whole in the near left, seen a little
+    // from above so its top shows the three wedges; the screen whole at the
+    // top right, the fan of colours reaching it from below the strip, not
+    // across it (the lamp itself just out of view).
+    let bench_cam = DVec3::new(-0.8, -0.25, 0.15);
     let (x0, x1) = (bench_cam.x - 0.5, strip_centre.x + 0.06);
     let (y0, y1) = (strip_centre.y.min(0.0) - 1.3, strip_centre.y.max(0.0) + 0.3);
     super::matte(scene, "table", DVec3::new(x0, y0, z), DVec3::new(x1 - x0, 0.0, 0.0), DVec3::new(0.0, y1 - y0, 0.0), [0.45; 3]);
-    // Ruled across it under the prism, as on a cutting mat: ten dark lines
-    // 2.5 mm wide, 5 cm apart, 0.05 mm above it; seen through the glass
-    // they bend and break, as through a real prism. (Ten: with more faces
-    // the scene would leave the prism-train shortcut for a BVH, five times
-    // slower.)
-    for k in 0..10 {
-        let x = -0.225 + 0.05 * k as f64;
-        super::matte(scene, "table rule", DVec3::new(x, -0.2, z + 5e-5), DVec3::new(0.0025, 0.0, 0.0), DVec3::new(0.0, 0.5, 0.0), [0.1; 3]);
-    }
+    // The prism table: a white card (20 x 8 cm) just under the prism's
+    // base, which the glass shows bent and fringed, on a dark post (6 x 8
+    // cm) down to the table. The post's sides stand in the planes of the
+    // lamp housing's, so the fan's photons, traced four at a time, cross
+    // no new plane before the screen (`photon::beam`). Outward normals:
+    // card +z; post front -y, back +y, ends -x / +x.
+    let card = -prism.size / 2.0 - 1e-4;
+    let (px, py, ph) = (0.03, 0.04, card - z);
+    super::matte(scene, "prism table card", DVec3::new(-0.1, -0.04, card), DVec3::new(0.2, 0.0, 0.0), DVec3::new(0.0, 0.08, 0.0), [0.85; 3]);
+    let post = [0.12; 3];
+    super::matte(scene, "prism table post", DVec3::new(-px, -py, z), DVec3::new(2.0 * px, 0.0, 0.0), DVec3::new(0.0, 0.0, ph), post);
+    super::matte(scene, "prism table post", DVec3::new(-px, py, z), DVec3::new(0.0, 0.0, ph), DVec3::new(2.0 * px, 0.0, 0.0), post);
+    super::matte(scene, "prism table post", DVec3::new(-px, -py, z), DVec3::new(0.0, 0.0, ph), DVec3::new(0.0, 2.0 * py, 0.0), post);
+    super::matte(scene, "prism table post", DVec3::new(px, -py, z), DVec3::new(0.0, 2.0 * py, 0.0), DVec3::new(0.0, 0.0, ph), post);
     // The lamp housing: a dark box whose front face (with the slit) stands
     // 1 mm behind where the beam starts, so the beam leaves through it.
-    let (bx, bd, bw, bh) = (start.x - 0.001, 0.12, 0.08, 0.07);
+    let (bx, bd, bw, bh) = (start.x - 0.001, 0.12, 0.08, 0.035 - z);
     let (by0, by1) = (start.y - bw / 2.0, start.y + bw / 2.0);
     let housing = [0.12; 3];
     // Outward normals: front +x, back -x, sides -y / +y, top +z.
@@ -309,19 +318,25 @@ fn add_bench(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism) -> Result<
     // §13): the table and the white slit image come out without photon
     // noise; the photons carry what crosses the prism.
     scene.direct_lighting = true;
+    // The glass is seen through two cemented faces to the card under it:
+    // eye paths split at the first `BENCH_SPLIT_DEPTH` faces (no roulette
+    // grain on the prism's faces).
+    scene.eye_split_depth = BENCH_SPLIT_DEPTH;
     // A thin haze shows the beam (docs/physics.md §17), but for the close
     // view of the screen, which looks along the beam.
     scene.haze = if o.view == View::Screen { 0.0 } else { BENCH_HAZE };
     let aspect = o.width as f64 / o.height as f64;
     let (cam, target, hfov): (DVec3, DVec3, f64) = match o.view {
-        // Low beside the lamp (`bench_cam`): the prism near, the strip on
-        // the screen large beyond it.
-        View::Scene => (bench_cam, DVec3::new(0.5, 0.04, 0.0), 18.0),
+        // Beside the lamp (`bench_cam`): the prism near, the strip on the
+        // screen large beyond it.
+        View::Scene => (bench_cam, DVec3::new(0.35, 0.0, -0.02), 24.0),
         // Square on to the strip from 40 cm: the strip across the frame.
         View::Screen => (strip_centre - DVec3::new(0.4, 0.0, 0.0), strip_centre, 2.0 * (0.5 * 0.7 * sw / 0.4).atan().to_degrees()),
-        // Above the bench's near side, behind the prism: the camera of
-        // Pictures 4-6, the lamp, the prism, the fan and the screen all in view.
-        View::Overview => (DVec3::new(-0.4, -1.4, 1.3), DVec3::new(0.3, 0.0, 0.0), 65.0),
+        // Above the bench, behind the lamp and to its near side: the camera
+        // of Pictures 4-6, the lamp, the prism, the fan and the screen all
+        // in view, the prism as large as a view of the whole bench allows
+        // (it is 16 cm of a bench 2.5 m long).
+        View::Overview => (DVec3::new(-1.4, -1.3, 0.6), DVec3::new(0.05, 0.0, -0.08), 44.0),
     };
     if o.view == View::Overview {
         // That camera drawn where it stands: a grey body 8 x 5 x 5 cm on a
@@ -346,6 +361,12 @@ fn add_bench(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism) -> Result<
     scene.camera = Camera::look_at(cam, target, DVec3::Z, vfov.to_degrees(), o.width, o.height);
     Ok(())
 }
+
+/// Faces an eye path through the bench's prism splits at (`World::
+/// eye_split_depth`): top, two cemented faces, base and back; measured at
+/// quick size, 4 left the prism's top grainy, 8 smooth, for 10 % more eye
+/// rays.
+const BENCH_SPLIT_DEPTH: usize = 8;
 
 /// The bench's haze, per metre: enough that the beam shows over the
 /// table's light, too little to veil the screen or, seen along the fan,

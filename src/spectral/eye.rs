@@ -20,9 +20,6 @@ use crate::world::{Emission, Indices, Region, Surface, World};
 use glam::DVec3;
 
 const MAX_DEPTH: usize = 64;
-/// Interfaces up to this depth split an eye path into its reflected and
-/// refracted parts instead of choosing one.
-const SPLIT_DEPTH: usize = 4;
 
 /// The eye pass's view of a render: the world, its filled photon maps, and
 /// what it needs to sample wavelengths and to see emitters.
@@ -241,12 +238,12 @@ impl Eye<'_> {
         };
         let r = c.reflectance(p.pol);
         p.d = match c.refracted {
-            // Near the camera the transmitted part always goes on with
+            // Near the camera (`World::eye_split_depth`) the transmitted part always goes on with
             // weight T (no roulette noise in the main image); the weak
             // reflected part is followed with probability min(1, 4R) and
             // weight R / that. Deeper, one branch is chosen by Russian
             // roulette.
-            Some(t) if p.depth < SPLIT_DEPTH => {
+            Some(t) if p.depth < self.scene.eye_split_depth => {
                 let q = (4.0 * r).min(1.0);
                 if q > 0.0 && rng.f64() < q {
                     let region = self.scene.region_after(id, c.reflected);

@@ -87,6 +87,12 @@ pub struct World {
     /// directly: set for `--map film`, which puts them on the film
     /// (`spectral::splat`).
     pub caustics_apart: bool,
+    /// Interfaces up to this depth split an eye path into its reflected
+    /// and refracted parts instead of choosing one by Russian roulette
+    /// (`spectral::eye`): 4 by default; a scene whose glass is seen
+    /// through many cemented faces raises it, so what the glass shows
+    /// carries no roulette grain.
+    pub eye_split_depth: usize,
     /// The prisms' convex parts and convex outlines, for finding the next
     /// surface faster (`cells`); rebuilt from the faces by `add_extruded`
     /// and `build_accel`.
@@ -141,6 +147,7 @@ impl World {
             photon_aperture: Vec::new(),
             indirect_gather: 1.0,
             caustics_apart: false,
+            eye_split_depth: 4,
             cells: Cells::default(),
         }
     }
