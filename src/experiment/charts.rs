@@ -491,6 +491,9 @@ fn line_chart_with(p: &PlotSpec, header: &[String], rows: &[Vec<String>], quick:
         log_y,
         categories,
         series,
+        // The reference's own noise, where errors are measured against it:
+        // the level no curve can fall below.
+        levels: reference_noise.filter(|n| *n > 0.0 && is_error(&p.y)).map(|n| vec![(n, "reference noise".to_string())]).unwrap_or_default(),
     })
 }
 
@@ -807,8 +810,8 @@ fn status_table(p: &PlotSpec, dir: &Path, header: &[String], rows: &[Vec<String>
     {
         let root = BitMapBackend::with_buffer(&mut buf, (w, h)).into_drawing_area();
         root.fill(&WHITE).map_err(|e| anyhow!("{e}"))?;
-        let font = ("sans-serif", 15).into_font();
-        root.draw(&Text::new(p.title.clone(), (10, 10), ("sans-serif", 22).into_font())).map_err(|e| anyhow!("{e}"))?;
+        let font = super::plot::font(super::plot::TEXT_PX);
+        root.draw(&Text::new(p.title.clone(), (10, 10), super::plot::font(22.0))).map_err(|e| anyhow!("{e}"))?;
         let heads = ["case / parameters", "result", "NaN px", "fireflies", "TIR (fraction)"];
         let xs = [10, 760, 1010, 1110, 1210];
         for (t, x) in heads.iter().zip(xs) {

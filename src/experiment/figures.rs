@@ -669,13 +669,13 @@ fn ray_diagram(png: &Path) -> Result<String> {
         let root = BitMapBackend::with_buffer(&mut buf, (w, h)).into_drawing_area();
         root.fill(&WHITE).map_err(plot_err)?;
         let mut c = ChartBuilder::on(&root)
-            .caption("A white ray split by the Amici prism (Snell's law per wavelength)", ("sans-serif", 20))
+            .caption("A white ray split by the Amici prism (Snell's law per wavelength)", super::plot::font(20.0))
             .margin(12)
             .x_label_area_size(36)
             .y_label_area_size(56)
             .build_cartesian_2d(-0.12f64..0.26f64, -0.05f64..0.12f64)
             .map_err(plot_err)?;
-        c.configure_mesh().x_desc("x (m)").y_desc("y (m)").label_style(("sans-serif", 13)).draw().map_err(plot_err)?;
+        c.configure_mesh().x_desc("x (m)").y_desc("y (m)").label_style(super::plot::font(13.0)).draw().map_err(plot_err)?;
         for seg in outline(&s) {
             c.draw_series(LineSeries::new(seg, BLACK.stroke_width(2))).map_err(plot_err)?;
         }
@@ -709,7 +709,7 @@ fn ray_diagram(png: &Path) -> Result<String> {
             .position(SeriesLabelPosition::UpperLeft)
             .background_style(WHITE.mix(0.9))
             .border_style(BLACK)
-            .label_font(("sans-serif", 13))
+            .label_font(super::plot::font(13.0))
             .draw()
             .map_err(plot_err)?;
         root.present().map_err(plot_err)?;
@@ -763,7 +763,7 @@ fn colour_compare(png: &Path, quick: bool, scenes: &Path) -> Result<String> {
                 ColorMap::Hsl => "HSL hue",
                 ColorMap::RedWhiteBlue => "red-white-blue",
             };
-            root.draw(&Text::new(label.to_string(), (x0 as i32 + indent, y0 as i32 + label_h as i32 / 6), ("sans-serif", font).into_font().color(&WHITE)))
+            root.draw(&Text::new(label.to_string(), (x0 as i32 + indent, y0 as i32 + label_h as i32 / 6), super::plot::font(font as f64).color(&WHITE)))
                 .map_err(plot_err)?;
         }
         root.present().map_err(plot_err)?;
