@@ -569,7 +569,7 @@ fn write_index(out: &Path, ids: &[String], records: &BTreeMap<String, Record>, q
     }
     if out.join("bench/prism-error-vs-time.png").is_file() {
         writeln!(h, "<h2 id=\"bench\">Benchmark: the prism's error against time, beside an outside renderer</h2>")?;
-        writeln!(h, "<p>From <code>cargo run --release -- bench prism --peer mitsuba</code> (data: <a href=\"bench/prism-error-vs-time.csv\">prism-error-vs-time.csv</a>; the machine, date and commit: <a href=\"bench/README.md\">bench/README.md</a>). The same error as the prism-photons and eye-split charts above: least-squares scaled RMSE of XYZ over the reference's RMS, here against the exact image.</p>")?;
+        writeln!(h, "<p>From <code>cargo run --release -- bench prism --peer mitsuba</code> (data: <a href=\"bench/prism-error-vs-time.csv\">prism-error-vs-time.csv</a>; how its times were taken, which the chart says: <a href=\"bench/prism-error-vs-time.about.csv\">prism-error-vs-time.about.csv</a>; the machine: <a href=\"bench/README.md\">bench/README.md</a>; redrawn from these by <code>refract bench prism --redraw</code>). The same error as the prism-photons and eye-split charts above: least-squares scaled RMSE of XYZ over the reference's RMS, here against the exact image.</p>")?;
         picture_html(
             &mut h,
             out,
@@ -579,7 +579,7 @@ fn write_index(out: &Path, ids: &[String], records: &BTreeMap<String, Record>, q
         )?;
         let dated = "bench/mitsuba-2026-11-25/prism-error-vs-time.png";
         if out.join(dated).is_file() {
-            writeln!(h, "<p>A separate record of 2026-11-25 (<code>bench prism --film-only --peer mitsuba</code>, medians of 3 runs at another machine load, so its times differ from the chart above; data: <a href=\"bench/mitsuba-2026-11-25/prism-error-vs-time.csv\">its CSV</a>; see <a href=\"bench/README.md\">bench/README.md</a>):</p>")?;
+            writeln!(h, "<p>A separate record of 2026-11-25 (<code>bench prism --film-only --peer mitsuba</code>, the third of three runs at another machine load, so its times differ from the chart above; the README's ratios are the three runs' medians; data: <a href=\"bench/mitsuba-2026-11-25/prism-error-vs-time.csv\">its CSV</a>; see <a href=\"bench/README.md\">bench/README.md</a>):</p>")?;
             picture_html(
                 &mut h,
                 out,

@@ -305,12 +305,14 @@ pub fn points_over(chart: &LineChart, k: usize) -> Vec<Option<usize>> {
     chart.series[k].points.iter().map(|p| (0..k).find(|&j| chart.series[j].points.iter().any(|q| near(p, q)))).collect()
 }
 
-/// How many of series `k`'s points lie on an earlier series', and the
-/// first such series (for the legend), where the whole series does not.
-fn partly_over(chart: &LineChart, k: usize) -> Option<(usize, usize)> {
+/// How many of series `k`'s points lie on earlier series' points, and
+/// those series, in order (for the legend).
+fn partly_over(chart: &LineChart, k: usize) -> Option<(usize, Vec<usize>)> {
     let over = points_over(chart, k);
-    let n = over.iter().flatten().count();
-    over.iter().flatten().next().map(|&j| (n, j))
+    let mut under: Vec<usize> = over.iter().flatten().copied().collect();
+    under.sort();
+    under.dedup();
+    (!under.is_empty()).then(|| (over.iter().flatten().count(), under))
 }
 
 /// The legend, beneath the plot so it never covers data: two columns of
@@ -368,9 +370,10 @@ fn legend_entries(chart: &LineChart) -> Vec<(String, RGBColor, Option<usize>, bo
                 Some((j, true)) => (format!("{} (identical to {}: dashed over it)", s.name, chart.series[j].name), s.color, shape, true, false),
                 Some((j, false)) => (format!("{} (within a few pixels of {}: dashed over it)", s.name, chart.series[j].name), s.color, shape, true, false),
                 None => match partly_over(chart, k) {
-                    Some((n, j)) => {
-                        let (which, lie) = if n == 1 { ("1 point".to_string(), "lies") } else { (format!("{n} points"), "lie") };
-                        (format!("{} ({which} {lie} on {}'s: hollow over them)", s.name, chart.series[j].name), s.color, shape, false, false)
+                    Some((n, under)) => {
+                        let (which, lie, them) = if n == 1 { ("1 point".to_string(), "lies", "it") } else { (format!("{n} points"), "lie", "them") };
+                        let names: Vec<&str> = under.iter().map(|&j| chart.series[j].name.as_str()).collect();
+                        (format!("{} ({which} {lie} on points of {}: hollow over {them})", s.name, names.join("; ")), s.color, shape, false, false)
                     }
                     None => (s.name.clone(), s.color, shape, false, false),
                 },
@@ -707,7 +710,7 @@ mod tests {
         let both = chart(vec![Series::new("under", under.clone(), a), Series::new("over", over.clone(), b)]);
         assert_eq!(points_over(&both, 1), [None, None, None, Some(0), Some(0), Some(0)]);
         assert_eq!(coincides_with(&both.series, 1, false), None, "not the whole series");
-        assert!(legend_entries(&both)[1].0.contains("3 points lie on under's"), "{}", legend_entries(&both)[1].0);
+        assert!(legend_entries(&both)[1].0.contains("3 points lie on points of under: hollow over them"), "{}", legend_entries(&both)[1].0);
         // Of the first series' pixels where it is drawn alone, most still
         // show with the other over its last three points (about 77 %;
         // 64 % with the other drawn solid over them).
