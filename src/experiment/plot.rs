@@ -139,7 +139,7 @@ pub const PALETTE: [RGBColor; 10] = [
 
 /// The chart's size: 960 wide, taller with many legend rows or notes.
 fn size_of(chart: &LineChart) -> (u32, u32) {
-    let lines: usize = chart.notes.iter().map(|n| wrap(&n.0, NOTE_CHARS).len()).sum();
+    let lines: usize = all_notes(chart).iter().map(|n| wrap(&n.0, NOTE_CHARS).len()).sum();
     (960, 520 + legend_height(chart) + 20 * lines as u32)
 }
 
@@ -315,6 +315,28 @@ fn partly_over(chart: &LineChart, k: usize) -> Option<(usize, Vec<usize>)> {
     (!under.is_empty()).then(|| (over.iter().flatten().count(), under))
 }
 
+/// A series' name without what a fit adds to it ("a: slope ...").
+fn short_name(s: &Series) -> &str {
+    s.name.split(": ").next().unwrap_or(&s.name)
+}
+
+/// The chart's notes, then one for each series drawn hollow where its
+/// points lie on another's (the legend would run off the chart).
+fn all_notes(chart: &LineChart) -> Vec<(String, RGBColor)> {
+    let mut notes = chart.notes.clone();
+    for (k, s) in chart.series.iter().enumerate() {
+        if apart(&chart.series, k, chart.log_y, 0.015).is_some() {
+            continue;
+        }
+        if let Some((n, under)) = partly_over(chart, k) {
+            let names: Vec<&str> = under.iter().map(|&j| short_name(&chart.series[j])).collect();
+            let (points, lie, show) = if n == 1 { ("one point".to_string(), "lies", "shows") } else { (format!("{n} points"), "lie", "show") };
+            notes.push((format!("hollow markers: {}'s {points} that {lie} on points of {}, which {show} inside", short_name(s), names.join("; ")), LEVEL_GREY));
+        }
+    }
+    notes
+}
+
 /// The legend, beneath the plot so it never covers data: two columns of
 /// each series' marker and line (dashed where it lies over another) and
 /// its name.
@@ -369,14 +391,7 @@ fn legend_entries(chart: &LineChart) -> Vec<(String, RGBColor, Option<usize>, bo
             match apart(&chart.series, k, chart.log_y, 0.015) {
                 Some((j, true)) => (format!("{} (identical to {}: dashed over it)", s.name, chart.series[j].name), s.color, shape, true, false),
                 Some((j, false)) => (format!("{} (within a few pixels of {}: dashed over it)", s.name, chart.series[j].name), s.color, shape, true, false),
-                None => match partly_over(chart, k) {
-                    Some((n, under)) => {
-                        let (which, lie, them) = if n == 1 { ("1 point".to_string(), "lies", "it") } else { (format!("{n} points"), "lie", "them") };
-                        let names: Vec<&str> = under.iter().map(|&j| chart.series[j].name.as_str()).collect();
-                        (format!("{} ({which} {lie} on points of {}: hollow over {them})", s.name, names.join("; ")), s.color, shape, false, false)
-                    }
-                    None => (s.name.clone(), s.color, shape, false, false),
-                },
+                None => (s.name.clone(), s.color, shape, false, false),
             }
         })
         .collect();
@@ -422,7 +437,8 @@ where
     if !chart.subtitle.is_empty() {
         root = root.titled(&chart.subtitle, font(TEXT_PX)).map_err(|e| anyhow!("{e}"))?;
     }
-    for (note, colour) in chart.notes.iter().flat_map(|(n, c)| wrap(n, NOTE_CHARS).into_iter().map(move |l| (l, c))) {
+    let notes = all_notes(chart);
+    for (note, colour) in notes.iter().flat_map(|(n, c)| wrap(n, NOTE_CHARS).into_iter().map(move |l| (l, c))) {
         root = root.titled(&note, font(TEXT_PX).color(colour)).map_err(|e| anyhow!("{e}"))?;
     }
     let (_, h) = root.dim_in_pixel();
@@ -699,7 +715,7 @@ mod tests {
 
     /// A series whose last points lie on another's (two methods that
     /// converge) leaves the other's markers and line showing there, and
-    /// the legend says which points.
+    /// a note says which points.
     #[test]
     fn points_on_another_series_points_both_show() {
         let (a, b) = (PALETTE[0], PALETTE[1]);
@@ -710,7 +726,8 @@ mod tests {
         let both = chart(vec![Series::new("under", under.clone(), a), Series::new("over", over.clone(), b)]);
         assert_eq!(points_over(&both, 1), [None, None, None, Some(0), Some(0), Some(0)]);
         assert_eq!(coincides_with(&both.series, 1, false), None, "not the whole series");
-        assert!(legend_entries(&both)[1].0.contains("3 points lie on points of under: hollow over them"), "{}", legend_entries(&both)[1].0);
+        let notes = all_notes(&both);
+        assert_eq!(notes.last().unwrap().0, "hollow markers: over's 3 points that lie on points of under, which show inside");
         // Of the first series' pixels where it is drawn alone, most still
         // show with the other over its last three points (about 77 %;
         // 64 % with the other drawn solid over them).
