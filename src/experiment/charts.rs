@@ -819,7 +819,7 @@ fn status_table(e: &Experiment, p: &PlotSpec, dir: &Path, header: &[String], row
     let h = 80 + line + line * (rows.len() as u32 + extra.iter().sum::<u32>());
     let mut buf = vec![255u8; (w * h * 3) as usize];
     {
-        let root = BitMapBackend::with_buffer(&mut buf, (w, h)).into_drawing_area();
+        let root = super::glyphs::Glyphs(BitMapBackend::with_buffer(&mut buf, (w, h))).into_drawing_area();
         root.fill(&WHITE).map_err(|e| anyhow!("{e}"))?;
         let font = super::plot::font(super::plot::TEXT_PX);
         root.draw(&Text::new(p.title.clone(), (10, 10), super::plot::font(22.0))).map_err(|e| anyhow!("{e}"))?;

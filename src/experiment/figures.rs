@@ -666,7 +666,7 @@ fn ray_diagram(png: &Path) -> Result<String> {
     // cyan-green, green, yellow, orange, red.
     let lambdas = [404.7, 465.0, 485.0, 505.0, 546.1, 575.0, 600.0, 656.3];
     {
-        let root = BitMapBackend::with_buffer(&mut buf, (w, h)).into_drawing_area();
+        let root = super::glyphs::Glyphs(BitMapBackend::with_buffer(&mut buf, (w, h))).into_drawing_area();
         root.fill(&WHITE).map_err(plot_err)?;
         let mut c = ChartBuilder::on(&root)
             .caption("A white ray split by the Amici prism (Snell's law per wavelength)", super::plot::font(20.0))
@@ -752,7 +752,7 @@ fn colour_compare(png: &Path, quick: bool, scenes: &Path) -> Result<String> {
         }
     }
     {
-        let root = BitMapBackend::with_buffer(&mut buf, (w as u32, h as u32)).into_drawing_area();
+        let root = super::glyphs::Glyphs(BitMapBackend::with_buffer(&mut buf, (w as u32, h as u32))).into_drawing_area();
         for (k, map) in maps.iter().enumerate() {
             let (x0, y0) = ((k % cols) * tw, (k / cols) * (th + label_h));
             let label = match map {

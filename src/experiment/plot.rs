@@ -614,7 +614,7 @@ pub fn render(path: &Path, chart: &LineChart) -> Result<()> {
     } else {
         let size = size_of(chart);
         let mut buf = vec![0u8; (size.0 * size.1 * 3) as usize];
-        draw(BitMapBackend::with_buffer(&mut buf, size).into_drawing_area(), chart)?;
+        draw(super::glyphs::Glyphs(BitMapBackend::with_buffer(&mut buf, size)).into_drawing_area(), chart)?;
         Ok(write_rgb8(path, size.0 as usize, size.1 as usize, &buf)?)
     }
 }
@@ -629,7 +629,7 @@ pub fn colour_strips(path: &Path, title: &str, x_range: (f64, f64), rows: &[Stri
     let size = (960u32, 120 + 70 * rows.len() as u32);
     let mut buf = vec![0u8; (size.0 * size.1 * 3) as usize];
     {
-        let root = BitMapBackend::with_buffer(&mut buf, size).into_drawing_area();
+        let root = super::glyphs::Glyphs(BitMapBackend::with_buffer(&mut buf, size)).into_drawing_area();
         root.fill(&WHITE).map_err(|e| anyhow!("{e}"))?;
         let mut c = ChartBuilder::on(&root)
             .caption(title, font(24.0))
@@ -804,7 +804,7 @@ mod tests {
         let (w, h) = (80u32, 60u32);
         let mut buf = vec![255u8; (w * h * 3) as usize];
         {
-            let root = BitMapBackend::with_buffer(&mut buf, (w, h)).into_drawing_area();
+            let root = crate::experiment::glyphs::Glyphs(BitMapBackend::with_buffer(&mut buf, (w, h))).into_drawing_area();
             root.draw(&Text::new(text.to_string(), (10, 10), font(px))).unwrap();
             root.present().unwrap();
         }
