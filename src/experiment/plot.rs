@@ -245,6 +245,9 @@ fn decade_ticks((lo, hi): (f64, f64)) -> Vec<f64> {
     (a..=b).flat_map(|k| steps.iter().map(move |m| m * 10f64.powi(k))).filter(|v| *v >= lo * 0.999 && *v <= hi * 1.001).collect()
 }
 
+/// A series of at most this many points has a marker on each.
+const MARKED_POINTS: usize = 60;
+
 /// Marker shapes, one per series in turn: circle, triangle, square,
 /// diamond, downward triangle, cross.
 const SHAPES: usize = 6;
@@ -290,8 +293,13 @@ fn apart(series: &[Series], k: usize, log_y: bool, share: f64) -> Option<(usize,
 /// Points of series `k` that lie on a point of an earlier series (within
 /// half a percent of each axis span in the axes' own coordinates, about
 /// four pixels, so its marker would hide the other's): for each of
-/// its points, the earlier series it hides, if any.
+/// its points, the earlier series it hides, if any. None on a dense curve
+/// (drawn without markers, where crossing curves share points) or a dot
+/// plot (whose series stand side by side).
 pub fn points_over(chart: &LineChart, k: usize) -> Vec<Option<usize>> {
+    if chart.series[k].points.len() > MARKED_POINTS || !chart.categories.is_empty() {
+        return vec![None; chart.series[k].points.len()];
+    }
     let t = |v: f64, log: bool| if log { v.max(1e-300).log10() } else { v };
     let span = |f: &dyn Fn(&(f64, f64)) -> f64| {
         let vs = chart.series.iter().flat_map(|s| s.points.iter()).map(f).filter(|v| v.is_finite());
@@ -299,10 +307,11 @@ pub fn points_over(chart: &LineChart, k: usize) -> Vec<Option<usize>> {
         (hi - lo).max(1e-300)
     };
     let (sx, sy) = (span(&|p| t(p.0, chart.log_x)), span(&|p| t(p.1, chart.log_y)));
+    let marked = |j: &usize| chart.series[*j].points.len() <= MARKED_POINTS;
     let near = |a: &(f64, f64), b: &(f64, f64)| {
         (t(a.0, chart.log_x) - t(b.0, chart.log_x)).abs() <= 0.005 * sx && (t(a.1, chart.log_y) - t(b.1, chart.log_y)).abs() <= 0.005 * sy
     };
-    chart.series[k].points.iter().map(|p| (0..k).find(|&j| chart.series[j].points.iter().any(|q| near(p, q)))).collect()
+    chart.series[k].points.iter().map(|p| (0..k).filter(marked).find(|&j| chart.series[j].points.iter().any(|q| near(p, q)))).collect()
 }
 
 /// How many of series `k`'s points lie on earlier series' points, and
@@ -387,7 +396,7 @@ fn legend_entries(chart: &LineChart) -> Vec<(String, RGBColor, Option<usize>, bo
         .iter()
         .enumerate()
         .map(|(k, s)| {
-            let shape = (s.points.len() <= 60).then_some(k);
+            let shape = (s.points.len() <= MARKED_POINTS).then_some(k);
             match apart(&chart.series, k, chart.log_y, 0.015) {
                 Some((j, true)) => (format!("{} (identical to {}: dashed over it)", s.name, chart.series[j].name), s.color, shape, true, false),
                 Some((j, false)) => (format!("{} (within a few pixels of {}: dashed over it)", s.name, chart.series[j].name), s.color, shape, true, false),
@@ -527,7 +536,7 @@ where
         }
         // A marker on each measured value (not on dense curves): filled,
         // or an outline a size larger where it lies over another series.
-        if pts.len() <= 60 {
+        if pts.len() <= MARKED_POINTS {
             for (&p, &hollow) in pts.iter().zip(&hollow) {
                 let shape = shape_points(k, if hollow { 7 } else { 4 });
                 if hollow || k % SHAPES == 5 {
