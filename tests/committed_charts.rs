@@ -38,3 +38,28 @@ fn every_committed_timing_chart_has_error_bars_and_its_fitted_line() {
     }
     assert!(checked >= 6, "only {checked} timing charts found");
 }
+
+/// The committed bench charts say how their times were taken (wall or
+/// CPU, the date, the commit, the machine's load), and are what their
+/// records draw: `bench prism --redraw` on a copy of the record gives the
+/// committed SVG again; a record without its about file is refused, naming it.
+#[test]
+fn committed_bench_charts_are_drawn_from_their_records() {
+    for dir in ["results/bench", "results/bench/mitsuba-2026-11-25"] {
+        let svg = std::fs::read_to_string(repo(dir).join("prism-error-vs-time.svg")).unwrap_or_else(|e| panic!("{dir}: {e}"));
+        for says in ["wall-clock seconds", "measured 2026-11-25", "at commit ", "machine load (1-minute load average)", "each point one run"] {
+            assert!(svg.contains(says), "{dir}: the chart does not say `{says}`");
+        }
+        let copy = tempfile::tempdir().unwrap();
+        for f in ["prism-error-vs-time.csv", "prism-error-vs-time.about.csv"] {
+            std::fs::copy(repo(dir).join(f), copy.path().join(f)).unwrap();
+        }
+        let out = copy.path().to_str().unwrap();
+        let o = run(&["bench", "prism", "--redraw", "--out", out], "", copy.path());
+        assert!(o.status.success(), "{dir}: {}", stderr(&o));
+        assert_eq!(std::fs::read_to_string(copy.path().join("prism-error-vs-time.svg")).unwrap(), svg, "{dir}: the committed chart is not its record's");
+        std::fs::remove_file(copy.path().join("prism-error-vs-time.about.csv")).unwrap();
+        let o = run(&["bench", "prism", "--redraw", "--out", out], "", copy.path());
+        assert_clean_failure(&o, "prism-error-vs-time.about.csv: cannot read it");
+    }
+}

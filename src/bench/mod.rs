@@ -1,6 +1,7 @@
 //! `refract bench`: speed measured in one run and printed as a table.
 //! Timings are never asserted in tests; they are recorded here.
 
+pub mod error_chart;
 pub mod mitsuba;
 
 use crate::geometry::{Accel, AccelKind, Ray};
@@ -16,6 +17,7 @@ use crate::spectral::render::render;
 use crate::spectrum::cie::GamutMap;
 use crate::spectrum::colormap::ColorMap;
 use anyhow::{ensure, Context, Result};
+use error_chart::Runs;
 use std::fmt::Write;
 use std::time::Instant;
 
@@ -329,10 +331,11 @@ pub struct PrismBench {
 /// with a peer, its error against time on the same scene and reference in
 /// the same run, and each method's time over the peer's.
 pub fn prism(b: &PrismBench, out_dir: &std::path::Path, say: &mut dyn FnMut(String)) -> Result<String> {
-    let (csv_path, png_path) = (out_dir.join("prism-error-vs-time.csv"), out_dir.join("prism-error-vs-time.png"));
-    // The folder, both files and the peer are checked before the minutes of work.
+    let csv_path = out_dir.join(error_chart::CSV);
+    let about_path = out_dir.join(error_chart::ABOUT);
+    // The folder, every file and the peer are checked before the minutes of work.
     crate::image_io::create_folder(out_dir).context("--out")?;
-    for path in [&csv_path, &png_path] {
+    for path in [&csv_path, &about_path, &out_dir.join("prism-error-vs-time.png"), &out_dir.join("prism-error-vs-time.svg")] {
         crate::data::check_regular(path).map_err(|e| anyhow::anyhow!("--out: {e}"))?;
     }
     let peer = match &b.peer {
@@ -345,6 +348,7 @@ pub fn prism(b: &PrismBench, out_dir: &std::path::Path, say: &mut dyn FnMut(Stri
         },
         None => None,
     };
+    let load_start = load_1min();
     let mut so = SceneOptions::new(SceneKind::SinglePrism);
     (so.width, so.height, so.incidence_deg) = (320, 240, Some(49.4));
     let scene = build(&so)?;
@@ -359,10 +363,18 @@ pub fn prism(b: &PrismBench, out_dir: &std::path::Path, say: &mut dyn FnMut(Stri
     if !b.film_only {
         prism_strip_hue(b.quick, &mut out)?;
     }
+    let threads = rayon::current_num_threads();
+    let about = error_chart::About::now(threads, &load_start, &load_1min());
     crate::image_io::write_text(&csv_path, &csv).with_context(|| format!("cannot write {}", csv_path.display()))?;
-    crate::experiment::plot::render(&png_path, &error_chart(&series)).with_context(|| format!("cannot write {}", png_path.display()))?;
-    writeln!(out, "wrote {}/prism-error-vs-time.{{csv,png}}", out_dir.display())?;
+    crate::image_io::write_text(&about_path, &about.to_csv()?).with_context(|| format!("cannot write {}", about_path.display()))?;
+    error_chart::draw(out_dir, &series, &about)?;
+    writeln!(out, "wrote {}/prism-error-vs-time.{{csv,about.csv,png,svg}}", out_dir.display())?;
     Ok(out)
+}
+
+/// The machine's 1-minute load average (Linux's /proc; `unknown` elsewhere).
+fn load_1min() -> String {
+    std::fs::read_to_string("/proc/loadavg").ok().and_then(|t| t.split_whitespace().next().map(String::from)).unwrap_or_else(|| "unknown".into())
 }
 
 /// The k-nearest gather where most queries lie far from every photon:
@@ -442,9 +454,6 @@ fn prism_throughput(what: &str, scene: &crate::world::World, quick: bool, out: &
     )?;
     Ok(())
 }
-
-/// (time, relative error) of one method at several photon counts.
-type Runs = Vec<(f64, f64)>;
 
 /// The errors the table reports times for.
 const TARGETS: [f64; 4] = [0.10, 0.05, 0.02, 0.01];
@@ -632,27 +641,6 @@ fn prism_strip_hue(quick: bool, out: &mut String) -> Result<()> {
         }
     }
     Ok(())
-}
-
-/// Error against time, every method (the peer's, if it ran, last, in black).
-fn error_chart(series: &[(String, Runs)]) -> crate::experiment::plot::LineChart {
-    use crate::experiment::plot::{LineChart, Series, PALETTE};
-    const BLACK: plotters::style::RGBColor = plotters::style::RGBColor(0, 0, 0);
-    LineChart {
-        title: "single-prism strip: error against time".into(),
-        subtitle: "320x240, 60 degree N-BK7 prism, D65 beam, 2 threads; error against the exact image".into(),
-        x_label: "time (s)".into(),
-        y_label: "relative error (least-squares scaled RMSE / RMS)".into(),
-        log_x: true,
-        log_y: true,
-        // The peer in black, refract's methods in the palette's other colours.
-        series: series
-            .iter()
-            .zip(PALETTE.iter().filter(|c| **c != BLACK).cycle())
-            .map(|((name, runs), color)| Series::new(name.clone(), runs.clone(), if name.starts_with("Mitsuba") { BLACK } else { *color }))
-            .collect(),
-        ..Default::default()
-    }
 }
 
 /// The figures that stand for photographs (report 000's lamp and strip,

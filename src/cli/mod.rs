@@ -143,6 +143,10 @@ pub enum BenchCommand {
         /// maps, no progressive runs, no hue along the strip (a shorter run)
         #[arg(long)]
         film_only: bool,
+        /// Redraw the chart in --out from its CSV and its about file (when,
+        /// at which commit, at what load); nothing is measured
+        #[arg(long, conflicts_with_all = ["peer", "film_only"])]
+        redraw: bool,
     },
     /// The k-nearest gather far from a compact cluster of photons:
     /// single-prism with --no-dispersion (every photon in the beam's
@@ -546,8 +550,12 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Spectrum { which } => run_spectrum(which),
         Command::Glass(args) => run_glass(args),
         Command::Bench { which: BenchCommand::Interior { quick } } => write_stdout(&crate::bench::interior(quick)?),
-        Command::Bench { which: BenchCommand::Prism { quick, out, peer, peer_venv, film_only } } => {
+        Command::Bench { which: BenchCommand::Prism { quick, out, peer, peer_venv, film_only, redraw } } => {
             let out = out.unwrap_or_else(|| PathBuf::from(if quick { "results/quick/bench" } else { "results/bench" }));
+            if redraw {
+                crate::bench::error_chart::redraw(&out)?;
+                return write_stdout(&format!("redrew {}/prism-error-vs-time.{{png,svg}} from its CSV\n", out.display()));
+            }
             let bench = crate::bench::PrismBench { quick, film_only, peer: peer.map(|_| peer_venv) };
             write_stdout(&crate::bench::prism(&bench, &out, &mut |line| eprintln!("{line}"))?)
         }

@@ -35,7 +35,7 @@ pub fn draw_all(e: &Experiment, dir: &Path, header: &[String], rows: &[Vec<Strin
     let reference_noise = read_reference_noise(dir);
     for p in &e.plots {
         match p.kind {
-            PlotKind::Table => status_table(p, dir, header, rows)?,
+            PlotKind::Table => status_table(e, p, dir, header, rows)?,
             PlotKind::Line => {
                 let mut chart = line_chart_of(e, p, header, rows, reference_noise)?;
                 if chart.series.is_empty() {
@@ -491,6 +491,9 @@ fn line_chart_with(p: &PlotSpec, header: &[String], rows: &[Vec<String>], quick:
         log_y,
         categories,
         series,
+        // The reference's own noise, where errors are measured against it:
+        // the level no curve can fall below.
+        levels: reference_noise.filter(|n| *n > 0.0 && is_error(&p.y)).map(|n| vec![(n, "reference noise".to_string())]).unwrap_or_default(),
     })
 }
 
@@ -770,10 +773,18 @@ pub fn axis_title(column: &str) -> String {
 /// 740 px before the result column).
 const LABEL_CHARS: usize = 100;
 
+/// The colours of the stability table's rows.
+const TABLE_RED: RGBColor = RGBColor(250, 200, 200);
+const TABLE_GREY: RGBColor = RGBColor(222, 222, 222);
+const TABLE_AMBER: RGBColor = RGBColor(250, 230, 180);
+const TABLE_GREEN: RGBColor = RGBColor(205, 240, 205);
+
 /// One row per run: its case and parameters, then whether it failed, its
 /// NaN/inf pixels, fireflies and fraction of rays in total internal
-/// reflection, coloured red (failed or NaN), amber (fireflies), green.
-fn status_table(p: &PlotSpec, dir: &Path, header: &[String], rows: &[Vec<String>]) -> Result<()> {
+/// reflection, coloured red (failed, or NaN), grey (refused, as its case
+/// declares with `expect = "error"`), amber (fireflies), green; a run of
+/// such a case that rendered is red.
+fn status_table(e: &Experiment, p: &PlotSpec, dir: &Path, header: &[String], rows: &[Vec<String>]) -> Result<()> {
     super::plot::register();
     let (case, status, error) = (col(header, "case")?, col(header, "status")?, col(header, "error")?);
     let (nan, ff, tir) = (col(header, "nan_count")?, col(header, "fireflies")?, col(header, "tir_fraction")?);
@@ -802,34 +813,46 @@ fn status_table(p: &PlotSpec, dir: &Path, header: &[String], rows: &[Vec<String>
         .zip(&labels)
         .map(|(r, l)| l.len() as u32 - 1 + if r[status] != "ok" { wrap(&format!("error: {}", r[error])).len() as u32 } else { 0 })
         .collect();
-    let h = 80 + line * (rows.len() as u32 + extra.iter().sum::<u32>());
+    let meant_to_fail = |r: &Vec<String>| e.cases.iter().any(|c| c.name == r[case] && c.expect == super::spec::Expect::Error);
+    // The key's line under the title.
+    let top = line as i32;
+    let h = 80 + line + line * (rows.len() as u32 + extra.iter().sum::<u32>());
     let mut buf = vec![255u8; (w * h * 3) as usize];
     {
-        let root = BitMapBackend::with_buffer(&mut buf, (w, h)).into_drawing_area();
+        let root = super::glyphs::Glyphs(BitMapBackend::with_buffer(&mut buf, (w, h))).into_drawing_area();
         root.fill(&WHITE).map_err(|e| anyhow!("{e}"))?;
-        let font = ("sans-serif", 15).into_font();
-        root.draw(&Text::new(p.title.clone(), (10, 10), ("sans-serif", 22).into_font())).map_err(|e| anyhow!("{e}"))?;
+        let font = super::plot::font(super::plot::TEXT_PX);
+        root.draw(&Text::new(p.title.clone(), (10, 10), super::plot::font(22.0))).map_err(|e| anyhow!("{e}"))?;
+        let key = "grey = refused, as its case declares (expect = \"error\"): the condition is recorded, not a failure; red = a failure no case expects";
+        root.draw(&Text::new(key, (10, 42), font.clone().color(&RGBColor(60, 60, 60)))).map_err(|e| anyhow!("{e}"))?;
         let heads = ["case / parameters", "result", "NaN px", "fireflies", "TIR (fraction)"];
         let xs = [10, 760, 1010, 1110, 1210];
         for (t, x) in heads.iter().zip(xs) {
-            root.draw(&Text::new(t.to_string(), (x, 48), font.clone())).map_err(|e| anyhow!("{e}"))?;
+            root.draw(&Text::new(t.to_string(), (x, 48 + top), font.clone())).map_err(|e| anyhow!("{e}"))?;
         }
-        let mut y = 72 - line as i32;
+        let mut y = 72 + top - line as i32;
         for (i, r) in rows.iter().enumerate() {
             y += line as i32 * (1 + if i > 0 { extra[i - 1] as i32 } else { 0 });
             let failed = r[status] != "ok";
-            let bad = failed || r[nan].parse::<u64>().unwrap_or(0) > 0;
+            let expected = meant_to_fail(r);
+            let nan_px = r[nan].parse::<u64>().unwrap_or(0) > 0;
             let warn = r[ff].parse::<u64>().unwrap_or(0) > 0;
-            let colour = if bad {
-                RGBColor(250, 200, 200)
-            } else if warn {
-                RGBColor(250, 230, 180)
-            } else {
-                RGBColor(205, 240, 205)
+            let colour = match (failed, expected) {
+                (true, true) if !nan_px => TABLE_GREY,
+                (true, _) | (false, true) => TABLE_RED,
+                _ if nan_px => TABLE_RED,
+                _ if warn => TABLE_AMBER,
+                _ => TABLE_GREEN,
             };
             let tall = line as i32 * (1 + extra[i] as i32);
             root.draw(&Rectangle::new([(5, y - 2), (w as i32 - 5, y + tall - 4)], colour.filled())).map_err(|e| anyhow!("{e}"))?;
-            let result = if failed { "error (below)".to_string() } else { "ok".into() };
+            let result = match (failed, expected) {
+                (true, true) => "refused, as expected (below)",
+                (true, false) => "error (below)",
+                (false, true) => "rendered: expected to fail",
+                (false, false) => "ok",
+            }
+            .to_string();
             for (k, part) in labels[i].iter().enumerate() {
                 root.draw(&Text::new(part.clone(), (xs[0], y + 2 + line as i32 * k as i32), font.clone())).map_err(|e| anyhow!("{e}"))?;
             }
@@ -839,7 +862,8 @@ fn status_table(p: &PlotSpec, dir: &Path, header: &[String], rows: &[Vec<String>
             }
             if failed {
                 let below = labels[i].len() as i32;
-                for (k, part) in wrap(&format!("error: {}", r[error])).into_iter().enumerate() {
+                let what = if expected { "refused" } else { "error" };
+                for (k, part) in wrap(&format!("{what}: {}", r[error])).into_iter().enumerate() {
                     root.draw(&Text::new(part, (30, y + 2 + line as i32 * (k as i32 + below)), font.clone())).map_err(|e| anyhow!("{e}"))?;
                 }
             }
@@ -898,6 +922,47 @@ mod tests {
             title: "t".into(),
             file: "f".into(),
             kind: PlotKind::Line,
+        }
+    }
+
+    /// The stability table draws a refusal its case declares grey and
+    /// says so, and a failure no case expects, or a declared failure that
+    /// rendered, red.
+    #[test]
+    fn an_expected_refusal_is_grey_and_a_real_failure_red() {
+        let text = "name = \"s\"\nmode = \"interior\"\n[fixed]\noff = \"off/cube.off\"\nsize = [8, 8]\n\
+            [[case]]\nname = \"fine\"\n[[case]]\nname = \"meant\"\nexpect = \"error\"\n[[case]]\nname = \"broken\"\n";
+        let e = Experiment::parse(text, "s.toml", false).unwrap();
+        let header = e.columns();
+        let at = |n: &str| header.iter().position(|h| h == n).unwrap();
+        let run = |case: &str, failed: bool| {
+            let mut r = vec![String::new(); header.len()];
+            r[at("case")] = case.into();
+            r[at("status")] = if failed { "error" } else { "ok" }.into();
+            r[at("error")] = if failed { "no light reaches the film" } else { "" }.into();
+            for c in ["nan_count", "fireflies", "tir_fraction"] {
+                r[at(c)] = if failed { String::new() } else { "0".into() };
+            }
+            r
+        };
+        let p = PlotSpec { kind: PlotKind::Table, file: "table".into(), ..spec("x", "y") };
+        let dir = tempfile::tempdir().unwrap();
+        let rows_of = |colour: RGBColor, img: &image::RgbImage| {
+            img.rows().filter(|row| row.clone().filter(|px| px.0 == [colour.0, colour.1, colour.2]).count() > 1000).count()
+        };
+        let draw = |rows: Vec<Vec<String>>| {
+            status_table(&e, &p, dir.path(), &header, &rows).unwrap();
+            image::open(dir.path().join("table.png")).unwrap().to_rgb8()
+        };
+        // Fine, refused as declared: a green row and a grey one, no red.
+        let img = draw(vec![run("fine", false), run("meant", true)]);
+        assert!(rows_of(TABLE_GREEN, &img) > 10 && rows_of(TABLE_GREY, &img) > 10, "green and grey rows");
+        assert_eq!(rows_of(TABLE_RED, &img), 0, "an expected refusal is drawn red");
+        // A failure no case expects, and a declared failure that rendered: red.
+        for rows in [vec![run("fine", false), run("broken", true)], vec![run("fine", false), run("meant", false)]] {
+            let img = draw(rows);
+            assert!(rows_of(TABLE_RED, &img) > 10, "a real failure is not red");
+            assert_eq!(rows_of(TABLE_GREY, &img), 0);
         }
     }
 

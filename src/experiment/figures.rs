@@ -569,7 +569,7 @@ fn write_index(out: &Path, ids: &[String], records: &BTreeMap<String, Record>, q
     }
     if out.join("bench/prism-error-vs-time.png").is_file() {
         writeln!(h, "<h2 id=\"bench\">Benchmark: the prism's error against time, beside an outside renderer</h2>")?;
-        writeln!(h, "<p>From <code>cargo run --release -- bench prism --peer mitsuba</code> (data: <a href=\"bench/prism-error-vs-time.csv\">prism-error-vs-time.csv</a>; the machine, date and commit: <a href=\"bench/README.md\">bench/README.md</a>). The same error as the prism-photons and eye-split charts above: least-squares scaled RMSE of XYZ over the reference's RMS, here against the exact image.</p>")?;
+        writeln!(h, "<p>From <code>cargo run --release -- bench prism --peer mitsuba</code> (data: <a href=\"bench/prism-error-vs-time.csv\">prism-error-vs-time.csv</a>; how its times were taken, which the chart says: <a href=\"bench/prism-error-vs-time.about.csv\">prism-error-vs-time.about.csv</a>; the machine: <a href=\"bench/README.md\">bench/README.md</a>; redrawn from these by <code>refract bench prism --redraw</code>). The same error as the prism-photons and eye-split charts above: least-squares scaled RMSE of XYZ over the reference's RMS, here against the exact image.</p>")?;
         picture_html(
             &mut h,
             out,
@@ -579,7 +579,7 @@ fn write_index(out: &Path, ids: &[String], records: &BTreeMap<String, Record>, q
         )?;
         let dated = "bench/mitsuba-2026-11-25/prism-error-vs-time.png";
         if out.join(dated).is_file() {
-            writeln!(h, "<p>A separate record of 2026-11-25 (<code>bench prism --film-only --peer mitsuba</code>, medians of 3 runs at another machine load, so its times differ from the chart above; data: <a href=\"bench/mitsuba-2026-11-25/prism-error-vs-time.csv\">its CSV</a>; see <a href=\"bench/README.md\">bench/README.md</a>):</p>")?;
+            writeln!(h, "<p>A separate record of 2026-11-25 (<code>bench prism --film-only --peer mitsuba</code>, the third of three runs at another machine load, so its times differ from the chart above; the README's ratios are the three runs' medians; data: <a href=\"bench/mitsuba-2026-11-25/prism-error-vs-time.csv\">its CSV</a>; see <a href=\"bench/README.md\">bench/README.md</a>):</p>")?;
             picture_html(
                 &mut h,
                 out,
@@ -677,7 +677,7 @@ fn colour_compare(png: &Path, quick: bool, scenes: &Path) -> Result<String> {
         }
     }
     {
-        let root = BitMapBackend::with_buffer(&mut buf, (w as u32, h as u32)).into_drawing_area();
+        let root = super::glyphs::Glyphs(BitMapBackend::with_buffer(&mut buf, (w as u32, h as u32))).into_drawing_area();
         for (k, map) in maps.iter().enumerate() {
             let (x0, y0) = ((k % cols) * tw, (k / cols) * (th + label_h));
             let label = match map {
@@ -688,7 +688,7 @@ fn colour_compare(png: &Path, quick: bool, scenes: &Path) -> Result<String> {
                 ColorMap::Hsl => "HSL hue",
                 ColorMap::RedWhiteBlue => "red-white-blue",
             };
-            root.draw(&Text::new(label.to_string(), (x0 as i32 + indent, y0 as i32 + label_h as i32 / 6), ("sans-serif", font).into_font().color(&WHITE)))
+            root.draw(&Text::new(label.to_string(), (x0 as i32 + indent, y0 as i32 + label_h as i32 / 6), super::plot::font(font as f64).color(&WHITE)))
                 .map_err(plot_err)?;
         }
         root.present().map_err(plot_err)?;

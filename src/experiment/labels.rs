@@ -80,11 +80,11 @@ pub fn parse(v: &Value) -> Result<Vec<Label>, LabelError> {
 pub fn draw(buf: &mut [u8], w: usize, h: usize, labels: &[Label]) -> Result<(), LabelError> {
     register();
     let size = (h as f64 / 14.0).clamp(11.0, 22.0);
-    let root = BitMapBackend::with_buffer(buf, (w as u32, h as u32)).into_drawing_area();
+    let root = super::glyphs::Glyphs(BitMapBackend::with_buffer(buf, (w as u32, h as u32))).into_drawing_area();
     let centre = Pos::new(HPos::Center, VPos::Center);
     for l in labels {
         let (x, y) = ((l.at[0] * w as f64).round() as i32, (l.at[1] * h as f64).round() as i32);
-        let style = |c: &RGBColor| ("sans-serif", size).into_font().color(c).pos(centre);
+        let style = |c: &RGBColor| super::plot::font(size).color(c).pos(centre);
         // A dark outline one pixel wide, then the text.
         for (dx, dy) in [(-1, 0), (1, 0), (0, -1), (0, 1), (-1, -1), (1, 1), (-1, 1), (1, -1)] {
             root.draw(&Text::new(l.text.as_str(), (x + dx, y + dy), style(&RGBColor(10, 10, 10))))?;

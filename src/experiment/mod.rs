@@ -4,6 +4,7 @@ pub mod charts;
 pub mod close_up;
 pub mod display;
 pub mod figures;
+pub mod glyphs;
 pub mod grid;
 pub mod interrupt;
 pub mod key_lines;

@@ -12,6 +12,18 @@ use std::sync::Once;
 
 const FONT: &[u8] = include_bytes!("../../assets/fonts/DejaVuSans.ttf");
 
+/// The size of the charts' text in pixels (tick labels, notes, legend).
+pub const TEXT_PX: f64 = 14.0;
+
+/// The charts' font at about `px` pixels, its size rounded to an even
+/// number: plotters sets each glyph's top at half the font's size above
+/// its baseline, cut to a whole pixel, so at an odd or fractional size
+/// glyphs with low tops (".", ",", "-") land a pixel above the digits
+/// and "1.02" reads as "1·02".
+pub fn font(px: f64) -> FontDesc<'static> {
+    FontDesc::new(FontFamily::SansSerif, ((px / 2.0).round() * 2.0).max(2.0), FontStyle::Normal)
+}
+
 /// Makes the embedded font available to plotters (idempotent).
 pub fn register() {
     register_font()
@@ -70,7 +82,13 @@ pub struct LineChart {
     /// A linear y axis that starts at 0 (a claim of proportionality is
     /// read against it; a cut axis exaggerates the first step).
     pub y_from_zero: bool,
+    /// Levels to read the curves against (the reference's own noise):
+    /// each a dashed grey line across the plot at its y, labelled.
+    pub levels: Vec<(f64, String)>,
 }
+
+/// The grey of levels and of notes.
+const LEVEL_GREY: RGBColor = RGBColor(90, 90, 90);
 
 /// A tick label in real units: whole numbers without a decimal point (in
 /// thousands and millions from 10 000 on, so 3800000 reads 3.8M), others
@@ -121,7 +139,7 @@ pub const PALETTE: [RGBColor; 10] = [
 
 /// The chart's size: 960 wide, taller with many legend rows or notes.
 fn size_of(chart: &LineChart) -> (u32, u32) {
-    let lines: usize = chart.notes.iter().map(|n| wrap(&n.0, NOTE_CHARS).len()).sum();
+    let lines: usize = all_notes(chart).iter().map(|n| wrap(&n.0, NOTE_CHARS).len()).sum();
     (960, 520 + legend_height(chart) + 20 * lines as u32)
 }
 
@@ -227,6 +245,9 @@ fn decade_ticks((lo, hi): (f64, f64)) -> Vec<f64> {
     (a..=b).flat_map(|k| steps.iter().map(move |m| m * 10f64.powi(k))).filter(|v| *v >= lo * 0.999 && *v <= hi * 1.001).collect()
 }
 
+/// A series of at most this many points has a marker on each.
+const MARKED_POINTS: usize = 60;
+
 /// Marker shapes, one per series in turn: circle, triangle, square,
 /// diamond, downward triangle, cross.
 const SHAPES: usize = 6;
@@ -269,6 +290,62 @@ fn apart(series: &[Series], k: usize, log_y: bool, share: f64) -> Option<(usize,
     (0..k).find_map(|j| gap(&series[j]).filter(|g| *g <= span * share).map(|g| (j, g <= span * 1e-9)))
 }
 
+/// Points of series `k` that lie on a point of an earlier series (within
+/// half a percent of each axis span in the axes' own coordinates, about
+/// four pixels, so its marker would hide the other's): for each of
+/// its points, the earlier series it hides, if any. None on a dense curve
+/// (drawn without markers, where crossing curves share points) or a dot
+/// plot (whose series stand side by side).
+pub fn points_over(chart: &LineChart, k: usize) -> Vec<Option<usize>> {
+    if chart.series[k].points.len() > MARKED_POINTS || !chart.categories.is_empty() {
+        return vec![None; chart.series[k].points.len()];
+    }
+    let t = |v: f64, log: bool| if log { v.max(1e-300).log10() } else { v };
+    let span = |f: &dyn Fn(&(f64, f64)) -> f64| {
+        let vs = chart.series.iter().flat_map(|s| s.points.iter()).map(f).filter(|v| v.is_finite());
+        let (lo, hi) = vs.fold((f64::INFINITY, f64::NEG_INFINITY), |a, v| (a.0.min(v), a.1.max(v)));
+        (hi - lo).max(1e-300)
+    };
+    let (sx, sy) = (span(&|p| t(p.0, chart.log_x)), span(&|p| t(p.1, chart.log_y)));
+    let marked = |j: &usize| chart.series[*j].points.len() <= MARKED_POINTS;
+    let near = |a: &(f64, f64), b: &(f64, f64)| {
+        (t(a.0, chart.log_x) - t(b.0, chart.log_x)).abs() <= 0.005 * sx && (t(a.1, chart.log_y) - t(b.1, chart.log_y)).abs() <= 0.005 * sy
+    };
+    chart.series[k].points.iter().map(|p| (0..k).filter(marked).find(|&j| chart.series[j].points.iter().any(|q| near(p, q)))).collect()
+}
+
+/// How many of series `k`'s points lie on earlier series' points, and
+/// those series, in order (for the legend).
+fn partly_over(chart: &LineChart, k: usize) -> Option<(usize, Vec<usize>)> {
+    let over = points_over(chart, k);
+    let mut under: Vec<usize> = over.iter().flatten().copied().collect();
+    under.sort();
+    under.dedup();
+    (!under.is_empty()).then(|| (over.iter().flatten().count(), under))
+}
+
+/// A series' name without what a fit adds to it ("a: slope ...").
+fn short_name(s: &Series) -> &str {
+    s.name.split(": ").next().unwrap_or(&s.name)
+}
+
+/// The chart's notes, then one for each series drawn hollow where its
+/// points lie on another's (the legend would run off the chart).
+fn all_notes(chart: &LineChart) -> Vec<(String, RGBColor)> {
+    let mut notes = chart.notes.clone();
+    for (k, s) in chart.series.iter().enumerate() {
+        if apart(&chart.series, k, chart.log_y, 0.015).is_some() {
+            continue;
+        }
+        if let Some((n, under)) = partly_over(chart, k) {
+            let names: Vec<&str> = under.iter().map(|&j| short_name(&chart.series[j])).collect();
+            let (points, lie, show) = if n == 1 { ("one point".to_string(), "lies", "shows") } else { (format!("{n} points"), "lie", "show") };
+            notes.push((format!("hollow markers: {}'s {points} that {lie} on points of {}, which {show} inside", short_name(s), names.join("; ")), LEVEL_GREY));
+        }
+    }
+    notes
+}
+
 /// The legend, beneath the plot so it never covers data: two columns of
 /// each series' marker and line (dashed where it lies over another) and
 /// its name.
@@ -306,7 +383,7 @@ where
                 area.draw(&Polygon::new(pts, color.filled())).map_err(e)?;
             }
         }
-        area.draw(&Text::new(name.clone(), (x + 42, y), ("sans-serif", 15).into_font())).map_err(e)?;
+        area.draw(&Text::new(name.clone(), (x + 42, y), font(TEXT_PX))).map_err(e)?;
     }
     Ok(())
 }
@@ -319,7 +396,7 @@ fn legend_entries(chart: &LineChart) -> Vec<(String, RGBColor, Option<usize>, bo
         .iter()
         .enumerate()
         .map(|(k, s)| {
-            let shape = (s.points.len() <= 60).then_some(k);
+            let shape = (s.points.len() <= MARKED_POINTS).then_some(k);
             match apart(&chart.series, k, chart.log_y, 0.015) {
                 Some((j, true)) => (format!("{} (identical to {}: dashed over it)", s.name, chart.series[j].name), s.color, shape, true, false),
                 Some((j, false)) => (format!("{} (within a few pixels of {}: dashed over it)", s.name, chart.series[j].name), s.color, shape, true, false),
@@ -327,6 +404,9 @@ fn legend_entries(chart: &LineChart) -> Vec<(String, RGBColor, Option<usize>, bo
             }
         })
         .collect();
+    for (y, label) in &chart.levels {
+        v.push((format!("{label} ({})", tick(y)), LEVEL_GREY, None, true, false));
+    }
     if chart.series.iter().any(|s| s.fit.is_some()) {
         v.push(("fitted line (least squares), thin dashed in the series' colour".into(), RGBColor(60, 60, 60), None, false, true));
     }
@@ -362,12 +442,13 @@ where
     DB::ErrorType: 'static,
 {
     root.fill(&WHITE).map_err(|e| anyhow!("{e}"))?;
-    let mut root = root.titled(&chart.title, ("sans-serif", 24)).map_err(|e| anyhow!("{e}"))?;
+    let mut root = root.titled(&chart.title, font(24.0)).map_err(|e| anyhow!("{e}"))?;
     if !chart.subtitle.is_empty() {
-        root = root.titled(&chart.subtitle, ("sans-serif", 15)).map_err(|e| anyhow!("{e}"))?;
+        root = root.titled(&chart.subtitle, font(TEXT_PX)).map_err(|e| anyhow!("{e}"))?;
     }
-    for (note, colour) in chart.notes.iter().flat_map(|(n, c)| wrap(n, NOTE_CHARS).into_iter().map(move |l| (l, c))) {
-        root = root.titled(&note, ("sans-serif", 15).into_font().color(colour)).map_err(|e| anyhow!("{e}"))?;
+    let notes = all_notes(chart);
+    for (note, colour) in notes.iter().flat_map(|(n, c)| wrap(n, NOTE_CHARS).into_iter().map(move |l| (l, c))) {
+        root = root.titled(&note, font(TEXT_PX).color(colour)).map_err(|e| anyhow!("{e}"))?;
     }
     let (_, h) = root.dim_in_pixel();
     let (root, below) = root.split_vertically(h.saturating_sub(legend_height(chart)));
@@ -377,8 +458,9 @@ where
     let spreads_y = || chart.series.iter().flat_map(|s| s.spread_y.iter().flatten().flat_map(|&(a, b)| [a, b]));
     let x = if chart.categories.is_empty() { range(pts().map(|p| p.0).chain(spreads_x()), chart.log_x) } else { (-0.5, chart.categories.len() as f64 - 0.5) };
     let zero = (chart.y_from_zero && !chart.log_y).then_some(0.0);
-    let mut y = range(pts().map(|p| p.1).chain(spreads_y()).chain(zero), chart.log_y);
-    if zero.is_some() && pts().map(|p| p.1).chain(spreads_y()).all(|v| v >= 0.0) {
+    let levels = || chart.levels.iter().map(|l| l.0);
+    let mut y = range(pts().map(|p| p.1).chain(spreads_y()).chain(zero).chain(levels()), chart.log_y);
+    if zero.is_some() && pts().map(|p| p.1).chain(spreads_y()).chain(levels()).all(|v| v >= 0.0) {
         y.0 = 0.0;
     }
     let mut b = ChartBuilder::on(&root);
@@ -409,6 +491,14 @@ where
     let err = |e: DrawingAreaErrorKind<DB::ErrorType>| anyhow!("{e}");
     let ok = |p: &(f64, f64)| p.0.is_finite() && p.1.is_finite() && (!chart.log_x || p.0 > 0.0) && (!chart.log_y || p.1 > 0.0);
     let n = chart.series.len().max(1) as f64;
+    // The levels first, under the data, each labelled at its left end.
+    let (x0, x1) = (c.x_range().start, c.x_range().end);
+    for (y, label) in &chart.levels {
+        if y.is_finite() && (!chart.log_y || *y > 0.0) {
+            c.draw_series(DashedLineSeries::new(vec![(x0, *y), (x1, *y)], 9, 6, LEVEL_GREY.stroke_width(2))).map_err(err)?;
+            c.draw_series([EmptyElement::at((x0, *y)) + Text::new(label.clone(), (8, -20), font(TEXT_PX).color(&LEVEL_GREY))]).map_err(err)?;
+        }
+    }
     for (k, s) in chart.series.iter().enumerate() {
         let color = s.color;
         // A dot plot's series stand side by side within a category.
@@ -417,11 +507,21 @@ where
         let pts: Vec<(f64, f64)> = keep.iter().map(|&i| (s.points[i].0 + dodge, s.points[i].1)).collect();
         draw_spreads(&mut c, s, &keep, dodge, chart)?;
         let over = coincides_with(&chart.series, k, chart.log_y).is_some();
+        // Points on an earlier series' points: hollow, and the line
+        // between two such dashed, so the series beneath shows.
+        let on = points_over(chart, k);
+        let hollow: Vec<bool> = keep.iter().map(|&i| over || on[i].is_some()).collect();
         if cats.is_empty() {
             if over {
                 c.draw_series(DashedLineSeries::new(pts.clone(), 10, 8, color.stroke_width(2))).map_err(err)?;
             } else {
-                c.draw_series(LineSeries::new(pts.clone(), color.stroke_width(2))).map_err(err)?;
+                for (w, h) in pts.windows(2).zip(hollow.windows(2)) {
+                    if h[0] && h[1] {
+                        c.draw_series(DashedLineSeries::new(w.to_vec(), 10, 8, color.stroke_width(2))).map_err(err)?;
+                    } else {
+                        c.draw_series(LineSeries::new(w.to_vec(), color.stroke_width(2))).map_err(err)?;
+                    }
+                }
             }
         }
         if let Some((a, b)) = s.fit {
@@ -436,11 +536,10 @@ where
         }
         // A marker on each measured value (not on dense curves): filled,
         // or an outline a size larger where it lies over another series.
-        if pts.len() <= 60 {
-            let r = if over { 7 } else { 4 };
-            for &p in &pts {
-                let shape = shape_points(k, r);
-                if over || k % SHAPES == 5 {
+        if pts.len() <= MARKED_POINTS {
+            for (&p, &hollow) in pts.iter().zip(&hollow) {
+                let shape = shape_points(k, if hollow { 7 } else { 4 });
+                if hollow || k % SHAPES == 5 {
                     c.draw_series([EmptyElement::at(p) + PathElement::new(shape, color.stroke_width(2))]).map_err(err)?;
                 } else {
                     c.draw_series([EmptyElement::at(p) + Polygon::new(shape, color.filled())]).map_err(err)?;
@@ -470,7 +569,7 @@ where
         }
     };
     let mut mesh = c.configure_mesh();
-    mesh.x_desc(&chart.x_label).y_desc(&chart.y_label).y_labels(12).y_label_formatter(&tick).label_style(("sans-serif", 15));
+    mesh.x_desc(&chart.x_label).y_desc(&chart.y_label).y_labels(12).y_label_formatter(&tick).label_style(font(TEXT_PX));
     if cats.is_empty() {
         mesh.x_labels(12).x_label_formatter(&tick);
     } else {
@@ -524,7 +623,7 @@ pub fn render(path: &Path, chart: &LineChart) -> Result<()> {
     } else {
         let size = size_of(chart);
         let mut buf = vec![0u8; (size.0 * size.1 * 3) as usize];
-        draw(BitMapBackend::with_buffer(&mut buf, size).into_drawing_area(), chart)?;
+        draw(super::glyphs::Glyphs(BitMapBackend::with_buffer(&mut buf, size)).into_drawing_area(), chart)?;
         Ok(write_rgb8(path, size.0 as usize, size.1 as usize, &buf)?)
     }
 }
@@ -539,10 +638,10 @@ pub fn colour_strips(path: &Path, title: &str, x_range: (f64, f64), rows: &[Stri
     let size = (960u32, 120 + 70 * rows.len() as u32);
     let mut buf = vec![0u8; (size.0 * size.1 * 3) as usize];
     {
-        let root = BitMapBackend::with_buffer(&mut buf, size).into_drawing_area();
+        let root = super::glyphs::Glyphs(BitMapBackend::with_buffer(&mut buf, size)).into_drawing_area();
         root.fill(&WHITE).map_err(|e| anyhow!("{e}"))?;
         let mut c = ChartBuilder::on(&root)
-            .caption(title, ("sans-serif", 24))
+            .caption(title, font(24.0))
             .margin(16)
             .x_label_area_size(44)
             .y_label_area_size(110)
@@ -562,7 +661,7 @@ pub fn colour_strips(path: &Path, title: &str, x_range: (f64, f64), rows: &[Stri
                     String::new()
                 }
             })
-            .label_style(("sans-serif", 15))
+            .label_style(font(TEXT_PX))
             .draw()
             .map_err(|e| anyhow!("{e}"))?;
         let steps = ((x_range.1 - x_range.0).ceil() as usize).max(1);
@@ -623,6 +722,42 @@ mod tests {
         assert_eq!(coincides_with(&apart.series, 1, false), None);
     }
 
+    /// A series whose last points lie on another's (two methods that
+    /// converge) leaves the other's markers and line showing there, and
+    /// a note says which points.
+    #[test]
+    fn points_on_another_series_points_both_show() {
+        let (a, b) = (PALETTE[0], PALETTE[1]);
+        let under: Vec<(f64, f64)> = (1..=6).map(|i| (i as f64, 10.0 - i as f64)).collect();
+        let mut over: Vec<(f64, f64)> = vec![(1.5, 2.0), (2.5, 3.0), (3.5, 3.5)];
+        over.extend_from_slice(&under[3..]);
+        let chart = |series: Vec<Series>| LineChart { title: "t".into(), x_label: "x".into(), y_label: "y".into(), series, ..Default::default() };
+        let both = chart(vec![Series::new("under", under.clone(), a), Series::new("over", over.clone(), b)]);
+        assert_eq!(points_over(&both, 1), [None, None, None, Some(0), Some(0), Some(0)]);
+        assert_eq!(coincides_with(&both.series, 1, false), None, "not the whole series");
+        let notes = all_notes(&both);
+        assert_eq!(notes.last().unwrap().0, "hollow markers: over's 3 points that lie on points of under, which show inside");
+        // Of the first series' pixels where it is drawn alone, most still
+        // show with the other over its last three points (about 77 %;
+        // 64 % with the other drawn solid over them).
+        let alone = count(&drawn(&chart(vec![Series::new("under", under, a)])), a);
+        let shown = count(&drawn(&both), a);
+        assert!(shown as f64 > 0.72 * alone as f64, "{shown} of {alone} px show");
+    }
+
+    /// A level is drawn across the plot, dashed, and the axis reaches it.
+    #[test]
+    fn a_level_is_drawn_and_in_range() {
+        let s = Series::new("s", vec![(1.0, 0.5), (2.0, 0.2), (4.0, 0.1)], PALETTE[2]);
+        let plain = LineChart { log_x: true, log_y: true, series: vec![s.clone()], ..Default::default() };
+        let with = LineChart { levels: vec![(0.01, "reference noise".into())], ..plain };
+        let img = drawn(&with);
+        // A long grey dashed row: the level's pixels on one row.
+        let rows = (0..img.height()).map(|y| (0..img.width()).filter(|&x| img.get_pixel(x, y).0 == [90, 90, 90]).count());
+        assert!(rows.max().unwrap() > 300, "no level line");
+        assert!(legend_entries(&with).iter().any(|e| e.0 == "reference noise (0.01)"));
+    }
+
     /// A categorical x axis: one marker per category, side by side for
     /// two series, and the names as tick labels.
     #[test]
@@ -670,6 +805,30 @@ mod tests {
         s.fit = Some((0.0, 1.0));
         let full = drawn(&LineChart { series: vec![s], ..Default::default() });
         assert!(count(&full, c) > count(&plain, c) + 100, "{} against {}", count(&full, c), count(&plain, c));
+    }
+
+    /// The lowest inked row of `text` drawn alone at (10, 10).
+    fn bottom_row(text: &str, px: f64) -> u32 {
+        register();
+        let (w, h) = (80u32, 60u32);
+        let mut buf = vec![255u8; (w * h * 3) as usize];
+        {
+            let root = crate::experiment::glyphs::Glyphs(BitMapBackend::with_buffer(&mut buf, (w, h))).into_drawing_area();
+            root.draw(&Text::new(text.to_string(), (10, 10), font(px))).unwrap();
+            root.present().unwrap();
+        }
+        (0..h).rev().find(|y| (0..w).any(|x| buf[((y * w + x) * 3) as usize] < 200)).expect("nothing drawn")
+    }
+
+    /// A decimal point and a digit sit on one baseline at
+    /// every size the charts and labels use ("1.02", not "1·02").
+    #[test]
+    fn a_decimal_point_sits_on_the_digits_baseline() {
+        for px in [11.0, 13.0, TEXT_PX, 15.0, 17.3, 20.0, 22.0, 24.0] {
+            let (one, dot) = (bottom_row("1", px), bottom_row(".", px));
+            assert_eq!(dot, one, "size {px}: the point's bottom row {dot}, the digit's {one}");
+            assert!(bottom_row("_", px) > one, "size {px}: an underscore hangs below the baseline");
+        }
     }
 
     #[test]

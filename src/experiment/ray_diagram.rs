@@ -85,7 +85,7 @@ pub fn draw(png: &Path) -> Result<String> {
     let mut buf = vec![0u8; (w * h * 3) as usize];
     let magnification;
     {
-        let root = BitMapBackend::with_buffer(&mut buf, (w, h)).into_drawing_area();
+        let root = super::glyphs::Glyphs(BitMapBackend::with_buffer(&mut buf, (w, h))).into_drawing_area();
         root.fill(&WHITE).map_err(plot_err)?;
         let mut c = ChartBuilder::on(&root)
             .caption(
