@@ -10,8 +10,11 @@ fn run_env(args: &[&str], dir: &std::path::Path, every: &str) -> std::process::O
     Command::new(env!("CARGO_BIN_EXE_refract")).args(args).current_dir(dir).env("REFRACT_PROGRESS_SECS", every).stdin(Stdio::null()).output().unwrap()
 }
 
-/// The stage times of a summary line (`name 1.23 s`), and its total.
+/// The stage times of a summary line (`name 1.23 s`), and its total (a
+/// scene file's labels, drawn after the run, follow it: `, with its
+/// labels; 1.24 s in all`).
 fn times(line: &str) -> (f64, f64) {
+    let line = line.split(", with its").next().unwrap();
     let tail = line.rsplit_once("; ").unwrap().1.trim_end_matches(')');
     let mut sum = 0.0;
     let mut total = f64::NAN;
