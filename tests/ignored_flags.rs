@@ -1,7 +1,8 @@
 //! A flag, a scene key, a `--set` or an experiment axis that cannot change
 //! the image is refused with the reason before any work, and nothing is
 //! written: opacity at trace count 0, `--quick` without [quick] settings,
-//! a shard that would hold no run.
+//! a shard that would hold no run. A scene file's key that its output
+//! leaves unused (the tone of a .pfm) is warned about.
 
 use crate::common::*;
 
@@ -84,4 +85,27 @@ fn quick_without_quick_settings_and_an_empty_shard_are_refused() {
     // Shard 0 of 2 holds the one chain and runs it.
     let o = run(&["sweep", "f.toml", "--shard", "0/2", "--out", "o"], "", d);
     assert!(o.status.success(), "{}", stderr(&o));
+}
+
+#[test]
+fn a_scene_files_tone_is_pointed_out_when_its_output_is_a_pfm() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let cube = repo("off/cube.off");
+    let scene = format!("id = \"s\"\nmode = \"interior\"\n[params]\noff = \"{}\"\nsize = [8, 8]\ntone = \"shoulder\"\n", cube.display());
+    std::fs::write(d.join("s.toml"), scene).unwrap();
+    let warning = "warning: s: `tone` does not change";
+    // A .pfm holds the model's colours: the scene's tone is its picture's
+    // choice, so the run goes on and says the tone is not used.
+    let o = run(&["render", "s.toml", "--out", "x.pfm"], "", d);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stderr(&o).contains(warning), "{}", stderr(&o));
+    assert!(d.join("x.pfm").exists());
+    // The same from `--set`, and nothing said where the tone is used.
+    std::fs::write(d.join("t.toml"), format!("id = \"s\"\nmode = \"interior\"\n[params]\noff = \"{}\"\nsize = [8, 8]\n", cube.display())).unwrap();
+    let o = run(&["render", "t.toml", "--set", "tone=shoulder", "--out", "y.pfm"], "", d);
+    assert!(o.status.success() && stderr(&o).contains(warning), "{}", stderr(&o));
+    let o = run(&["render", "s.toml", "--out", "z.png"], "", d);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(!stderr(&o).contains("does not change"), "{}", stderr(&o));
 }

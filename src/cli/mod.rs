@@ -668,6 +668,12 @@ fn render_to(scene: &crate::experiment::scene_file::SceneFile, out: Option<PathB
     for w in scene.mode.warnings(&scene.params) {
         eprintln!("warning: {w}");
     }
+    // The keys were checked before the output was named; one its format
+    // leaves unused (the tone of a .pfm) is the scene's choice for its
+    // picture, so it is pointed out, not refused.
+    if let Some((key, why)) = scene.mode.first_ignored_writing(&scene.params, scene.params.iter().map(|(k, _)| k.as_str()), &out)? {
+        eprintln!("warning: {}: `{key}` does not change {}: {why}", scene.id, out.display());
+    }
     let bars = crate::terminal::Bars::new();
     let (_, summary) = scene.render_summarised(&out, &bars)?;
     bars.done();

@@ -50,8 +50,12 @@ impl ModeKind for Interior {
         Ok(run_of(cfg, r))
     }
 
-    fn render_to(mut cfg: InteriorConfig, out: &Path, _: &dyn Progress) -> Result<Run> {
+    fn set_out(cfg: &mut Self::Config, out: &Path) {
         cfg.out = out.to_path_buf();
+    }
+
+    fn render_to(mut cfg: InteriorConfig, out: &Path, _: &dyn Progress) -> Result<Run> {
+        Self::set_out(&mut cfg, out);
         Ok(run_of(&cfg, crate::interior::run(&cfg)?))
     }
 }

@@ -179,6 +179,18 @@ impl Mode {
         })
     }
 
+    /// As `first_ignored`, for the run writing its image to `out` (a
+    /// scene file's keys are checked before its output is named; the
+    /// output's format may leave one unused, as a .pfm leaves the tone).
+    pub fn first_ignored_writing<'k>(self, given: &[(String, Value)], keys: impl IntoIterator<Item = &'k str>, out: &Path) -> Result<Option<(String, String)>> {
+        with_mode!(self, M => {
+            let mut cfg = config::<M>(given)?;
+            M::set_out(&mut cfg, out);
+            let set = keys.into_iter().filter_map(|k| params::find(M::params(), k));
+            Ok(params::first_ignored_change(set, &cfg, &M::defaults()).map(|(p, why)| (p.key.to_string(), why)))
+        })
+    }
+
     /// Why a run with these parameters would ignore `key` (`None`: it uses
     /// it, or its configuration is refused anyway, which the run reports).
     /// A key set to its default counts here too (an axis's default value

@@ -48,8 +48,12 @@ impl ModeKind for Prism {
         Ok(run_of(cfg, crate::spectral::render_config(cfg, progress)?))
     }
 
-    fn render_to(mut cfg: SpectralConfig, out: &Path, progress: &dyn Progress) -> Result<Run> {
+    fn set_out(cfg: &mut Self::Config, out: &Path) {
         cfg.out = out.to_path_buf();
+    }
+
+    fn render_to(mut cfg: SpectralConfig, out: &Path, progress: &dyn Progress) -> Result<Run> {
+        Self::set_out(&mut cfg, out);
         Ok(run_of(&cfg, crate::spectral::run(&cfg, progress)?))
     }
 }

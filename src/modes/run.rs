@@ -34,6 +34,9 @@ pub trait ModeKind {
     /// Renders `cfg` and writes its image to `out` (the single run of a
     /// scene file or the command line).
     fn render_to(cfg: Self::Config, out: &Path, progress: &dyn Progress) -> Result<Run>;
+    /// Names `out` as the run's image (what a parameter's use may depend
+    /// on: a .pfm output has no tone).
+    fn set_out(cfg: &mut Self::Config, out: &Path);
 }
 
 /// A run's estimated cost on one core: seconds and bytes of memory.
