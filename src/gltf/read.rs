@@ -99,9 +99,33 @@ fn vec3(v: &Json, key: &str) -> Option<DVec3> {
     (x.len() == 3 && x.iter().all(|c| c.is_finite())).then(|| DVec3::new(x[0], x[1], x[2]))
 }
 
-/// Reads `o.path` and builds its world at `width` x `height`.
+/// Reads `o.path` and builds its world at `width` x `height`: the file,
+/// its nodes, the meshes, the lights, the camera, then the world.
 pub fn load(o: &GltfOptions, width: usize, height: usize) -> Result<Imported, GltfError> {
     let path = &o.path;
+    let name = path.display().to_string();
+    let content = |why: String| GltfError::Content { path: name.clone(), why };
+    let (doc, buffers) = open(path)?;
+    let scene = doc.default_scene().or_else(|| doc.scenes().next()).ok_or_else(|| content("holds no scene".into()))?;
+    let nodes = scene_nodes(&scene).map_err(content)?;
+    let mut g = Gather { media: vec![Medium::Air], ..Default::default() };
+    read_meshes(&mut g, &nodes, &buffers, o.glass).map_err(content)?;
+    let bound = bounding_sphere(&g);
+    add_lights(&mut g, &nodes, o, bound).map_err(content)?;
+    let (camera, aspect) = camera(&mut g, &nodes, o.camera.as_deref(), bound, width, height).map_err(content)?;
+    note_unmodelled_document(&mut g, &doc);
+    let mut world = assemble(&mut g, path, camera, width, height);
+    if let Some(r) = refract_extras(scene.extras()) {
+        settings(&mut world, &r, o.add_light.is_some()).map_err(content)?;
+    }
+    world.build_accel();
+    let unmodelled = g.unmodelled.iter().map(|(k, n)| if *n > 1 && !k.contains('(') { format!("{k} ({n})") } else { k.clone() }).collect();
+    Ok(Imported { world, unmodelled, aspect })
+}
+
+/// The parsed file and its buffers, every buffer view and accessor checked
+/// to lie inside its buffer (what the reader would not survive).
+fn open(path: &Path) -> Result<(gltf::Gltf, Vec<Vec<u8>>), GltfError> {
     let name = path.display().to_string();
     let content = |why: String| GltfError::Content { path: name.clone(), why };
     let bytes = std::fs::read(path).map_err(|e| GltfError::Io { path: name.clone(), why: e.to_string() })?;
@@ -122,10 +146,11 @@ pub fn load(o: &GltfOptions, width: usize, height: usize) -> Result<Imported, Gl
             }
         }
     }
-    let scene = doc.default_scene().or_else(|| doc.scenes().next()).ok_or_else(|| content("holds no scene".into()))?;
+    Ok((doc, buffers))
+}
 
-    // Every node of the scene with its world matrix (glTF's axes).
-    let mut nodes: Vec<(gltf::Node, DMat4)> = Vec::new();
+/// Every node of the scene with its world matrix (glTF's axes).
+fn scene_nodes<'a>(scene: &gltf::Scene<'a>) -> Result<Vec<(gltf::Node<'a>, DMat4)>, String> {
     fn walk<'a>(n: gltf::Node<'a>, parent: DMat4, depth: usize, out: &mut Vec<(gltf::Node<'a>, DMat4)>) -> Result<(), String> {
         if depth > 64 {
             return Err("its node hierarchy is deeper than 64 levels (or loops)".into());
@@ -137,16 +162,21 @@ pub fn load(o: &GltfOptions, width: usize, height: usize) -> Result<Imported, Gl
         }
         Ok(())
     }
+    let mut nodes = Vec::new();
     for n in scene.nodes() {
-        walk(n, DMat4::IDENTITY, 0, &mut nodes).map_err(content)?;
+        walk(n, DMat4::IDENTITY, 0, &mut nodes)?;
     }
+    Ok(nodes)
+}
 
-    let mut g = Gather { media: vec![Medium::Air], ..Default::default() };
+/// Every mesh of the scene as faces and spheres of `g`, their materials
+/// read once each.
+fn read_meshes(g: &mut Gather, nodes: &[(gltf::Node, DMat4)], buffers: &[Vec<u8>], glass: GlassChoice) -> Result<(), String> {
     // The scene's size, for rounding shared corners.
     let mut lo = DVec3::splat(f64::INFINITY);
     let mut hi = DVec3::splat(f64::NEG_INFINITY);
-    let mut meshes: Vec<(gltf::Node, DMat4, gltf::Mesh)> = Vec::new();
-    for (n, m) in &nodes {
+    let mut meshes: Vec<(&gltf::Node, DMat4, gltf::Mesh)> = Vec::new();
+    for (n, m) in nodes {
         if let Some(mesh) = n.mesh() {
             for p in mesh.primitives() {
                 let b = p.bounding_box();
@@ -156,18 +186,16 @@ pub fn load(o: &GltfOptions, width: usize, height: usize) -> Result<Imported, Gl
                     hi = hi.max(w);
                 }
             }
-            meshes.push((n.clone(), *m, mesh));
+            meshes.push((n, *m, mesh));
         }
         if n.skin().is_some() {
             g.note("skins");
         }
     }
     if meshes.is_empty() {
-        return Err(content("holds no mesh to render".into()));
+        return Err("holds no mesh to render".into());
     }
-    let size = (hi - lo).max_element().max(1e-6);
-    g.quantum = size * 1e-7;
-
+    g.quantum = (hi - lo).max_element().max(1e-6) * 1e-7;
     let mut mats: HashMap<Option<usize>, Mat> = HashMap::new();
     for (node, m, mesh) in &meshes {
         let sphere = refract_extras(node.extras())
@@ -178,80 +206,91 @@ pub fn load(o: &GltfOptions, width: usize, height: usize) -> Result<Imported, Gl
             let mat = match mats.get(&key) {
                 Some(m) => m.clone(),
                 None => {
-                    let m = material(&mut g, &prim.material(), o.glass);
+                    let m = material(g, &prim.material(), glass);
                     mats.insert(key, m.clone());
                     m
                 }
             };
-            if prim.mode() != gltf::mesh::Mode::Triangles {
-                g.note(format!("{:?} primitives (only triangles are read)", prim.mode()).to_lowercase());
-                continue;
-            }
-            if prim.morph_targets().len() > 0 {
-                g.note("morph targets");
-            }
             let label = format!("{} {k}", mesh.name().or(node.name()).unwrap_or("mesh"));
-            // An analytic sphere refract wrote: centre and radius from the node.
-            if let (Some(s), Mat::Glass(_) | Mat::Emit(_)) = (&sphere, &mat) {
-                if let Some(r) = num(s, "radius").filter(|r| *r > 0.0) {
-                    let centre = from_gltf(m.transform_point3(DVec3::ZERO));
-                    let scale = m.determinant().abs().cbrt();
-                    add_sphere(&mut g, &label, centre, r * scale, &mat, prim.material().extras());
-                    continue;
-                }
-            }
-            // What the reader would not survive: positions that are not
-            // three floats, indices that are not unsigned integers.
-            use gltf::accessor::{DataType, Dimensions};
-            match prim.get(&gltf::Semantic::Positions) {
-                Some(a) if a.dimensions() == Dimensions::Vec3 && a.data_type() == DataType::F32 && a.view().is_some() => {}
-                Some(a) => return Err(content(format!("mesh `{label}`: its positions (accessor {}) are not three floats in a buffer", a.index()))),
-                None => return Err(content(format!("mesh `{label}` has a primitive without positions"))),
-            }
-            if let Some(a) = prim.indices() {
-                if a.dimensions() != Dimensions::Scalar || !matches!(a.data_type(), DataType::U8 | DataType::U16 | DataType::U32) || a.view().is_none() {
-                    return Err(content(format!("mesh `{label}`: its indices (accessor {}) are not unsigned integers in a buffer", a.index())));
-                }
-            }
-            let reader = prim.reader(|b| buffers.get(b.index()).map(Vec::as_slice));
-            let Some(positions) = reader.read_positions() else {
-                return Err(content(format!("mesh `{label}` has a primitive without positions")));
-            };
-            let pos: Vec<DVec3> = positions.map(|p| from_gltf(m.transform_point3(DVec3::from(p.map(f64::from))))).collect();
-            if pos.iter().any(|p| !p.is_finite()) {
-                return Err(content(format!("mesh `{label}` has a position that is not a finite number")));
-            }
-            let idx: Vec<u32> = match reader.read_indices() {
-                Some(i) => i.into_u32().collect(),
-                None => (0..pos.len() as u32).collect(),
-            };
-            if let Some(bad) = idx.iter().find(|&&i| i as usize >= pos.len()) {
-                return Err(content(format!("mesh `{label}`: index {bad} is past its {} vertices", pos.len())));
-            }
-            let flip = m.determinant() < 0.0;
-            let tris: Vec<[DVec3; 3]> = idx
-                .chunks_exact(3)
-                .map(|t| {
-                    let (a, b, c) = (pos[t[0] as usize], pos[t[1] as usize], pos[t[2] as usize]);
-                    if flip {
-                        [a, c, b]
-                    } else {
-                        [a, b, c]
-                    }
-                })
-                .filter(|[a, b, c]| (*b - *a).cross(*c - *a).length_squared() > 0.0)
-                .collect();
-            add_triangles(&mut g, &label, &tris, &mat, prim.material().extras());
-            if prim.material().double_sided() && matches!(mat, Mat::Matte(_)) {
-                g.note("double-sided matte surfaces (lit on their front side only)");
-            }
+            read_primitive(g, &prim, &label, m, &mat, sphere.as_ref(), buffers)?;
         }
     }
     if g.faces.is_empty() && g.spheres.is_empty() {
-        return Err(content("holds no triangle to render".into()));
+        return Err("holds no triangle to render".into());
     }
-    // The bounding sphere of what was read, for lights and cameras the
-    // file leaves to us.
+    Ok(())
+}
+
+/// One primitive of a mesh placed by `m`: an analytic sphere refract
+/// wrote, or its triangles (degenerate ones dropped).
+fn read_primitive(g: &mut Gather, prim: &gltf::Primitive, label: &str, m: &DMat4, mat: &Mat, sphere: Option<&Json>, buffers: &[Vec<u8>]) -> Result<(), String> {
+    if prim.mode() != gltf::mesh::Mode::Triangles {
+        g.note(format!("{:?} primitives (only triangles are read)", prim.mode()).to_lowercase());
+        return Ok(());
+    }
+    if prim.morph_targets().len() > 0 {
+        g.note("morph targets");
+    }
+    // An analytic sphere refract wrote: centre and radius from the node.
+    if let (Some(s), Mat::Glass(_) | Mat::Emit(_)) = (sphere, mat) {
+        if let Some(r) = num(s, "radius").filter(|r| *r > 0.0) {
+            let centre = from_gltf(m.transform_point3(DVec3::ZERO));
+            let scale = m.determinant().abs().cbrt();
+            add_sphere(g, label, centre, r * scale, mat, prim.material().extras());
+            return Ok(());
+        }
+    }
+    // What the reader would not survive: positions that are not three
+    // floats, indices that are not unsigned integers.
+    use gltf::accessor::{DataType, Dimensions};
+    match prim.get(&gltf::Semantic::Positions) {
+        Some(a) if a.dimensions() == Dimensions::Vec3 && a.data_type() == DataType::F32 && a.view().is_some() => {}
+        Some(a) => return Err(format!("mesh `{label}`: its positions (accessor {}) are not three floats in a buffer", a.index())),
+        None => return Err(format!("mesh `{label}` has a primitive without positions")),
+    }
+    if let Some(a) = prim.indices() {
+        if a.dimensions() != Dimensions::Scalar || !matches!(a.data_type(), DataType::U8 | DataType::U16 | DataType::U32) || a.view().is_none() {
+            return Err(format!("mesh `{label}`: its indices (accessor {}) are not unsigned integers in a buffer", a.index()));
+        }
+    }
+    let reader = prim.reader(|b| buffers.get(b.index()).map(Vec::as_slice));
+    let Some(positions) = reader.read_positions() else {
+        return Err(format!("mesh `{label}` has a primitive without positions"));
+    };
+    let pos: Vec<DVec3> = positions.map(|p| from_gltf(m.transform_point3(DVec3::from(p.map(f64::from))))).collect();
+    if pos.iter().any(|p| !p.is_finite()) {
+        return Err(format!("mesh `{label}` has a position that is not a finite number"));
+    }
+    let idx: Vec<u32> = match reader.read_indices() {
+        Some(i) => i.into_u32().collect(),
+        None => (0..pos.len() as u32).collect(),
+    };
+    if let Some(bad) = idx.iter().find(|&&i| i as usize >= pos.len()) {
+        return Err(format!("mesh `{label}`: index {bad} is past its {} vertices", pos.len()));
+    }
+    let flip = m.determinant() < 0.0;
+    let tris: Vec<[DVec3; 3]> = idx
+        .chunks_exact(3)
+        .map(|t| {
+            let (a, b, c) = (pos[t[0] as usize], pos[t[1] as usize], pos[t[2] as usize]);
+            if flip {
+                [a, c, b]
+            } else {
+                [a, b, c]
+            }
+        })
+        .filter(|[a, b, c]| (*b - *a).cross(*c - *a).length_squared() > 0.0)
+        .collect();
+    add_triangles(g, label, &tris, mat, prim.material().extras());
+    if prim.material().double_sided() && matches!(mat, Mat::Matte(_)) {
+        g.note("double-sided matte surfaces (lit on their front side only)");
+    }
+    Ok(())
+}
+
+/// The bounding sphere of what was read (centre, radius), for lights and
+/// cameras the file leaves to us.
+fn bounding_sphere(g: &Gather) -> (DVec3, f64) {
     let (mut blo, mut bhi) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
     for v in g.faces.iter().flat_map(|f| f.verts.iter()) {
         blo = blo.min(*v);
@@ -261,24 +300,23 @@ pub fn load(o: &GltfOptions, width: usize, height: usize) -> Result<Imported, Gl
         blo = blo.min(s.centre - s.radius);
         bhi = bhi.max(s.centre + s.radius);
     }
-    let (centre, radius) = ((blo + bhi) / 2.0, ((bhi - blo).length() / 2.0).max(1e-6));
+    ((blo + bhi) / 2.0, ((bhi - blo).length() / 2.0).max(1e-6))
+}
 
-    for (n, m) in &nodes {
+/// The file's `KHR_lights_punctual` lights and the one the command line
+/// adds; a scene left with no light is refused.
+fn add_lights(g: &mut Gather, nodes: &[(gltf::Node, DMat4)], o: &GltfOptions, bound: (DVec3, f64)) -> Result<(), String> {
+    for (n, m) in nodes {
         if let Some(l) = n.light() {
-            add_light(&mut g, o, &l, m, n.extras(), (centre, radius));
+            add_light(g, o, &l, m, n.extras(), bound);
         }
     }
     if let Some(a) = o.add_light {
         let order = 1e12 + g.lights.len() as f64;
         let light = match a {
-            AddedLight::Sun(d) => beam_over(
-                from_gltf(d).normalize(),
-                o.beam_width.map(|w| w / 2.0),
-                (centre, radius),
-                1.0,
-                Spectrum::light("D65").expect("D65 is known"),
-                "added sun",
-            ),
+            AddedLight::Sun(d) => {
+                beam_over(from_gltf(d).normalize(), o.beam_width.map(|w| w / 2.0), bound, 1.0, Spectrum::light("D65").expect("D65 is known"), "added sun")
+            }
             AddedLight::Point(p) => Light {
                 name: "added point".into(),
                 emission: Emission::Point { pos: from_gltf(p) },
@@ -289,36 +327,47 @@ pub fn load(o: &GltfOptions, width: usize, height: usize) -> Result<Imported, Gl
         g.lights.push((order, light, None));
     }
     if g.lights.is_empty() {
-        return Err(content(
+        return Err(
             "has no light (no KHR_lights_punctual light, no emissive surface); add one with --gltf-light sun:X,Y,Z (a beam along X,Y,Z in the file's axes) or point:X,Y,Z".into(),
-        ));
+        );
     }
+    Ok(())
+}
 
-    // The camera: the named one, else the first met.
+/// The camera: the one named `want`, else the first met, else a
+/// perspective view of the whole scene along glTF's -z; with the file's
+/// aspect ratio where it gives one.
+fn camera(
+    g: &mut Gather,
+    nodes: &[(gltf::Node, DMat4)],
+    want: Option<&str>,
+    (centre, radius): (DVec3, f64),
+    width: usize,
+    height: usize,
+) -> Result<(Camera, Option<f64>), String> {
     let cams: Vec<(String, gltf::Camera, DMat4)> =
         nodes.iter().filter_map(|(n, m)| n.camera().map(|c| (n.name().unwrap_or_default().to_string(), c, *m))).collect();
-    let chosen = match &o.camera {
-        Some(want) => Some(cams.iter().find(|(node, c, _)| c.name() == Some(want.as_str()) || node == want).ok_or_else(|| {
+    let chosen = match want {
+        Some(want) => Some(cams.iter().find(|(node, c, _)| c.name() == Some(want) || node == want).ok_or_else(|| {
             let names: Vec<String> = cams.iter().map(|(node, c, _)| c.name().unwrap_or(node).to_string()).collect();
-            content(format!("has no camera `{want}`; its cameras: {}", if names.is_empty() { "none".into() } else { names.join(", ") }))
+            format!("has no camera `{want}`; its cameras: {}", if names.is_empty() { "none".into() } else { names.join(", ") })
         })?),
         None => cams.first(),
     };
-    let mut aspect = None;
-    let camera = match chosen.map(|(_, c, m)| (c.projection(), m)) {
+    match chosen.map(|(_, c, m)| (c.projection(), m)) {
         Some((gltf::camera::Projection::Perspective(p), m)) => {
-            aspect = p.aspect_ratio().map(f64::from).filter(|a| a.is_finite() && *a > 0.0);
+            let aspect = p.aspect_ratio().map(f64::from).filter(|a| a.is_finite() && *a > 0.0);
             let yfov = f64::from(p.yfov());
             if !(yfov > 0.0 && yfov < std::f64::consts::PI) {
-                return Err(content(format!("its camera's yfov {yfov} is not between 0 and pi radians")));
+                return Err(format!("its camera's yfov {yfov} is not between 0 and pi radians"));
             }
             let pos = from_gltf(m.transform_point3(DVec3::ZERO));
             let forward = from_gltf(m.transform_vector3(DVec3::NEG_Z)).normalize();
             let up = from_gltf(m.transform_vector3(DVec3::Y)).normalize();
             if !(forward.is_finite() && up.is_finite() && forward.cross(up).length() > 1e-9) {
-                return Err(content("its camera's node transform is degenerate".into()));
+                return Err("its camera's node transform is degenerate".into());
             }
-            Camera::look_at(pos, pos + forward, up, f64::from(p.yfov()).to_degrees(), width, height)
+            Ok((Camera::look_at(pos, pos + forward, up, yfov.to_degrees(), width, height), aspect))
         }
         other => {
             if other.is_some() {
@@ -328,9 +377,14 @@ pub fn load(o: &GltfOptions, width: usize, height: usize) -> Result<Imported, Gl
             let vfov = 40f64;
             let dist = radius / (vfov.to_radians() / 2.0).sin() * 1.1;
             let forward = from_gltf(DVec3::NEG_Z);
-            Camera::look_at(centre - forward * dist, centre, from_gltf(DVec3::Y), vfov, width, height)
+            Ok((Camera::look_at(centre - forward * dist, centre, from_gltf(DVec3::Y), vfov, width, height), None))
         }
-    };
+    }
+}
+
+/// What the document holds beyond its scene that is not modelled:
+/// animations, extensions the reader does not read.
+fn note_unmodelled_document(g: &mut Gather, doc: &gltf::Gltf) {
     if doc.animations().len() > 0 {
         g.note(format!("animations ({})", doc.animations().len()));
     }
@@ -345,8 +399,11 @@ pub fn load(o: &GltfOptions, width: usize, height: usize) -> Result<Imported, Gl
     for e in doc.extensions_used().filter(|e| !modelled.contains(e)) {
         g.note(format!("extension {e}"));
     }
+}
 
-    // Put together: lights in their order, emitters pointed at them.
+/// The world put together: lights in their order, emitters pointed at
+/// them, a photon map for every diffuse face, the probe on the first beam.
+fn assemble(g: &mut Gather, path: &Path, camera: Camera, width: usize, height: usize) -> World {
     let mut lights = std::mem::take(&mut g.lights);
     lights.sort_by(|a, b| a.0.total_cmp(&b.0));
     let mut world = World::new(path.file_stem().and_then(|s| s.to_str()).unwrap_or("gltf"), std::mem::take(&mut g.media), width, height);
@@ -377,12 +434,7 @@ pub fn load(o: &GltfOptions, width: usize, height: usize) -> Result<Imported, Gl
             _ => None,
         })
         .unwrap_or((world.camera.pos, world.camera.forward));
-    if let Some(r) = refract_extras(scene.extras()) {
-        settings(&mut world, &r, o.add_light.is_some()).map_err(content)?;
-    }
-    world.build_accel();
-    let unmodelled = g.unmodelled.iter().map(|(k, n)| if *n > 1 && !k.contains('(') { format!("{k} ({n})") } else { k.clone() }).collect();
-    Ok(Imported { world, unmodelled, aspect })
+    world
 }
 
 /// The photon mapper's settings refract wrote into the scene's extras.
