@@ -241,45 +241,8 @@ fn line_chart_with(p: &PlotSpec, header: &[String], rows: &[Vec<String>], quick:
         }
     }
     let (log_x, log_y) = (p.log_x && !categorical, p.log_y);
-    // Group rows into series, and repeats into points at equal x.
-    let mut groups: Vec<(String, Vec<Point>)> = Vec::new();
-    let mut not_positive = 0usize;
-    for (ri, r) in ok_rows.iter().enumerate() {
-        let x = if categorical { categories.iter().position(|c| *c == r[xi]).map(|k| k as f64) } else { r[xi].parse::<f64>().ok() };
-        let (Some(x), Ok(y)) = (x, r[yi].parse::<f64>()) else { continue };
-        let key = si.iter().zip(&p.series).map(|(&i, n)| format!("{}={}", n.trim_start_matches("param_"), r[i])).collect::<Vec<_>>().join(", ");
-        // Log axes show positive values only.
-        if (log_x && !(x > 0.0)) || (log_y && !(y > 0.0)) {
-            not_positive += 1;
-            continue;
-        }
-        let n = renders.and_then(|c| r[c].parse::<f64>().ok()).unwrap_or(1.0).max(1.0);
-        let measured = timing.and_then(|c| r[c].parse::<f64>().ok()).map_or(f64::INFINITY, |t| t * n);
-        // Repeats share every parameter: what tells two runs apart is
-        // everything but the timings, so group by the x the plot shows
-        // where x is not a timing, and by the run's parameters where it is.
-        let place = if is_timing(&p.x) {
-            header.iter().enumerate().filter(|(_, h)| h.starts_with("param_")).map(|(i, _)| r[i].as_str()).collect::<Vec<_>>().join("|")
-        } else {
-            String::new()
-        };
-        let g = match groups.iter().position(|g| g.0 == key) {
-            Some(i) => &mut groups[i].1,
-            None => {
-                groups.push((key.clone(), Vec::new()));
-                &mut groups.last_mut().unwrap().1
-            }
-        };
-        match g.iter_mut().find(|pt| if is_timing(&p.x) { pt.place == place } else { pt.x == x }) {
-            Some(pt) => {
-                pt.xs.push(x);
-                pt.ys.push(y);
-                pt.measured = pt.measured.min(measured);
-                pt.runs.push(ri);
-            }
-            None => g.push(Point { x, xs: vec![x], ys: vec![y], measured, place, runs: vec![ri] }),
-        }
-    }
+    let cols = Columns { x: xi, y: yi, series: &si, renders, timing };
+    let (groups, not_positive) = group_points(p, header, &ok_rows, &cols, &categories, (log_x, log_y));
     let mut notes: Vec<(String, RGBColor)> = Vec::new();
     let mut short = 0usize;
     let mut below_reference = 0usize;
@@ -340,50 +303,12 @@ fn line_chart_with(p: &PlotSpec, header: &[String], rows: &[Vec<String>], quick:
         out.spread_x = sorted.iter().map(|s| s.2).collect();
         out.spread_y = sorted.iter().map(|s| s.3).collect();
         if p.fit {
-            let drawn: Vec<(f64, f64)> = out.points.iter().map(|&(x, y)| (if log_x { x.log10() } else { x }, if log_y { y.log10() } else { y })).collect();
-            if let Some(f) = fit(&drawn) {
-                let unit = if log_x && log_y { String::new() } else { format!(" {}", slope_unit(&p.x, &p.y)) };
-                out.name = format!("{}: slope {}{} ± {}, R² {:.3}", out.name, sig(f.b), unit, sig(f.b_ci), f.r2);
-                out.fit = Some((f.a, f.b));
-                let judged = !p.claim.is_empty() && (p.claim_series.is_empty() || out.name.contains(&p.claim_series));
-                if judged && !quick {
-                    let holds = f.r2 >= CLAIM_R2
-                        && match p.claim_slope {
-                            Some(s) => (f.b - s).abs() <= f.b_ci.max(CLAIM_SLOPE_TOLERANCE),
-                            None => f.b - f.b_ci > 0.0,
-                        };
-                    let name = if p.series.is_empty() { String::new() } else { format!(" for {}", out.name.split(':').next().unwrap_or_default()) };
-                    let (word, colour) = if holds { ("HOLDS", RGBColor(0, 120, 40)) } else { ("DOES NOT HOLD", RGBColor(190, 0, 0)) };
-                    verdicts.push((
-                        format!(
-                            "The report's claim \"{}\", tested on {} against {}, {word}{name}: slope {} ± {}, R² {:.3}",
-                            p.claim,
-                            axis_title(&p.y),
-                            axis_title(&p.x),
-                            sig(f.b),
-                            sig(f.b_ci),
-                            f.r2,
-                        ),
-                        colour,
-                    ));
-                }
-            }
+            verdicts.extend(fit_series(p, &mut out, (log_x, log_y), quick));
         }
         series.push(out);
     }
     if is_timing(&p.x) || is_timing(&p.y) {
-        // Where the times were taken: the machine's load during the runs.
-        let load: Vec<f64> =
-            header.iter().position(|h| h == "load_1min").map_or(Vec::new(), |c| ok_rows.iter().filter_map(|r| r[c].parse::<f64>().ok()).collect());
-        let cores = header.iter().position(|h| h == "cores").and_then(|c| ok_rows.first().map(|r| r[c].clone())).unwrap_or_default();
-        if let (Some(lo), Some(hi)) = (load.iter().copied().reduce(f64::min), load.iter().copied().reduce(f64::max)) {
-            let what = if p.x == "cpu_s" || p.y == "cpu_s" {
-                "CPU time is the work of every thread, which other processes slow but do not add to"
-            } else {
-                "wall time, which other processes' load stretches"
-            };
-            notes.push((format!("machine load at the runs (1-minute load average): {lo:.1} to {hi:.1} on {cores} cores; {what}"), RGBColor(60, 60, 60)));
-        }
+        notes.extend(load_note(p, header, &ok_rows));
     }
     if quick && (is_timing(&p.x) || is_timing(&p.y)) {
         notes.push(("quick run: its runs are too short for their times to be measurements; no claim is judged".into(), RGBColor(190, 0, 0)));
@@ -422,63 +347,11 @@ fn line_chart_with(p: &PlotSpec, header: &[String], rows: &[Vec<String>], quick:
             notes.push((text, RGBColor(60, 60, 60)));
         }
     }
-    // Why time follows or leaves the claim: the rays the runs traced, where
-    // the claim is about something else that drives them.
     if !p.claim.is_empty() && is_timing(&p.y) && p.x != "rays" && !is_timing(&p.x) {
-        if let (Some(c), Some((name, pts))) = (header.iter().position(|h| h == "rays"), kept.first()) {
-            let xs = header.iter().position(|h| *h == p.x);
-            let parts: Vec<String> = pts
-                .iter()
-                .filter_map(|runs| {
-                    let mut r: Vec<f64> = runs.iter().filter_map(|&i| ok_rows[i][c].parse::<f64>().ok()).collect();
-                    r.sort_by(f64::total_cmp);
-                    let x = xs.map(|xi| ok_rows[runs[0]][xi].clone())?;
-                    (!r.is_empty()).then(|| format!("{x}: {}", median(&r).round()))
-                })
-                .collect();
-            let rays: Vec<f64> = parts.iter().filter_map(|t| t.rsplit(' ').next().and_then(|v| v.parse::<f64>().ok())).collect();
-            let varies = rays.iter().copied().reduce(f64::max).zip(rays.iter().copied().reduce(f64::min)).is_some_and(|(hi, lo)| hi > 1.1 * lo);
-            if varies {
-                let of = if name.is_empty() { String::new() } else { format!(" ({name})") };
-                notes.push((
-                    format!(
-                        "rays traced per run{of}, by {}: {}",
-                        axis_title(&p.x),
-                        parts
-                            .iter()
-                            .map(|t| match t.rsplit_once(' ') {
-                                Some((a, v)) => format!("{a} {}", v.parse::<f64>().map(|v| tick(&v)).unwrap_or_default()),
-                                None => t.clone(),
-                            })
-                            .collect::<Vec<_>>()
-                            .join(", ")
-                    ),
-                    RGBColor(60, 60, 60),
-                ));
-            }
-        }
+        notes.extend(rays_note(p, header, &ok_rows, &kept));
     }
-    // Where x steps unevenly, a change from the previous value spans more
-    // than one step: say which points do.
     if p.y == "changed_px" {
-        if let Some((_, pts)) = series.first().map(|s| ((), &s.points)) {
-            let steps: Vec<(f64, f64)> = pts.windows(2).map(|w| (w[1].0, w[1].0 - w[0].0)).collect();
-            if let Some(least) = steps.iter().map(|s| s.1).reduce(f64::min) {
-                let wide: Vec<String> =
-                    steps.iter().filter(|s| s.1 > least * 1.001).map(|s| format!("{} ({} steps)", tick(&s.0), tick(&(s.1 / least)))).collect();
-                if !wide.is_empty() {
-                    notes.push((
-                        format!(
-                            "each point: the change from the previous point, {} {} on; but the points at {} span more",
-                            tick(&least),
-                            axis_title(&p.x),
-                            wide.join(", ")
-                        ),
-                        RGBColor(60, 60, 60),
-                    ));
-                }
-            }
-        }
+        notes.extend(series.first().and_then(|s| uneven_steps_note(&p.x, &s.points)));
     }
     Ok(LineChart {
         y_from_zero: !p.claim.is_empty() && !log_y,
@@ -494,6 +367,173 @@ fn line_chart_with(p: &PlotSpec, header: &[String], rows: &[Vec<String>], quick:
         // The reference's own noise, where errors are measured against it:
         // the level no curve can fall below.
         levels: reference_noise.filter(|n| *n > 0.0 && is_error(&p.y)).map(|n| vec![(n, "reference noise".to_string())]).unwrap_or_default(),
+    })
+}
+
+/// Where a chart's values sit in runs.csv.
+struct Columns<'a> {
+    x: usize,
+    y: usize,
+    series: &'a [usize],
+    /// How many renders a run's timing covers.
+    renders: Option<usize>,
+    /// The timing the chart's time or rate was taken over.
+    timing: Option<usize>,
+}
+
+/// The rows grouped into series (by the plot's series columns), and
+/// repeats into points at equal x; with how many runs a log axis could
+/// not show. Along `categories` (a column of text), x is a category's
+/// index.
+fn group_points(
+    p: &PlotSpec,
+    header: &[String],
+    ok_rows: &[&Vec<String>],
+    cols: &Columns,
+    categories: &[String],
+    (log_x, log_y): (bool, bool),
+) -> (Vec<(String, Vec<Point>)>, usize) {
+    let categorical = !categories.is_empty();
+    let mut groups: Vec<(String, Vec<Point>)> = Vec::new();
+    let mut not_positive = 0usize;
+    for (ri, r) in ok_rows.iter().enumerate() {
+        let x = if categorical { categories.iter().position(|c| *c == r[cols.x]).map(|k| k as f64) } else { r[cols.x].parse::<f64>().ok() };
+        let (Some(x), Ok(y)) = (x, r[cols.y].parse::<f64>()) else { continue };
+        let key = cols.series.iter().zip(&p.series).map(|(&i, n)| format!("{}={}", n.trim_start_matches("param_"), r[i])).collect::<Vec<_>>().join(", ");
+        // Log axes show positive values only.
+        if (log_x && !(x > 0.0)) || (log_y && !(y > 0.0)) {
+            not_positive += 1;
+            continue;
+        }
+        let n = cols.renders.and_then(|c| r[c].parse::<f64>().ok()).unwrap_or(1.0).max(1.0);
+        let measured = cols.timing.and_then(|c| r[c].parse::<f64>().ok()).map_or(f64::INFINITY, |t| t * n);
+        // Repeats share every parameter: what tells two runs apart is
+        // everything but the timings, so group by the x the plot shows
+        // where x is not a timing, and by the run's parameters where it is.
+        let place = if is_timing(&p.x) {
+            header.iter().enumerate().filter(|(_, h)| h.starts_with("param_")).map(|(i, _)| r[i].as_str()).collect::<Vec<_>>().join("|")
+        } else {
+            String::new()
+        };
+        let g = match groups.iter().position(|g| g.0 == key) {
+            Some(i) => &mut groups[i].1,
+            None => {
+                groups.push((key.clone(), Vec::new()));
+                &mut groups.last_mut().unwrap().1
+            }
+        };
+        match g.iter_mut().find(|pt| if is_timing(&p.x) { pt.place == place } else { pt.x == x }) {
+            Some(pt) => {
+                pt.xs.push(x);
+                pt.ys.push(y);
+                pt.measured = pt.measured.min(measured);
+                pt.runs.push(ri);
+            }
+            None => g.push(Point { x, xs: vec![x], ys: vec![y], measured, place, runs: vec![ri] }),
+        }
+    }
+    (groups, not_positive)
+}
+
+/// Fits a straight line to the series as drawn (log axes as logs),
+/// names its slope and R² in the legend, and judges the report's claim
+/// where the plot makes one (not in a quick run).
+fn fit_series(p: &PlotSpec, out: &mut Series, (log_x, log_y): (bool, bool), quick: bool) -> Option<(String, RGBColor)> {
+    let drawn: Vec<(f64, f64)> = out.points.iter().map(|&(x, y)| (if log_x { x.log10() } else { x }, if log_y { y.log10() } else { y })).collect();
+    let f = fit(&drawn)?;
+    {
+        let unit = if log_x && log_y { String::new() } else { format!(" {}", slope_unit(&p.x, &p.y)) };
+        out.name = format!("{}: slope {}{} ± {}, R² {:.3}", out.name, sig(f.b), unit, sig(f.b_ci), f.r2);
+        out.fit = Some((f.a, f.b));
+        let judged = !p.claim.is_empty() && (p.claim_series.is_empty() || out.name.contains(&p.claim_series));
+        if judged && !quick {
+            let holds = f.r2 >= CLAIM_R2
+                && match p.claim_slope {
+                    Some(s) => (f.b - s).abs() <= f.b_ci.max(CLAIM_SLOPE_TOLERANCE),
+                    None => f.b - f.b_ci > 0.0,
+                };
+            let name = if p.series.is_empty() { String::new() } else { format!(" for {}", out.name.split(':').next().unwrap_or_default()) };
+            let (word, colour) = if holds { ("HOLDS", RGBColor(0, 120, 40)) } else { ("DOES NOT HOLD", RGBColor(190, 0, 0)) };
+            return Some((
+                format!(
+                    "The report's claim \"{}\", tested on {} against {}, {word}{name}: slope {} ± {}, R² {:.3}",
+                    p.claim,
+                    axis_title(&p.y),
+                    axis_title(&p.x),
+                    sig(f.b),
+                    sig(f.b_ci),
+                    f.r2,
+                ),
+                colour,
+            ));
+        }
+    }
+    None
+}
+
+/// Where the times were taken: the machine's load during the runs, and
+/// what it does to the time plotted.
+fn load_note(p: &PlotSpec, header: &[String], ok_rows: &[&Vec<String>]) -> Option<(String, RGBColor)> {
+    let load: Vec<f64> = header.iter().position(|h| h == "load_1min").map_or(Vec::new(), |c| ok_rows.iter().filter_map(|r| r[c].parse::<f64>().ok()).collect());
+    let cores = header.iter().position(|h| h == "cores").and_then(|c| ok_rows.first().map(|r| r[c].clone())).unwrap_or_default();
+    let (lo, hi) = load.iter().copied().reduce(f64::min).zip(load.iter().copied().reduce(f64::max))?;
+    let what = if p.x == "cpu_s" || p.y == "cpu_s" {
+        "CPU time is the work of every thread, which other processes slow but do not add to"
+    } else {
+        "wall time, which other processes' load stretches"
+    };
+    Some((format!("machine load at the runs (1-minute load average): {lo:.1} to {hi:.1} on {cores} cores; {what}"), RGBColor(60, 60, 60)))
+}
+
+/// Why time follows or leaves the claim: the rays the runs traced, by x,
+/// where the claim is about something else that drives them and they
+/// vary (by more than a tenth).
+fn rays_note(p: &PlotSpec, header: &[String], ok_rows: &[&Vec<String>], kept: &[(String, Vec<Vec<usize>>)]) -> Option<(String, RGBColor)> {
+    let (Some(c), Some((name, pts))) = (header.iter().position(|h| h == "rays"), kept.first()) else { return None };
+    let xs = header.iter().position(|h| *h == p.x);
+    let parts: Vec<String> = pts
+        .iter()
+        .filter_map(|runs| {
+            let mut r: Vec<f64> = runs.iter().filter_map(|&i| ok_rows[i][c].parse::<f64>().ok()).collect();
+            r.sort_by(f64::total_cmp);
+            let x = xs.map(|xi| ok_rows[runs[0]][xi].clone())?;
+            (!r.is_empty()).then(|| format!("{x}: {}", median(&r).round()))
+        })
+        .collect();
+    let rays: Vec<f64> = parts.iter().filter_map(|t| t.rsplit(' ').next().and_then(|v| v.parse::<f64>().ok())).collect();
+    let varies = rays.iter().copied().reduce(f64::max).zip(rays.iter().copied().reduce(f64::min)).is_some_and(|(hi, lo)| hi > 1.1 * lo);
+    if !varies {
+        return None;
+    }
+    let of = if name.is_empty() { String::new() } else { format!(" ({name})") };
+    Some((
+        format!(
+            "rays traced per run{of}, by {}: {}",
+            axis_title(&p.x),
+            parts
+                .iter()
+                .map(|t| match t.rsplit_once(' ') {
+                    Some((a, v)) => format!("{a} {}", v.parse::<f64>().map(|v| tick(&v)).unwrap_or_default()),
+                    None => t.clone(),
+                })
+                .collect::<Vec<_>>()
+                .join(", ")
+        ),
+        RGBColor(60, 60, 60),
+    ))
+}
+
+/// Where x steps unevenly, a change from the previous value spans more
+/// than one step: which points do.
+fn uneven_steps_note(x: &str, pts: &[(f64, f64)]) -> Option<(String, RGBColor)> {
+    let steps: Vec<(f64, f64)> = pts.windows(2).map(|w| (w[1].0, w[1].0 - w[0].0)).collect();
+    let least = steps.iter().map(|s| s.1).reduce(f64::min)?;
+    let wide: Vec<String> = steps.iter().filter(|s| s.1 > least * 1.001).map(|s| format!("{} ({} steps)", tick(&s.0), tick(&(s.1 / least)))).collect();
+    (!wide.is_empty()).then(|| {
+        (
+            format!("each point: the change from the previous point, {} {} on; but the points at {} span more", tick(&least), axis_title(x), wide.join(", ")),
+            RGBColor(60, 60, 60),
+        )
     })
 }
 
