@@ -230,32 +230,15 @@ fn line_chart_with(p: &PlotSpec, header: &[String], rows: &[Vec<String>], quick:
     // emits; `photons`: photons traced over every pass) is placed at what
     // was measured, as its axis title says.
     let xi = measured_column(header, &p.x).unwrap_or(xi);
-    // A column of text (a glass, a map, a scene) is drawn as categories.
-    let categorical = ok_rows.iter().any(|r| !r[xi].is_empty() && r[xi].parse::<f64>().is_err());
-    let mut categories: Vec<String> = Vec::new();
-    if categorical {
-        for r in &ok_rows {
-            if !r[xi].is_empty() && !categories.contains(&r[xi]) {
-                categories.push(r[xi].clone());
-            }
-        }
-    }
+    let categories = categories_of(&ok_rows, xi);
+    let categorical = !categories.is_empty();
     let (log_x, log_y) = (p.log_x && !categorical, p.log_y);
     let cols = Columns { x: xi, y: yi, series: &si, renders, timing };
     let (groups, not_positive) = group_points(p, header, &ok_rows, &cols, &categories, (log_x, log_y));
     let mut notes: Vec<(String, RGBColor)> = Vec::new();
     let mut short = 0usize;
     let mut below_reference = 0usize;
-    // The parameters that may vary along a curve or within a point: the
-    // experiment's, but for the x axis and those naming the series.
-    let free: Vec<(String, usize)> = axes
-        .iter()
-        .filter(|a| format!("param_{a}") != p.x && !p.series.contains(&format!("param_{a}")))
-        .filter_map(|a| {
-            header.iter().position(|h| *h == format!("param_{a}")).map(|c| (a.clone(), measured_column(header, &format!("param_{a}")).unwrap_or(c)))
-        })
-        .filter(|(_, c)| values_of(&(0..ok_rows.len()).collect::<Vec<_>>(), &ok_rows, *c).len() > 1)
-        .collect();
+    let free = free_parameters(p, axes, header, &ok_rows);
     // Each series' drawn points (their runs), and the points left out.
     let mut kept: Vec<(String, Vec<Vec<usize>>)> = Vec::new();
     let mut dropped: Vec<(String, Vec<usize>)> = Vec::new();
@@ -263,42 +246,13 @@ fn line_chart_with(p: &PlotSpec, header: &[String], rows: &[Vec<String>], quick:
     let mut verdicts: Vec<(String, RGBColor)> = Vec::new();
     let mut series: Vec<Series> = Vec::new();
     for (k, (name, mut pts)) in groups.into_iter().enumerate() {
-        // Too short to time (not in a quick run, whose every time is).
-        if !quick {
-            let before = pts.len();
-            dropped.extend(pts.iter().filter(|pt| pt.measured < SHORTEST_TIMING_S).map(|pt| (name.clone(), pt.runs.clone())));
-            pts.retain(|pt| !(pt.measured < SHORTEST_TIMING_S));
-            short += before - pts.len();
-        }
-        // Errors below ten times the reference's own noise measure the
-        // reference, not the run.
-        if let (Some(f), true) = (floor, is_error(&p.y)) {
-            let before = pts.len();
-            pts.retain(|pt| {
-                let mut ys = pt.ys.clone();
-                ys.sort_by(f64::total_cmp);
-                median(&ys) >= f
-            });
-            below_reference += before - pts.len();
-        }
+        let (too_short, below) = leave_out(&mut pts, quick, floor.filter(|_| is_error(&p.y)));
+        short += too_short.len();
+        below_reference += below;
+        dropped.extend(too_short.into_iter().map(|runs| (name.clone(), runs)));
         kept.push((name.clone(), pts.iter().map(|pt| pt.runs.clone()).collect()));
         let mut out = Series::new(if name.is_empty() { axis_title(&p.y) } else { name }, Vec::new(), PALETTE[k % PALETTE.len()]);
-        let mut sorted: Vec<(f64, f64, Spread, Spread)> = pts
-            .iter()
-            .map(|pt| {
-                let (mut xs, mut ys) = (pt.xs.clone(), pt.ys.clone());
-                xs.sort_by(f64::total_cmp);
-                ys.sort_by(f64::total_cmp);
-                let spread = |v: &[f64]| (v.len() > 1 && v[0] < v[v.len() - 1]).then(|| (v[0], v[v.len() - 1]));
-                (if is_timing(&p.x) { median(&xs) } else { pt.x }, median(&ys), if is_timing(&p.x) { spread(&xs) } else { None }, spread(&ys))
-            })
-            .collect();
-        // A curve runs along x; where x is a timing it runs in the sweep's
-        // order (more photons, more samples), which noise in the times
-        // must not reorder.
-        if !is_timing(&p.x) {
-            sorted.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
-        }
+        let sorted = summarise(&pts, is_timing(&p.x));
         out.points = sorted.iter().map(|s| (s.0, s.1)).collect();
         out.spread_x = sorted.iter().map(|s| s.2).collect();
         out.spread_y = sorted.iter().map(|s| s.3).collect();
@@ -326,26 +280,22 @@ fn line_chart_with(p: &PlotSpec, header: &[String], rows: &[Vec<String>], quick:
     }
     if short > 0 {
         let (whose, verb) = if short == 1 { ("its", "was") } else { ("their", "were") };
-        notes.push((
-            format!(
-                "{} not plotted{}: {whose} renders together, repeats inside one timing included, {verb} timed over less than {} ms",
-                count(short, "point"),
-                which_points(&free, &dropped, &kept, &ok_rows, header, &p.x),
-                SHORTEST_TIMING_S * 1e3
-            ),
-            RGBColor(60, 60, 60),
-        ));
+        let which = which_points(&free, &dropped, &kept, &ok_rows, header, &p.x);
+        let text = format!(
+            "{} not plotted{which}: {whose} renders together, repeats inside one timing included, {verb} timed over less than {} ms",
+            count(short, "point"),
+            SHORTEST_TIMING_S * 1e3
+        );
+        notes.push((text, RGBColor(60, 60, 60)));
     }
-    if let Some(n) = reference_noise {
+    if let (Some(n), true) = (reference_noise, is_error(&p.y)) {
         let also = if below_reference > 0 { format!("; {} under ten times that left out", count(below_reference, "point")) } else { String::new() };
-        if is_error(&p.y) {
-            let text = if n > 0.0 {
-                format!("the reference's own noise (two seeds): {}{also}", sig(n))
-            } else {
-                "the reference draws nothing at random: its own noise is 0".into()
-            };
-            notes.push((text, RGBColor(60, 60, 60)));
-        }
+        let text = if n > 0.0 {
+            format!("the reference's own noise (two seeds): {}{also}", sig(n))
+        } else {
+            "the reference draws nothing at random: its own noise is 0".into()
+        };
+        notes.push((text, RGBColor(60, 60, 60)));
     }
     if !p.claim.is_empty() && is_timing(&p.y) && p.x != "rays" && !is_timing(&p.x) {
         notes.extend(rays_note(p, header, &ok_rows, &kept));
@@ -368,6 +318,76 @@ fn line_chart_with(p: &PlotSpec, header: &[String], rows: &[Vec<String>], quick:
         // the level no curve can fall below.
         levels: reference_noise.filter(|n| *n > 0.0 && is_error(&p.y)).map(|n| vec![(n, "reference noise".to_string())]).unwrap_or_default(),
     })
+}
+
+/// The values of a column of text (a glass, a map, a scene), in the
+/// order met, to draw as categories; none where the column is numbers.
+fn categories_of(ok_rows: &[&Vec<String>], xi: usize) -> Vec<String> {
+    let mut categories: Vec<String> = Vec::new();
+    if ok_rows.iter().any(|r| !r[xi].is_empty() && r[xi].parse::<f64>().is_err()) {
+        for r in ok_rows {
+            if !r[xi].is_empty() && !categories.contains(&r[xi]) {
+                categories.push(r[xi].clone());
+            }
+        }
+    }
+    categories
+}
+
+/// The parameters that may vary along a curve or within a point: the
+/// experiment's `axes` that do vary, but for the x axis and those naming
+/// the series; each with the column it was measured in.
+fn free_parameters(p: &PlotSpec, axes: &[String], header: &[String], ok_rows: &[&Vec<String>]) -> Vec<(String, usize)> {
+    axes.iter()
+        .filter(|a| format!("param_{a}") != p.x && !p.series.contains(&format!("param_{a}")))
+        .filter_map(|a| {
+            header.iter().position(|h| *h == format!("param_{a}")).map(|c| (a.clone(), measured_column(header, &format!("param_{a}")).unwrap_or(c)))
+        })
+        .filter(|(_, c)| values_of(&(0..ok_rows.len()).collect::<Vec<_>>(), ok_rows, *c).len() > 1)
+        .collect()
+}
+
+/// Leaves out of a curve the points too short to time (not in a quick
+/// run, whose every time is) and, under `floor` (ten times the
+/// reference's own noise), the errors that measure the reference, not the
+/// run: the runs of each point too short, and how many points were under
+/// the floor.
+fn leave_out(pts: &mut Vec<Point>, quick: bool, floor: Option<f64>) -> (Vec<Vec<usize>>, usize) {
+    let mut too_short = Vec::new();
+    if !quick {
+        too_short = pts.iter().filter(|pt| pt.measured < SHORTEST_TIMING_S).map(|pt| pt.runs.clone()).collect();
+        pts.retain(|pt| !(pt.measured < SHORTEST_TIMING_S));
+    }
+    let before = pts.len();
+    if let Some(f) = floor {
+        pts.retain(|pt| {
+            let mut ys = pt.ys.clone();
+            ys.sort_by(f64::total_cmp);
+            median(&ys) >= f
+        });
+    }
+    (too_short, before - pts.len())
+}
+
+/// A curve's points as drawn: (x, median y, spread of x, spread of y).
+/// A curve runs along x; where x is a timing (its median and spread
+/// drawn) it runs in the sweep's order (more photons, more samples),
+/// which noise in the times must not reorder.
+fn summarise(pts: &[Point], x_is_timing: bool) -> Vec<(f64, f64, Spread, Spread)> {
+    let mut sorted: Vec<(f64, f64, Spread, Spread)> = pts
+        .iter()
+        .map(|pt| {
+            let (mut xs, mut ys) = (pt.xs.clone(), pt.ys.clone());
+            xs.sort_by(f64::total_cmp);
+            ys.sort_by(f64::total_cmp);
+            let spread = |v: &[f64]| (v.len() > 1 && v[0] < v[v.len() - 1]).then(|| (v[0], v[v.len() - 1]));
+            (if x_is_timing { median(&xs) } else { pt.x }, median(&ys), if x_is_timing { spread(&xs) } else { None }, spread(&ys))
+        })
+        .collect();
+    if !x_is_timing {
+        sorted.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
+    }
+    sorted
 }
 
 /// Where a chart's values sit in runs.csv.
