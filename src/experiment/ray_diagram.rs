@@ -283,7 +283,7 @@ mod tests {
 
     #[test]
     fn every_wavelength_shows_inside_the_prism_and_no_tick_reads_minus_zero() {
-        let path = [(0.0, 0.0), (0.05, 0.01), (0.08, -0.01)];
+        let path: [(f64, f64); 3] = [(0.0, 0.0), (0.05, 0.01), (0.08, -0.01)];
         let total: f64 = path.windows(2).map(|w| ((w[1].0 - w[0].0).powi(2) + (w[1].1 - w[0].1).powi(2)).sqrt()).sum();
         let n = LAMBDAS.len();
         let mut covered = 0.0;
