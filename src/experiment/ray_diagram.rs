@@ -65,6 +65,49 @@ fn clip(a: (f64, f64), b: (f64, f64), xr: (f64, f64), yr: (f64, f64)) -> Option<
     (t0 < t1).then_some([(a.0 + t0 * dx, a.1 + t0 * dy), (a.0 + t1 * dx, a.1 + t1 * dy)])
 }
 
+/// The length of one wavelength's dash inside the prism on the main
+/// chart, m (about 6 px).
+const DASH: f64 = 0.003;
+
+/// An axis tick in metres: two decimals at most, and zero never "-0".
+fn axis_tick(v: &f64) -> String {
+    let r = (v * 100.0).round() / 100.0;
+    if r == 0.0 {
+        "0".to_string()
+    } else {
+        super::plot::tick(&r)
+    }
+}
+
+/// The dashes of `path` that the `i`th of `n` wavelengths draws: the path
+/// cut into pieces `dash` long along its length, piece k drawn by
+/// wavelength k mod n, so n paths that coincide show every colour in turn.
+fn dashes(path: &[(f64, f64)], dash: f64, i: usize, n: usize) -> Vec<Vec<(f64, f64)>> {
+    let mut out = Vec::new();
+    let mut walked = 0.0;
+    for ab in path.windows(2) {
+        let (a, b) = (ab[0], ab[1]);
+        let len = ((b.0 - a.0).powi(2) + (b.1 - a.1).powi(2)).sqrt();
+        let at = |s: f64| {
+            let t = ((s - walked) / len).clamp(0.0, 1.0);
+            (a.0 + t * (b.0 - a.0), a.1 + t * (b.1 - a.1))
+        };
+        // Pieces that overlap this segment, cut at its ends.
+        let mut k = (walked / dash).floor() as usize;
+        while (k as f64) * dash < walked + len {
+            if k % n == i {
+                let (s0, s1) = ((k as f64 * dash).max(walked), ((k + 1) as f64 * dash).min(walked + len));
+                if s1 > s0 {
+                    out.push(vec![at(s0), at(s1)]);
+                }
+            }
+            k += 1;
+        }
+        walked += len;
+    }
+    out
+}
+
 /// The line colour of a wavelength: its CIE colour at full brightness.
 fn colour(nm: f64) -> RGBColor {
     let rgb = crate::spectrum::colormap::ColorMap::Cie.rgb(nm);
@@ -97,17 +140,35 @@ pub fn draw(png: &Path) -> Result<String> {
             .y_label_area_size(60)
             .build_cartesian_2d(X_RANGE.0..X_RANGE.1, Y_RANGE.0..Y_RANGE.1)
             .map_err(plot_err)?;
-        c.configure_mesh().x_desc("x (m)").y_desc("y (m)").label_style(("sans-serif", 15)).draw().map_err(plot_err)?;
+        // A light grid at the labelled ticks only.
+        c.configure_mesh()
+            .x_labels(8)
+            .y_labels(5)
+            .x_label_formatter(&axis_tick)
+            .y_label_formatter(&axis_tick)
+            .bold_line_style(RGBColor(226, 226, 226))
+            .light_line_style(TRANSPARENT)
+            .x_desc("x (m)")
+            .y_desc("y (m)")
+            .label_style(("sans-serif", 16))
+            .draw()
+            .map_err(plot_err)?;
         for seg in &outline {
             c.draw_series(LineSeries::new(seg.to_vec(), BLACK.stroke_width(2))).map_err(plot_err)?;
         }
-        for p in &rays {
+        for (i, p) in rays.iter().enumerate() {
             let col = colour(p.nm);
-            let mut pts: Vec<(f64, f64)> = p.path.iter().map(|v| (v.x, v.y)).collect();
+            // Inside the prism the paths lie within a millimetre of each
+            // other: each wavelength draws its own dashes in turn, so all
+            // show where one line would hide the rest.
+            let inside: Vec<(f64, f64)> = p.path.iter().skip(1).map(|v| (v.x, v.y)).collect();
+            for dash in dashes(&inside, DASH, i, rays.len()) {
+                c.draw_series(LineSeries::new(dash, col.stroke_width(3))).map_err(plot_err)?;
+            }
             // Past the prism, FAN_EXAGGERATION times the angle so the fan shows.
             let (end, d) = (p.exit_point, p.exit_dir);
-            pts.push((end.x + 0.2, end.y + 0.2 * (d.y / d.x) * FAN_EXAGGERATION));
-            c.draw_series(LineSeries::new(pts, col.stroke_width(2)))
+            let fan = vec![(end.x, end.y), (end.x + 0.2, end.y + 0.2 * (d.y / d.x) * FAN_EXAGGERATION)];
+            c.draw_series(LineSeries::new(fan, col.stroke_width(2)))
                 .map_err(plot_err)?
                 .label(format!("{} nm", p.nm))
                 .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], col.stroke_width(3)));
@@ -124,12 +185,12 @@ pub fn draw(png: &Path) -> Result<String> {
             .position(SeriesLabelPosition::UpperLeft)
             .background_style(WHITE.mix(0.9))
             .border_style(BLACK)
-            .label_font(("sans-serif", 15))
+            .label_font(("sans-serif", 16))
             .draw()
             .map_err(plot_err)?;
         // The fan's true spread, written beside it.
         let note = format!("fan drawn {FAN_EXAGGERATION}x wider: its true spread is {spread:.1} degrees");
-        c.draw_series(std::iter::once(Text::new(note, (-0.005, 0.112), ("sans-serif", 15).into_font().color(&BLACK)))).map_err(plot_err)?;
+        c.draw_series(std::iter::once(Text::new(note, (-0.005, 0.112), ("sans-serif", 16).into_font().color(&BLACK)))).map_err(plot_err)?;
         // The inset: where on the page, and which part of the prism.
         let (ix, iy) = INSET_AT;
         let (p0, p1) = (c.backend_coord(&(ix.0, iy.1)), c.backend_coord(&(ix.1, iy.0)));
@@ -145,7 +206,7 @@ pub fn draw(png: &Path) -> Result<String> {
             c.draw_series(LineSeries::new([from, to], guide.stroke_width(1))).map_err(plot_err)?;
         }
         let title = format!("inset: the exit face (box) magnified {magnification:.0}x, at true angles");
-        c.draw_series(std::iter::once(Text::new(title, (ix.0, iy.1 + 0.009), ("sans-serif", 15).into_font().color(&BLACK)))).map_err(plot_err)?;
+        c.draw_series(std::iter::once(Text::new(title, (ix.0, iy.1 + 0.009), ("sans-serif", 16).into_font().color(&BLACK)))).map_err(plot_err)?;
         let area = root.clone().shrink(p0, (pw, ph));
         area.fill(&WHITE).map_err(plot_err)?;
         let mut inset = ChartBuilder::on(&area).build_cartesian_2d(xr.0..xr.1, yr.0..yr.1).map_err(plot_err)?;
@@ -218,6 +279,27 @@ mod tests {
             assert!(e.x > xr.0 && e.x < xr.1 && e.y > yr.0 && e.y < yr.1, "{} nm exits outside the inset", p.nm);
         }
         assert!((ix.1 - ix.0) / (xr.1 - xr.0) > 3.0);
+    }
+
+    #[test]
+    fn every_wavelength_shows_inside_the_prism_and_no_tick_reads_minus_zero() {
+        let path: [(f64, f64); 3] = [(0.0, 0.0), (0.05, 0.01), (0.08, -0.01)];
+        let total: f64 = path.windows(2).map(|w| ((w[1].0 - w[0].0).powi(2) + (w[1].1 - w[0].1).powi(2)).sqrt()).sum();
+        let n = LAMBDAS.len();
+        let mut covered = 0.0;
+        for i in 0..n {
+            let d = dashes(&path, DASH, i, n);
+            // Each wavelength draws its share of the path, in several dashes.
+            let own: f64 = d.iter().map(|s| ((s[1].0 - s[0].0).powi(2) + (s[1].1 - s[0].1).powi(2)).sqrt()).sum();
+            assert!(d.len() >= 3 && (own - total / n as f64).abs() < 1.5 * DASH, "wavelength {i}: {} dashes, {own:.4} m of {total:.4}", d.len());
+            covered += own;
+        }
+        assert!((covered - total).abs() < 1e-9, "the dashes cover the path once: {covered} vs {total}");
+        for v in [-1e-17, -0.0, 0.0, 1e-17] {
+            assert_eq!(axis_tick(&v), "0");
+        }
+        assert_eq!(axis_tick(&-0.05), "-0.05");
+        assert_eq!(axis_tick(&0.1), "0.1");
     }
 
     #[test]
