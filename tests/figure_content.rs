@@ -568,6 +568,43 @@ fn the_album_cover_fan_opens_and_no_ghost_crosses_it() {
     assert!(ghost < 20, "light below the prism's base: {ghost} of 255");
 }
 
+/// The prism corners and the named faces' vertices of a scene file's
+/// world, projected to pixels, with the frame's size.
+fn projected(id: &str, faces: impl Fn(&refract::world::Face) -> bool) -> (Vec<glam::DVec2>, f64, f64) {
+    let s = SceneFile::load(&repo(&format!("scenes/{id}.toml")), false).unwrap();
+    let cfg = refract::experiment::params::prism_config(&s.params).unwrap();
+    let scene = refract::scenes::build(&cfg.scene).unwrap();
+    let pts = scene.faces.iter().filter(|f| faces(f)).flat_map(|f| f.verts.clone()).map(|v| scene.camera.project(v).expect("in front of the camera")).collect();
+    (pts, cfg.scene.width as f64, cfg.scene.height as f64)
+}
+
+#[test]
+fn the_point_light_prism_stands_clear_of_the_frame_and_the_tube_reads_as_a_tube() {
+    // pm-pointlight-faint (and pm-mirror-tube, the same box and camera):
+    // every corner of the prism at least 25 px inside the frame (its foot
+    // was 5 px from the bottom before the camera was aimed lower).
+    let is_glass = |f: &refract::world::Face| matches!(f.surface, refract::world::Surface::Interface { .. });
+    for id in ["pm-pointlight-faint", "pm-mirror-tube"] {
+        let (corners, w, h) = projected(id, is_glass);
+        assert!(corners.len() >= 6, "{id}");
+        for c in &corners {
+            assert!(c.x >= 25.0 && c.x <= w - 25.0 && c.y >= 25.0 && c.y <= h - 25.0, "{id}: a prism corner at {c:?} is near the frame's edge");
+        }
+    }
+    // The mirror tube's metal sleeve: in the frame, at least 60 px long
+    // and 6 px across on the picture (the bare 2.5 cm bore was a stick
+    // about 3 px thick).
+    let (sleeve, w, h) = projected("pm-mirror-tube", |f| f.name.starts_with("tube sleeve"));
+    assert!(!sleeve.is_empty(), "the tube has a sleeve");
+    let (lo, hi) = sleeve.iter().fold((glam::DVec2::splat(f64::MAX), glam::DVec2::splat(f64::MIN)), |(lo, hi), p| (lo.min(*p), hi.max(*p)));
+    assert!(lo.x >= 0.0 && lo.y >= 0.0 && hi.x <= w && hi.y <= h, "the tube is cut by the frame: {lo:?} to {hi:?}");
+    let (end_a, end_b) = (sleeve.iter().step_by(4).copied().collect::<Vec<_>>(), sleeve.iter().skip(1).step_by(4).copied().collect::<Vec<_>>());
+    let length = end_a.iter().zip(&end_b).map(|(a, b)| a.distance(*b)).fold(0.0, f64::max);
+    assert!(length >= 60.0, "the tube is {length:.0} px long on the picture");
+    let across = end_a.iter().flat_map(|a| end_a.iter().map(move |b| a.distance(*b))).fold(0.0, f64::max);
+    assert!(across >= 6.0, "the tube is {across:.1} px across on the picture");
+}
+
 #[test]
 fn the_laser_prism_stands_wholly_in_the_frame() {
     // pm-laser-prism: every corner of the prism projects inside the frame,
@@ -610,8 +647,11 @@ fn the_colour_map_tiles_are_cropped_to_the_fan_and_labelled() {
     // each tile the lit pixels (max channel above 40) span at least 70 % of
     // its width and of its height (the prism and its fan fill the tile, not
     // a corner of it) and cover at least 4 % of it (a thin diagonal fan
-    // leaves black round it, as on the cover), each label strip holds
-    // white text at least 8 px tall, and the fan runs out of the tile.
+    // leaves black round it, as on the cover), the prism's white outline
+    // spans at least 45 % of the tile's height (49 % at 11.5 degrees; 36 %
+    // in the 16-degree crop a reader found small), each label strip holds
+    // white text at least 16 px tall (19-24 at 30 px type; 15-19 at 24),
+    // and the fan runs out of the tile.
     let dir = tempfile::tempdir().unwrap();
     let o = refract::experiment::figures::FigureOptions {
         quick: true,
@@ -625,7 +665,7 @@ fn the_colour_map_tiles_are_cropped_to_the_fan_and_labelled() {
     let (w, h) = (img.width() as usize, img.height() as usize);
     let (tw, rows) = (w / 3, 2);
     let row_h = h / rows;
-    let label_h = 36;
+    let label_h = 44;
     for k in 0..6 {
         let (x0, y0) = ((k % 3) * tw, (k / 3) * row_h);
         let (mut lit, mut n) = (0, 0);
@@ -645,7 +685,11 @@ fn the_colour_map_tiles_are_cropped_to_the_fan_and_labelled() {
         eprintln!("colour-map tile {k}: {frac:.3} lit, spanning {span_x:.2} x {span_y:.2} of it; label {text_rows} px tall");
         assert!(span_x >= 0.7 && span_y >= 0.7, "tile {k}: the subject spans only {span_x:.2} x {span_y:.2} of it");
         assert!(frac >= 0.04, "tile {k}: only {frac:.3} of it lit");
-        assert!(text_rows >= 8, "tile {k}: its label is {text_rows} px tall");
+        assert!(text_rows >= 16, "tile {k}: its label is {text_rows} px tall");
+        let white = |x: usize, y: usize| img.get_pixel(x as u32, y as u32).0.iter().all(|&c| c > 200);
+        let outline_rows: Vec<usize> = (y0 + label_h..y0 + row_h).filter(|&y| (x0..x0 + tw).any(|x| white(x, y))).collect();
+        let outline = outline_rows.last().map_or(0, |l| l + 1 - outline_rows[0]) as f64 / (row_h - label_h) as f64;
+        assert!(outline >= 0.45, "tile {k}: the prism spans only {outline:.2} of the tile's height");
         // The fan runs out of the tile (at its lower right), not ending in
         // mid-air where its light comes down onto the backdrop: at least 20
         // lit pixels on the tile's right and bottom edges, in their lower

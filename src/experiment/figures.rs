@@ -649,7 +649,7 @@ fn colour_compare(png: &Path, quick: bool, scenes: &Path) -> Result<String> {
     // Three tiles across fit a 1400 px page at 1:1, the quick set's too
     // (with fewer samples: its tiles must be read at the same size).
     let (tw, th) = (440usize, 300usize);
-    let (label_h, font) = (36usize, 24);
+    let (label_h, font) = (44usize, 30);
     let indent = 14;
     (cfg.scene.width, cfg.scene.height) = (tw, th);
     cfg.spp = cfg.spp.min(if quick { 2 } else { 8 });
@@ -665,9 +665,11 @@ fn colour_compare(png: &Path, quick: bool, scenes: &Path) -> Result<String> {
         // beam's last part, and the fan running out of the tile at its
         // lower right (the figure's own camera, 16 degrees instead of 19:
         // a wider crop showed the fan end in mid-air where its light comes
-        // down onto the backdrop).
-        let centre = glam::DVec3::new(0.28, -0.17, 0.0);
-        scene.camera = crate::world::Camera::look_at(centre + glam::DVec3::Z * 2.8, centre, glam::DVec3::Y, 16.0, tw, th);
+        // down onto the backdrop; at 16 degrees the prism and fan filled
+        // a tenth of the tile: 11.5 degrees, the prism whole and the fan
+        // from its exit face, where the maps' colours part).
+        let centre = glam::DVec3::new(0.22, -0.07, 0.0);
+        scene.camera = crate::world::Camera::look_at(centre + glam::DVec3::Z * 2.8, centre, glam::DVec3::Y, 11.5, tw, th);
         let r = crate::spectral::render_world(&cfg, &scene, &crate::progress::Silent)?;
         let tile = r.render.image.to_srgb8(r.exposure, cfg.gamut);
         let (x0, y0) = ((k % cols) * tw, (k / cols) * (th + label_h) + label_h);
