@@ -312,6 +312,18 @@ pub static PARAMS: &[Param<InteriorConfig>] = &[
         ignored: never,
     },
     Param {
+        key: "bulb",
+        aliases: &[],
+        section: SCENE,
+        help: "Radius of the bulb: the point light drawn as a small glowing bead, seen through the faces in front of it where the glass refracts it (a drawn marker, not the report's model; 0 = not drawn)",
+        unit: "scene units",
+        kind: Kind::closed(0.0, 10.0),
+        auto: "",
+        get: |c| Some(real(c.bulb)),
+        set: |c, v| c.bulb = v.real() as f32,
+        ignored: never,
+    },
+    Param {
         key: "spp",
         aliases: &[],
         section: SCENE,
