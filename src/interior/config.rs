@@ -90,6 +90,10 @@ pub struct InteriorConfig {
     /// seen through the mesh's faces (`interior::bulb`; a drawn marker, not
     /// part of the report's model); 0 = not drawn, as in the report.
     pub bulb: f32,
+    /// Draw, on each face the light inside meets, the circle where it meets
+    /// it at the critical angle asin(1/n): the edge of the circle of
+    /// outcoming light (a drawn guide, not part of the report's model).
+    pub tir_circle: bool,
 }
 
 impl InteriorConfig {
@@ -139,6 +143,7 @@ impl InteriorConfig {
             seed: 0,
             offset: 1e-4,
             bulb: 0.0,
+            tir_circle: false,
         }
     }
 }

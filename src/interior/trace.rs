@@ -40,6 +40,13 @@ pub struct Render {
     pub tir: u64,
 }
 
+/// Colour of the drawn critical-angle circles: orange, apart from the
+/// white and grey of the model's colours.
+pub const TIR_CIRCLE: Rgb = Rgb(Vec3::new(0.62, 0.3, 0.04));
+/// Half-width of a drawn critical-angle circle, in angle of incidence
+/// (0.45 degrees: about a pixel on the figures' cube).
+pub const TIR_CIRCLE_WIDTH: f32 = 0.45 * std::f32::consts::PI / 180.0;
+
 pub struct Tracer<'a> {
     pub scene: &'a InteriorScene,
     pub accel: &'a Accel,
@@ -55,6 +62,8 @@ pub struct Tracer<'a> {
     pub exposure: f32,
     /// Radius of the drawn bulb; 0 = none.
     pub bulb: f32,
+    /// Draw the critical-angle circles on the faces the eye meets first.
+    pub tir_circle: bool,
 }
 
 impl<'a> Tracer<'a> {
@@ -73,6 +82,7 @@ impl<'a> Tracer<'a> {
             offset: cfg.offset,
             exposure: cfg.exposure,
             bulb: cfg.bulb,
+            tir_circle: cfg.tir_circle,
         }
     }
 
@@ -113,6 +123,25 @@ impl<'a> Tracer<'a> {
         (g * self.phong.light_color, cover)
     }
 
+    /// Whether `p` on mesh triangle `tri` lies on the circle where the light
+    /// inside meets the face at the critical angle asin(1/n) (within
+    /// TIR_CIRCLE_WIDTH), the edge of the light that gets out (Snell's law;
+    /// docs/physics.md §10).
+    fn on_tir_circle(&self, p: Vec3, tri: u32) -> bool {
+        let m = &self.scene.object;
+        if self.scene.is_wall(tri) || !m.translucent || m.ior <= 1.0 {
+            return false;
+        }
+        let n = self.scene.normals[tri as usize];
+        let to_light = self.scene.light - p;
+        let d = to_light.length();
+        if d <= 0.0 || n.dot(to_light) >= 0.0 {
+            return false;
+        }
+        let incidence = (-n.dot(to_light) / d).clamp(-1.0, 1.0).acos();
+        (incidence - (1.0 / m.ior).asin()).abs() < TIR_CIRCLE_WIDTH
+    }
+
     /// Colour seen along `ray`, the rays traced and the total internal
     /// reflections met.
     pub fn trace(&self, mut ray: Ray) -> (Rgb, u64, u64) {
@@ -121,6 +150,9 @@ impl<'a> Tracer<'a> {
         let Some(mut hit) = self.intersect(&ray) else {
             return (self.background, rays, tir);
         };
+        if self.tir_circle && self.on_tir_circle(ray.at(hit.t), hit.tri) {
+            return (TIR_CIRCLE, rays, tir);
+        }
         let mut colour = Rgb::BLACK;
         let mut weight = 1.0f32;
         let mut count = 0;

@@ -324,6 +324,18 @@ pub static PARAMS: &[Param<InteriorConfig>] = &[
         ignored: never,
     },
     Param {
+        key: "tir_circle",
+        aliases: &[],
+        section: SCENE,
+        help: "Draw on each face the circle where the light inside meets it at the critical angle asin(1/n), the edge of the circle of outcoming light (a drawn guide, not the report's model)",
+        unit: "",
+        kind: Kind::Flag,
+        auto: "",
+        get: |c| Some(Value::Flag(c.tir_circle)),
+        set: |c, v| c.tir_circle = v.flag(),
+        ignored: |c| (c.ior <= 1.0).then(|| "below index 1 light from inside always gets out: there is no critical angle".to_string()),
+    },
+    Param {
         key: "spp",
         aliases: &[],
         section: SCENE,
