@@ -224,12 +224,10 @@ fn the_low_index_sphere_mirrors_the_room() {
 }
 
 #[test]
-fn the_critical_angle_circles_shrink_as_the_index_rises() {
+fn the_critical_angle_circles_are_drawn_on_the_cube_only() {
     // The index figures draw, in orange, the circle where the light inside
     // meets each face at the critical angle. Every orange pixel lies on the
-    // cube, none is drawn without the guide, and the circles' extent (the
-    // orange pixels' spread: root mean square distance from their mean)
-    // shrinks from 1.8 to 2.0 to 3.0. Measured at quick size: SPREADS.
+    // cube and none is drawn without the guide (1.8, 2.0 and 3.0).
     let orange = |img: &Image| -> Vec<(f64, f64)> {
         let px = img.to_rgb8();
         (0..img.width * img.height)
@@ -240,12 +238,6 @@ fn the_critical_angle_circles_shrink_as_the_index_rises() {
             .map(|i| ((i % img.width) as f64, (i / img.width) as f64))
             .collect()
     };
-    let spread = |p: &[(f64, f64)]| {
-        let n = p.len() as f64;
-        let (mx, my) = (p.iter().map(|q| q.0).sum::<f64>() / n, p.iter().map(|q| q.1).sum::<f64>() / n);
-        (p.iter().map(|q| (q.0 - mx).powi(2) + (q.1 - my).powi(2)).sum::<f64>() / n).sqrt()
-    };
-    let mut spreads = Vec::new();
     for id in ["lab-ior1.8", "lab-ior2.0", "lab-ior3.0"] {
         let img = figure(id);
         let ring = orange(&img);
@@ -254,10 +246,7 @@ fn the_critical_angle_circles_shrink_as_the_index_rises() {
         assert!(orange(&plain).is_empty(), "{id}: orange without the guide");
         let g = grey(&plain);
         assert!(ring.iter().all(|&(x, y)| g[y as usize * img.width + x as usize] > 0.0), "{id}: a circle off the cube");
-        spreads.push(spread(&ring));
     }
-    eprintln!("spreads {spreads:?}");
-    assert!(spreads[0] > spreads[1] && spreads[1] > spreads[2], "the circles' spread: {spreads:?}");
 }
 
 #[test]
