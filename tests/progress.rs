@@ -61,7 +61,7 @@ fn a_piped_prism_run_prints_plain_progress_and_one_summary() {
 fn render_and_interior_summaries_give_size_rays_exposure_and_stages() {
     let dir = tempfile::tempdir().unwrap();
     let lab = repo("scenes/lab-ior1.4.toml");
-    let o = run_env(&["render", lab.to_str().unwrap(), "--set", "size=40,30", "--out", "r.png"], dir.path(), "5");
+    let o = run_env(&["render", lab.to_str().unwrap(), "--set", "size=40,30", "--set", "bulb=0", "--out", "r.png"], dir.path(), "5");
     assert!(o.status.success(), "{}", stderr(&o));
     let err = stderr(&o);
     let last = err.lines().last().unwrap();
@@ -77,5 +77,5 @@ fn piped_figures_say_each_figure_as_it_is_written() {
     let o = run_env(&["figures", "--quick", "--only", "lab-ior1.4", "--out", "f", "--scene-dir", repo("scenes").to_str().unwrap()], dir.path(), "5");
     assert!(o.status.success(), "{}", stderr(&o));
     let err = stderr(&o);
-    assert!(err.lines().any(|l| l.starts_with("figure 1/1 lab-ior1.4: 301x301, 12 triangles, 90601 rays, exposure 1.5; ")), "{err}");
+    assert!(err.lines().any(|l| l.starts_with("figure 1/1 lab-ior1.4: 301x301, 12 triangles, 131774 rays, exposure 1.5; ")), "{err}");
 }

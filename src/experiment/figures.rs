@@ -47,8 +47,9 @@ const SWEEPS: [(&str, &str); 8] = [
 /// the figure it stands beside: a scene file rendered whenever that figure
 /// is (or when named by `--only`), shown in that figure's group. Report
 /// 004's argument needs a trace-count-0 image of the trace figures' mesh,
-/// which the report describes ("from 0") but does not show.
-pub const EXTRAS: [(&str, &str); 1] = [("lab-trace0", "lab-trace5")];
+/// which the report describes ("from 0") but does not show, and counts 2,
+/// 3 and 4, between which the image still changes (from 4 on it does not).
+pub const EXTRAS: [(&str, &str); 4] = [("lab-trace0", "lab-trace5"), ("lab-trace2", "lab-trace5"), ("lab-trace3", "lab-trace5"), ("lab-trace4", "lab-trace5")];
 
 #[derive(Clone, Debug, Default)]
 pub struct FigureOptions {
@@ -290,14 +291,14 @@ const GROUPS: [(&str, &[&str], &str); 8] = [
     (
         "004",
         &["lab-ior1.1-atten", "lab-ior1.4", "lab-ior1.8", "lab-ior2.0", "lab-ior3.0"],
-        "The index series, one cube and light: the hot spot where the light leaves the front face toward the eye shrinks as the index rises (1.1, 1.4, 1.8, 2.0); at 3.0, drawn with a flat specular term, the whole circle inside which light can leave at all, its edge set by total internal reflection.",
+        "The index series, one cube and light (the bulb drawn at the light): the hot spot where the light leaves each face toward the eye shrinks as the index rises, and so does the orange circle drawn where the light meets the face at the critical angle asin(1/n), the edge of the circle of outcoming light set by total internal reflection (45.6, 33.7, 30.0 and 19.5 degrees from 1.4 to 3.0; at 1.1, 65.4 degrees, it lies beyond the faces and is not drawn).",
     ),
     ("004", &["lab-ior1.4", "lab-ior1.4-n8"], "The hot spot widens at shininess 8."),
     ("004", &["lab-ior1.8", "lab-ior1.8-blue"], "The same index in white and in blue."),
     (
         "004",
-        &["lab-trace0", "lab-trace5", "lab-trace10", "lab-trace10-fixed"],
-        "The same cube as the index series at trace counts 0, 5 and 10: followed rays show its far faces through its near ones and dim it (the report's compositing scales the hot spots by the opacity; 5 and 10 alike); the report's fix restores the hot spots.",
+        &["lab-trace0", "lab-trace2", "lab-trace3", "lab-trace4", "lab-trace5", "lab-trace10", "lab-trace10-fixed"],
+        "The same cube as the index series at trace counts 0, 2, 3, 4, 5 and 10: followed rays show its far faces and the bulb's reflections through its near ones and dim it (the report's compositing scales the hot spots by the opacity); the image changes up to 4 and then stops (4, 5 and 10 alike: every followed ray has left the cube by its fourth hit); the report's fix restores the hot spots.",
     ),
     ("004", &["lab-cornell-trace0", "lab-cornell-trace10"], "Only when rays are followed does the cube show the room: the green and red walls and the tiled floor refracted through its faces."),
     ("003", &["pm-pointlight-faint", "pm-mirror-tube"], "A bare point light gives a faint rainbow; the mirror tube concentrates it."),

@@ -29,6 +29,11 @@ crate::named_enum! {
         /// The Cornell box with a floor of dark and light tiles, so that a
         /// reflection of the room reads at a glance.
         CornellTiled = "cornell-tiled",
+        /// The tiled box closed on the camera's side by a blue wall that
+        /// only rays from inside the box meet (the camera sees through its
+        /// back, as through a one-way mirror), so that a mirror in the box
+        /// reflects a room all round.
+        CornellClosed = "cornell-closed",
     }
 }
 
@@ -81,6 +86,14 @@ pub struct InteriorConfig {
     /// Distance a secondary ray starts off its surface (scene units; the
     /// mesh is normalised to radius `scale`).
     pub offset: f32,
+    /// Radius of the bulb: the point light drawn as a small glowing bead
+    /// seen through the mesh's faces (`interior::bulb`; a drawn marker, not
+    /// part of the report's model); 0 = not drawn, as in the report.
+    pub bulb: f32,
+    /// Draw, on each face the light inside meets, the circle where it meets
+    /// it at the critical angle asin(1/n): the edge of the circle of
+    /// outcoming light (a drawn guide, not part of the report's model).
+    pub tir_circle: bool,
 }
 
 impl InteriorConfig {
@@ -92,7 +105,7 @@ impl InteriorConfig {
     pub fn attenuation(&self) -> f32 {
         self.atten.unwrap_or(match self.scene {
             SceneKind::Mesh => 1.0,
-            SceneKind::Cornell | SceneKind::CornellTiled => 0.1,
+            SceneKind::Cornell | SceneKind::CornellTiled | SceneKind::CornellClosed => 0.1,
         })
     }
 
@@ -129,6 +142,8 @@ impl InteriorConfig {
             spp: 1,
             seed: 0,
             offset: 1e-4,
+            bulb: 0.0,
+            tir_circle: false,
         }
     }
 }

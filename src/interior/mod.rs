@@ -7,6 +7,7 @@
 //! refract interior --off off/cube.off --ior 1.4 --out out.png --trace 5 --specular-opacity fixed
 //! ```
 
+pub mod bulb;
 pub mod config;
 pub mod phong;
 pub mod scene;

@@ -53,6 +53,9 @@ pub struct InteriorScene {
     pub light: Vec3,
     pub camera: Camera,
     pub object: Material,
+    /// Triangles only rays from inside the box meet (the closed box's front
+    /// wall): from this index on; `u32::MAX` = none.
+    pub one_way_from: u32,
 }
 
 impl InteriorScene {
@@ -70,9 +73,18 @@ impl InteriorScene {
 
         let mut triangles = mesh.build_triangles();
         let mut wall_colors = Vec::new();
+        let mut one_way_from = u32::MAX;
         if cfg.scene != SceneKind::Mesh {
-            let tiles = if cfg.scene == SceneKind::CornellTiled { 8 } else { 0 };
-            for (quad, colour) in cornell_walls(tiles) {
+            let tiles = if cfg.scene == SceneKind::Cornell { 0 } else { 8 };
+            let mut walls = cornell_walls(tiles);
+            if cfg.scene == SceneKind::CornellClosed {
+                walls.push(front_wall());
+            }
+            let last = walls.len() - 1;
+            for (k, (quad, colour)) in walls.into_iter().enumerate() {
+                if k == last && cfg.scene == SceneKind::CornellClosed {
+                    one_way_from = triangles.len() as u32;
+                }
                 for t in [[0, 1, 2], [0, 2, 3]] {
                     triangles.push(Triangle::new(quad[t[0]], quad[t[1]], quad[t[2]]));
                     wall_colors.push(colour);
@@ -89,7 +101,14 @@ impl InteriorScene {
             light: cfg.light.unwrap_or(MESH_CENTRE),
             camera: Camera { width: cfg.width, height: cfg.height },
             object,
+            one_way_from,
         }
+    }
+
+    /// A hit the ray passes through: the back of a one-way triangle (the
+    /// closed box's front wall, seen from the camera outside the box).
+    pub fn passes(&self, hit: &Hit, dir: Vec3) -> bool {
+        hit.tri >= self.one_way_from && dir.dot(self.normals[hit.tri as usize]) > 0.0
     }
 
     pub fn is_wall(&self, tri: u32) -> bool {
@@ -111,6 +130,14 @@ impl InteriorScene {
     pub fn accel(&self, kind: crate::geometry::AccelKind) -> Accel {
         Accel::build(kind, &self.triangles)
     }
+}
+
+/// The wall that closes the box on the camera's side (z = -0.2), blue,
+/// wound so its normal faces into the box.
+fn front_wall() -> ([Vec3; 4], Rgb) {
+    let (x, y, z) = (1.6f32, 1.6f32, -0.2f32);
+    let v = |a: f32, b: f32| Vec3::new(a, b, z);
+    ([v(-x, -y), v(-x, y), v(x, y), v(x, -y)], Rgb::new(0.15, 0.3, 0.75))
 }
 
 /// Five walls of a box round the mesh, open toward the camera, each as a
@@ -158,7 +185,7 @@ mod tests {
 
     #[test]
     fn cornell_walls_face_inward() {
-        for (q, _) in cornell_walls(0).into_iter().chain(cornell_walls(8)) {
+        for (q, _) in cornell_walls(0).into_iter().chain(cornell_walls(8)).chain([front_wall()]) {
             let n = (q[1] - q[0]).cross(q[2] - q[0]);
             let c = (q[0] + q[2]) * 0.5;
             assert!(n.dot(Vec3::new(0.0, 0.0, -2.0) - c) > 0.0);

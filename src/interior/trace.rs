@@ -19,14 +19,16 @@
 //!   like everything else (the intensity drop the report saw at trace 5 and
 //!   10); `fixed` adds the specular at full strength (its "fair output").
 
+use super::bulb::{closest_approach, glow};
 use super::config::{InteriorConfig, SpecularOpacity};
 use super::phong::{shade, Phong};
 use super::scene::InteriorScene;
 use crate::color::Rgb;
 use crate::geometry::ray::offset_origin;
-use crate::geometry::{Accel, Ray};
+use crate::geometry::{Accel, Hit, Ray};
 use crate::image_io::Image;
 use crate::optics::{reflect, refract};
+use glam::Vec3;
 use rayon::prelude::*;
 
 /// Result of the eye pass.
@@ -37,6 +39,13 @@ pub struct Render {
     /// Followed rays turned back by total internal reflection.
     pub tir: u64,
 }
+
+/// Colour of the drawn critical-angle circles: orange, apart from the
+/// white and grey of the model's colours.
+pub const TIR_CIRCLE: Rgb = Rgb(Vec3::new(0.62, 0.3, 0.04));
+/// Half-width of a drawn critical-angle circle, in angle of incidence
+/// (0.45 degrees: about a pixel on the figures' cube).
+pub const TIR_CIRCLE_WIDTH: f32 = 0.45 * std::f32::consts::PI / 180.0;
 
 pub struct Tracer<'a> {
     pub scene: &'a InteriorScene,
@@ -51,6 +60,10 @@ pub struct Tracer<'a> {
     pub use_file_colors: bool,
     pub offset: f32,
     pub exposure: f32,
+    /// Radius of the drawn bulb; 0 = none.
+    pub bulb: f32,
+    /// Draw the critical-angle circles on the faces the eye meets first.
+    pub tir_circle: bool,
 }
 
 impl<'a> Tracer<'a> {
@@ -68,7 +81,65 @@ impl<'a> Tracer<'a> {
             use_file_colors: cfg.coff,
             offset: cfg.offset,
             exposure: cfg.exposure,
+            bulb: cfg.bulb,
+            tir_circle: cfg.tir_circle,
         }
+    }
+
+    /// The nearest hit along `ray`, passing through the back of the closed
+    /// box's one-way front wall; `t` measured along `ray` (unit direction).
+    fn intersect(&self, ray: &Ray) -> Option<Hit> {
+        let mut hit = self.accel.intersect(ray)?;
+        let mut skipped = 0.0;
+        while self.scene.passes(&hit, ray.dir) {
+            skipped += hit.t + self.offset;
+            let mut next = self.accel.intersect(&Ray::new(ray.at(skipped), ray.dir))?;
+            next.t += skipped;
+            skipped = 0.0;
+            hit = next;
+        }
+        Some(hit)
+    }
+
+    /// Where a ray along `dir` goes on at a translucent surface with outward
+    /// normal `n`: refracted, or reflected under total internal reflection
+    /// (counted in `tir`); and whether it then travels inside the mesh.
+    fn bend(dir: Vec3, n: Vec3, ior: f32, tir: &mut u64) -> (Vec3, bool) {
+        let entering = dir.dot(n) < 0.0;
+        let eta = if entering { 1.0 / ior } else { ior };
+        match refract(dir, n, eta) {
+            Some(t) => (t.normalize_or_zero(), entering),
+            None => {
+                *tir += 1;
+                (reflect(dir, n).normalize_or_zero(), !entering)
+            }
+        }
+    }
+
+    /// The bulb's glow along a ray inside the mesh up to `t_end`, in the
+    /// light's colour, and the fraction of what lies beyond that its core hides.
+    fn bulb(&self, ray: &Ray, t_end: f32) -> (Rgb, f32) {
+        let (g, cover) = glow(closest_approach(ray.origin, ray.dir, t_end, self.scene.light), self.bulb);
+        (g * self.phong.light_color, cover)
+    }
+
+    /// Whether `p` on mesh triangle `tri` lies on the circle where the light
+    /// inside meets the face at the critical angle asin(1/n) (within
+    /// TIR_CIRCLE_WIDTH), the edge of the light that gets out (Snell's law;
+    /// docs/physics.md §10).
+    fn on_tir_circle(&self, p: Vec3, tri: u32) -> bool {
+        let m = &self.scene.object;
+        if self.scene.is_wall(tri) || !m.translucent || m.ior <= 1.0 {
+            return false;
+        }
+        let n = self.scene.normals[tri as usize];
+        let to_light = self.scene.light - p;
+        let d = to_light.length();
+        if d <= 0.0 || n.dot(to_light) >= 0.0 {
+            return false;
+        }
+        let incidence = (-n.dot(to_light) / d).clamp(-1.0, 1.0).acos();
+        (incidence - (1.0 / m.ior).asin()).abs() < TIR_CIRCLE_WIDTH
     }
 
     /// Colour seen along `ray`, the rays traced and the total internal
@@ -76,9 +147,12 @@ impl<'a> Tracer<'a> {
     pub fn trace(&self, mut ray: Ray) -> (Rgb, u64, u64) {
         let mut rays = 1;
         let mut tir = 0;
-        let Some(mut hit) = self.accel.intersect(&ray) else {
+        let Some(mut hit) = self.intersect(&ray) else {
             return (self.background, rays, tir);
         };
+        if self.tir_circle && self.on_tir_circle(ray.at(hit.t), hit.tri) {
+            return (TIR_CIRCLE, rays, tir);
+        }
         let mut colour = Rgb::BLACK;
         let mut weight = 1.0f32;
         let mut count = 0;
@@ -90,6 +164,17 @@ impl<'a> Tracer<'a> {
             let s = shade(p, n, -ray.dir, self.scene.light, &m, k);
             if count == self.max_trace || m.alpha >= 1.0 || !m.translucent {
                 colour += weight * (s.lit + s.specular);
+                // The bulb behind the last layer, drawn at the weight the
+                // report's compositing gives what lies behind a face.
+                if self.bulb > 0.0 && m.translucent && m.alpha < 1.0 {
+                    let (dir, inside) = Self::bend(ray.dir, n, m.ior, &mut 0);
+                    if inside && dir != Vec3::ZERO {
+                        let behind = Ray::new(offset_origin(p, n, dir, self.offset), dir);
+                        rays += 1;
+                        let t_end = self.intersect(&behind).map_or(f32::INFINITY, |h| h.t);
+                        colour += (weight * (1.0 - m.alpha)) * self.bulb(&behind, t_end).0;
+                    }
+                }
                 break;
             }
             let spec_weight = match self.specular_opacity {
@@ -100,21 +185,20 @@ impl<'a> Tracer<'a> {
             weight *= 1.0 - m.alpha;
             count += 1;
             // Follow the refracted ray; reflect under total internal reflection.
-            let entering = ray.dir.dot(n) < 0.0;
-            let eta = if entering { 1.0 / m.ior } else { m.ior };
-            let dir = refract(ray.dir, n, eta)
-                .unwrap_or_else(|| {
-                    tir += 1;
-                    reflect(ray.dir, n)
-                })
-                .normalize_or_zero();
-            if dir == glam::Vec3::ZERO {
+            let (dir, inside) = Self::bend(ray.dir, n, m.ior, &mut tir);
+            if dir == Vec3::ZERO {
                 colour += weight * self.background;
                 break;
             }
             ray = Ray::new(offset_origin(p, n, dir, self.offset), dir);
             rays += 1;
-            match self.accel.intersect(&ray) {
+            let next = self.intersect(&ray);
+            if inside && self.bulb > 0.0 {
+                let (g, cover) = self.bulb(&ray, next.map_or(f32::INFINITY, |h| h.t));
+                colour += weight * g;
+                weight *= 1.0 - cover;
+            }
+            match next {
                 Some(h) => hit = h,
                 None => {
                     colour += weight * self.background;
