@@ -126,15 +126,16 @@ fn area_light(s: &mut World, o: &SceneOptions) -> Result<()> {
     Ok(())
 }
 
-/// A rectangle glowing with `radiance` (relative: a light's power is its
-/// radiance times its area) in spectrum `default`, seen by the eye only.
-fn glow(s: &mut World, o: &SceneOptions, name: &str, corner: DVec3, eu: DVec3, ev: DVec3, radiance: f64, default: &str) -> Result<()> {
+/// A rectangle (corner and two edges) glowing white (6500 K, unless the
+/// options name a light) with `radiance` (relative: a light's power is its
+/// radiance times its area), seen by the eye only.
+fn glow(s: &mut World, o: &SceneOptions, name: &str, [corner, eu, ev]: [DVec3; 3], radiance: f64) -> Result<()> {
     let light = s.lights.len();
     s.faces.push(Face::rect(name, corner, eu, ev, Surface::Emitter { light }));
     s.lights.push(Light {
         name: name.into(),
         emission: Emission::Area { face: s.faces.len() - 1 },
-        spectrum: light_spectrum(o, default)?,
+        spectrum: light_spectrum(o, "blackbody:6500")?,
         power: radiance * eu.cross(ev).length(),
     });
     Ok(())
@@ -172,9 +173,9 @@ fn metal_plate(s: &mut World, o: &SceneOptions) -> Result<()> {
     // it: a white band with sharp edges, which the sphere shows
     // inverted, fringed blue on the edge toward its centre and yellow to
     // red on the outer one (docs/physics.md §22).
-    glow(s, o, "back wall", DVec3::new(7.0, 6.0, -4.0), DVec3::new(0.0, -12.0, 0.0), DVec3::new(0.0, 0.0, 8.0), 0.01, "blackbody:6500")?;
-    glow(s, o, "front wall", DVec3::new(-3.0, -30.0, -6.0), DVec3::new(0.0, 60.0, 0.0), DVec3::new(0.0, 0.0, 12.0), 0.03, "blackbody:6500")?;
-    glow(s, o, "softbox", DVec3::new(-2.9, -10.0, 2.2), DVec3::new(0.0, 20.0, 0.0), DVec3::new(0.0, 0.0, 1.3), 1.0, "blackbody:6500")?;
+    glow(s, o, "back wall", [DVec3::new(7.0, 6.0, -4.0), DVec3::new(0.0, -12.0, 0.0), DVec3::new(0.0, 0.0, 8.0)], 0.01)?;
+    glow(s, o, "front wall", [DVec3::new(-3.0, -30.0, -6.0), DVec3::new(0.0, 60.0, 0.0), DVec3::new(0.0, 0.0, 12.0)], 0.03)?;
+    glow(s, o, "softbox", [DVec3::new(-2.9, -10.0, 2.2), DVec3::new(0.0, 20.0, 0.0), DVec3::new(0.0, 0.0, 1.3)], 1.0)?;
     // A 26 degree field: the sphere large (its fringes scale with its
     // image, docs/physics.md §22), whole, its reflection beside it.
     s.camera = Camera::look_at(DVec3::ZERO, DVec3::new(3.0, 0.0, 0.0), DVec3::Z, 26.0, o.width, o.height);
