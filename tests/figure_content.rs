@@ -798,37 +798,81 @@ fn the_colour_map_tiles_are_cropped_to_the_fan_and_labelled() {
 }
 
 #[test]
-fn the_sphere_before_the_metal_plate_runs_from_yellow_on_its_left_to_red_on_its_right() {
-    // cs348b-sphere-metal at a small size (report 001: "the far left corner
-    // of the sphere appears as a bright yellow, slowly fading to a bright
-    // red on the right side"): along the sphere's middle row, the hue
-    // (sRGB green over red) falls from yellow (G near R) at its left to
-    // red-orange (G under 0.6 R) at its right, bright on both sides.
+fn the_sphere_before_the_neutral_metal_plate_is_coloured_only_by_its_dispersion() {
+    // cs348b-sphere-metal at half size: a neutral mirror and white lights,
+    // so the plate and the band it reflects (the frame left of the
+    // sphere) carry no colour (|R - B| at most 8 everywhere there), while
+    // the sphere shows the band's warm fringe (yellow fading to red, R > B
+    // + 40 and R > 90) on at least 40 px; with the index held constant, no
+    // pixel in the sphere is so coloured.
+    use glam::DVec3;
     let s = SceneFile::load(&repo("scenes/cs348b-sphere-metal.toml"), true).unwrap();
-    let mut cfg = refract::experiment::params::prism_config(&s.params).unwrap();
-    (cfg.scene.width, cfg.scene.height, cfg.spp) = (160, 120, 4);
-    let r = refract::spectral::render_config(&cfg, &refract::progress::Silent).unwrap();
-    let (w, h) = (r.render.image.width, r.render.image.height);
-    let img = r.render.image.to_srgb8(r.exposure, cfg.gamut);
-    let px = |x: usize, y: usize| [img[(y * w + x) * 3] as f64, img[(y * w + x) * 3 + 1] as f64, img[(y * w + x) * 3 + 2] as f64];
-    // The sphere spans about 45 % of the width, centred; sample its inner
-    // 60 % at the middle row, averaged over 5 rows.
-    let green_over_red = |fx: f64| -> (f64, f64) {
-        let x = (fx * w as f64) as usize;
-        let (mut g, mut r) = (0.0, 0.0);
-        for y in h / 2 - 2..=h / 2 + 2 {
-            let p = px(x, y);
-            (r, g) = (r + p[0], g + p[1]);
-        }
-        (g / r, r / 5.0)
+    let render = |dispersion: bool| {
+        let mut cfg = refract::experiment::params::prism_config(&s.params).unwrap();
+        (cfg.scene.width, cfg.scene.height, cfg.spp) = (cfg.scene.width / 2, cfg.scene.height / 2, 4);
+        cfg.scene.no_dispersion = !dispersion;
+        let world = refract::scenes::build(&cfg.scene).unwrap();
+        let r = refract::spectral::render_config(&cfg, &refract::progress::Silent).unwrap();
+        let (w, h) = (r.render.image.width, r.render.image.height);
+        let centre = world.camera.project(DVec3::new(3.0, 0.0, 0.0)).unwrap();
+        let radius = (world.camera.project(DVec3::new(3.0, 0.0, 0.5)).unwrap() - centre).length();
+        (w, h, centre, radius, r.render.image.to_srgb8(r.exposure, cfg.gamut))
     };
-    // Two pixels in from the dark ring at the sphere's left edge (0.3 of
-    // the width): its first pixel inside shows the red fringe the glass's
-    // dispersion puts on the plate's image there (docs/physics.md §12).
-    let (left, left_r) = green_over_red(0.5 - 0.18);
-    let (right, right_r) = green_over_red(0.5 + 0.15);
-    assert!(left > 0.85 && left_r > 240.0, "yellow on the sphere's left: G/R {left:.2}, R {left_r:.0}");
-    assert!(right < 0.6 && right_r > 150.0, "red-orange on its right: G/R {right:.2}, R {right_r:.0}");
+    let count = |dispersion: bool| -> (usize, i32) {
+        let (w, h, c, radius, img) = render(dispersion);
+        let px = |x: usize, y: usize| [img[(y * w + x) * 3] as i32, img[(y * w + x) * 3 + 1] as i32, img[(y * w + x) * 3 + 2] as i32];
+        let (mut warm, mut plate_tint) = (0, 0);
+        for y in 0..h {
+            for x in 0..w {
+                let [r, _, b] = px(x, y);
+                let d = (x as f64 - c.x).hypot(y as f64 - c.y);
+                if d < 0.97 * radius && r > b + 40 && r > 90 {
+                    warm += 1;
+                }
+                if (x as f64) < c.x - 1.1 * radius {
+                    plate_tint = plate_tint.max((r - b).abs());
+                }
+            }
+        }
+        (warm, plate_tint)
+    };
+    let (warm, tint) = count(true);
+    eprintln!("metal: {warm} warm fringe px in the sphere, plate tint {tint}");
+    assert!(warm >= 40, "the sphere shows a yellow-to-red fringe: {warm} px");
+    assert!(tint <= 8, "the plate and its light are neutral: |R - B| up to {tint}");
+    let (flat, _) = count(false);
+    assert_eq!(flat, 0, "no warm fringe without dispersion");
+}
+
+#[test]
+fn the_whole_glass_sphere_is_in_the_area_light_frame() {
+    // cs348b-sphere-arealight: the sphere is seen whole, in front of the
+    // light: its silhouette (the cone from the camera tangent to it) lies
+    // inside the frame, at least 1 % in from every edge, and its disc is
+    // at least 80 % of the frame's height.
+    use glam::DVec3;
+    let s = SceneFile::load(&repo("scenes/cs348b-sphere-arealight.toml"), false).unwrap();
+    let cfg = refract::experiment::params::prism_config(&s.params).unwrap();
+    let world = refract::scenes::build(&cfg.scene).unwrap();
+    let glass = world.spheres.iter().find(|s| s.name == "glass sphere").unwrap();
+    let (w, h) = (cfg.scene.width as f64, cfg.scene.height as f64);
+    let cam = world.camera.pos;
+    let to = glass.centre - cam;
+    let dist = to.length();
+    let sin = glass.radius / dist;
+    let axis = to / dist;
+    let side = axis.cross(DVec3::Z).normalize();
+    let up = side.cross(axis);
+    let (mut lo, mut hi) = (glam::DVec2::splat(f64::MAX), glam::DVec2::splat(f64::MIN));
+    for k in 0..64 {
+        let a = k as f64 * std::f64::consts::TAU / 64.0;
+        let dir = axis * (1.0 - sin * sin).sqrt() + (side * a.cos() + up * a.sin()) * sin;
+        let p = world.camera.project(cam + dir * dist).unwrap();
+        (lo, hi) = (lo.min(p), hi.max(p));
+    }
+    eprintln!("sphere spans ({:.0}, {:.0}) to ({:.0}, {:.0}) px in {w}x{h}", lo.x, lo.y, hi.x, hi.y);
+    assert!(lo.x > 0.01 * w && lo.y > 0.01 * h && hi.x < 0.99 * w && hi.y < 0.99 * h, "the sphere is cut by the frame");
+    assert!(hi.y - lo.y > 0.8 * h, "the sphere fills the frame's height: {:.0} px", hi.y - lo.y);
 }
 
 #[test]
@@ -849,7 +893,14 @@ fn the_final_card_stands_whole_in_the_frame_against_a_darker_wall() {
     let mut o = SceneOptions::new(SceneKind::SpheresFinal);
     (o.width, o.height) = (cfg.scene.width, cfg.scene.height);
     let world = build(&o).unwrap();
+    // The sphere is seen apart from the card, so the beam between them
+    // shows: its image's centre lies outside the card's.
+    let sphere = world.spheres.iter().find(|s| s.name == "glass sphere").unwrap();
+    let at = world.camera.project(sphere.centre).unwrap();
     let card: Vec<_> = world.faces.iter().filter(|f| f.name.starts_with("card")).collect();
+    let card_px: Vec<_> = card.iter().flat_map(|f| f.verts.iter().map(|&v| world.camera.project(v).unwrap())).collect();
+    let left = card_px.iter().map(|p| p.x).fold(f64::MAX, f64::min);
+    assert!(at.x < left, "the sphere ({at:?} px) sits apart from the card (its left edge at {left:.0} px)");
     assert_eq!(card.len(), 4, "the card is four pieces round the hole");
     let (mut y_max, mut z_max) = (0.0f64, 0.0f64);
     for f in &card {
@@ -885,8 +936,13 @@ fn the_final_card_stands_whole_in_the_frame_against_a_darker_wall() {
     };
     let card_lum = mean_at(DVec3::new(0.0, y_max - 0.2, 0.0));
     let wall_lum = mean_at(DVec3::new(-1.0, y_max + 0.3, 0.0));
-    let hole_lum = mean_at(DVec3::new(-0.3, 0.0, 0.0));
-    eprintln!("final: card {card_lum:.0}, wall {wall_lum:.0}, hole {hole_lum:.0} of 255");
+    let hole_lum = mean_at(DVec3::new(0.0, 0.0, 0.0));
+    // The beam between the hole and the sphere, seen in the haze: half way
+    // along it, brighter than the air 0.4 m below it.
+    let beam_lum = mean_at(DVec3::new(1.2, 0.0, 0.0));
+    let air_lum = mean_at(DVec3::new(1.2, 0.0, -0.4));
+    eprintln!("final: card {card_lum:.0}, wall {wall_lum:.0}, hole {hole_lum:.0}, beam {beam_lum:.0}, air {air_lum:.0} of 255");
+    assert!(beam_lum > air_lum + 25.0, "the beam shows between the hole and the sphere: {beam_lum:.0} against {air_lum:.0}");
     assert!(card_lum >= 1.4 * wall_lum, "the card {card_lum:.0} against the wall {wall_lum:.0}");
     assert!(wall_lum > 25.0, "the wall shows: {wall_lum:.0}");
     assert!(hole_lum > 230.0 && hole_lum > card_lum, "the hole shows its bright source: {hole_lum:.0}");

@@ -354,7 +354,7 @@ mod cli {
         let dir = tempfile::tempdir().unwrap();
         for (args, out) in [
             (vec!["--map", "buffer", "--filter", "gaussian"], "a.png"),
-            (vec!["--scene", "sphere-metal", "--spp", "2"], "b.ppm"),
+            (vec!["--scene", "spheres-final", "--spp", "2"], "b.ppm"),
             (vec!["--no-prism", "--map", "kdtree", "--k", "50"], "c.pfm"),
         ] {
             let mut full = vec!["prism", "--photons", "20000", "--size", "64,24", "--out", out, "--timing-csv", "t.csv"];
@@ -387,7 +387,7 @@ mod cli {
             // Flags the run would ignore are refused, naming the flag.
             (vec!["--scene", "single-prism", "--flint-apex", "80"], "--flint-apex: the single-prism scene has no Amici prism"),
             (vec!["--scene", "sphere-metal", "--incidence", "40"], "--incidence: the sphere-metal scene's glass is a sphere"),
-            (vec!["--scene", "sphere-metal", "--haze", "0.3"], "--haze: the sphere-metal scene has no collimated beam"),
+            (vec!["--scene", "cornell-pointlight", "--haze", "0.3"], "--haze: the cornell-pointlight scene has no collimated beam"),
             (vec!["--scene", "amici-lamp", "--photons", "1000"], "--photons: the amici-lamp scene has no matte surface to store photons on"),
             (vec!["--exact", "--photons", "1000"], "--photons: --exact computes the image without photons"),
             (vec!["--exact-subsamples", "4"], "--exact-subsamples: only --exact uses it"),

@@ -109,7 +109,7 @@ fn seed_used(c: &SpectralConfig) -> Option<String> {
 /// lights through the glass directly (checked against the built scenes in
 /// a test below).
 fn no_matte_surface(kind: SceneKind) -> bool {
-    matches!(kind, SceneKind::AmiciLamp | SceneKind::SphereArealight)
+    matches!(kind, SceneKind::AmiciLamp | SceneKind::SphereArealight | SceneKind::SphereMetal)
 }
 
 fn light_pass_used(c: &SpectralConfig) -> Option<String> {

@@ -9,11 +9,10 @@
 //!   (blue bends more, so its image of the light lies nearer the centre;
 //!   docs/physics.md §22), against a glowing checkerboard that shows the
 //!   glass itself, inverted in it with every edge fringed the same way.
-//! - `sphere-metal`: the sphere before a brass plate grazed from the right
-//!   by a warm (2000 K) black-body light out of view: the plate's glow falls
-//!   off from right to left, the sphere shows it inverted, and where the
-//!   display clips the bright end to yellow the sphere runs from yellow on
-//!   its left to red-orange on its right (report 001's description).
+//! - `sphere-metal`: the sphere before a polished, neutral metal plate (a
+//!   grey mirror) that reflects a white strip softbox: the sphere shows the
+//!   band inverted, fringed blue inside and yellow to red outside; with no
+//!   colour in the plate or the lights, the colour is the dispersion.
 //! - `spheres-final`: where the wavelength effects show at a glance: a
 //!   white beam through a hole in a card onto a glass sphere, which sends
 //!   back a rainbow ring round the hole (one reflection inside;
@@ -62,18 +61,18 @@ fn area_light(s: &mut World, o: &SceneOptions) -> Result<()> {
     }
     // The sphere "hanging in front of a spherical area light source,
     // which is slightly off center" (report 001): a 6500 K black
-    // body of 15 cm radius, 1.2 m behind the sphere and 16 degrees
+    // body of 15 cm radius, 1.2 m behind the sphere and 20 degrees
     // up and to the left of its axis, so that from the camera it is
-    // hidden behind the sphere (2.5-6.6 degrees off the camera's
+    // hidden behind the sphere (3.6-7.8 degrees off the camera's
     // axis; the sphere covers 9.6) and shows only through it, as an
     // off-centre patch down and to the right, fringed violet-blue
     // on the edge toward the sphere's centre and orange-red on the
     // outer one (docs/physics.md §22). The fringes' width grows with
     // the patch's distance from the sphere's centre (the index
     // changes the sphere's power, so the image of an edge a distance
-    // b from the centre moves by about b dn / (n (n - 1))): 16 degrees
-    // puts the patch at about 0.6 of the radius, still wide.
-    let (angle, distance, radius) = (16f64.to_radians(), 1.2, 0.15);
+    // b from the centre moves by about b dn / (n (n - 1))): 20 degrees
+    // puts the patch at about 0.7 of the radius, still hidden.
+    let (angle, distance, radius) = (20f64.to_radians(), 1.2, 0.15);
     let dir = DVec3::new(angle.cos(), angle.sin() * 0.8, angle.sin() * 0.6);
     sphere_light(s, o, DVec3::new(3.0, 0.0, 0.0) + distance * dir, radius, "blackbody:6500")?;
     // So that the glass itself is seen (a clear sphere before black
@@ -119,35 +118,67 @@ fn area_light(s: &mut World, o: &SceneOptions) -> Result<()> {
             });
         }
     }
-    // A 15 degree field aimed a little below and right of the
-    // sphere's centre: the sphere fills the frame as a lens ball does
-    // in a close-up (its image about 270 px in radius at 560x420, its
-    // rim in view left and right), and the fringes, which scale with
-    // it, are 3-4 px wide at 1:1 with no inset.
-    s.camera = Camera::look_at(DVec3::ZERO, DVec3::new(3.0, -0.06, -0.03), DVec3::Z, 15.0, o.width, o.height);
+    // A 21 degree field on the sphere's centre: the whole sphere in
+    // frame, as large as the frame allows (its disc about 90 % of the
+    // frame's height), so the fringes, which scale with its image, are
+    // 3-5 px wide at 1:1 with no inset.
+    s.camera = Camera::look_at(DVec3::ZERO, DVec3::new(3.0, 0.0, 0.0), DVec3::Z, 21.0, o.width, o.height);
     Ok(())
 }
 
-/// Report 001's sphere before a brass plate lit by a lamp out of view.
+/// A rectangle (corner and two edges) glowing white (6500 K, unless the
+/// options name a light) with `radiance` (relative: a light's power is its
+/// radiance times its area), seen by the eye only.
+fn glow(s: &mut World, o: &SceneOptions, name: &str, [corner, eu, ev]: [DVec3; 3], radiance: f64) -> Result<()> {
+    let light = s.lights.len();
+    s.faces.push(Face::rect(name, corner, eu, ev, Surface::Emitter { light }));
+    s.lights.push(Light {
+        name: name.into(),
+        emission: Emission::Area { face: s.faces.len() - 1 },
+        spectrum: light_spectrum(o, "blackbody:6500")?,
+        power: radiance * eu.cross(ev).length(),
+    });
+    Ok(())
+}
+
+/// Report 001's sphere before a polished metal plate that reflects a
+/// white softbox.
 fn metal_plate(s: &mut World, o: &SceneOptions) -> Result<()> {
     if !o.no_prism {
         glass_sphere(s, "glass sphere", DVec3::new(3.0, 0.0, 0.0), 0.5);
     }
-    // A brass plate behind the sphere, grazed from the right by a
-    // warm lamp out of view: its light falls off from right to left
-    // (from 0.5 m to 5 m away), and the sphere shows it inverted.
-    matte(s, "metal plate", DVec3::new(5.5, 3.5, -2.5), DVec3::new(0.0, -5.7, 0.0), DVec3::new(0.0, 0.0, 5.0), [0.95, 0.4, 0.15]);
-    // A small warm lamp (a point: no highlight of it in the glass,
-    // and no sampling noise in the plate's light) 0.5 m in front of
-    // the plate's right end, out of the camera's view.
-    s.lights.push(Light {
-        name: "warm lamp".into(),
-        emission: Emission::Point { pos: DVec3::new(5.0, -2.6, 0.0) },
-        spectrum: light_spectrum(o, "blackbody:2000")?,
-        power: 1.0,
-    });
-    s.direct_lighting = true;
-    s.camera = Camera::look_at(DVec3::ZERO, DVec3::new(3.0, 0.0, 0.0), DVec3::Z, 30.0, o.width, o.height);
+    // A polished, neutral metal plate 3 m by 2.2 m, 2 m behind the
+    // sphere: a mirror of flat reflectance 0.9 (polished aluminium; grey,
+    // so it adds no colour), turned 20 degrees about the vertical so
+    // the camera sees the sphere's reflection beside it, a sign of a
+    // mirror.
+    let c = DVec3::new(5.0, 0.0, 0.0);
+    let (w, h) = (3.0, 2.2);
+    let across = super::rotate_z(DVec3::new(0.0, -w, 0.0), -20f64.to_radians());
+    s.faces.push(Face::rect(
+        "metal plate",
+        c - 0.5 * across + DVec3::new(0.0, 0.0, -0.5 * h),
+        across,
+        DVec3::new(0.0, 0.0, h),
+        Surface::Mirror { reflectance: 0.9 },
+    ));
+    // The room, all glowing surfaces (no matte surface, no photons, no
+    // sampling noise outside the glass): a dark wall behind the plate,
+    // seen round its edges (1 % of the softbox's radiance), and behind
+    // the camera, reflected in the plate, a dim wall (3 %) with a white
+    // strip softbox (6500 K black body) across it, high enough (22 to 33
+    // degrees up, from the sphere) that the glass does not show it by
+    // one reflection inside (a faint, grainy copy: Fresnel's few per
+    // cent, drawn at random) but only by refraction, as the plate shows
+    // it: a white band with sharp edges, which the sphere shows
+    // inverted, fringed blue on the edge toward its centre and yellow to
+    // red on the outer one (docs/physics.md §22).
+    glow(s, o, "back wall", [DVec3::new(7.0, 6.0, -4.0), DVec3::new(0.0, -12.0, 0.0), DVec3::new(0.0, 0.0, 8.0)], 0.01)?;
+    glow(s, o, "front wall", [DVec3::new(-3.0, -30.0, -6.0), DVec3::new(0.0, 60.0, 0.0), DVec3::new(0.0, 0.0, 12.0)], 0.03)?;
+    glow(s, o, "softbox", [DVec3::new(-2.9, -10.0, 2.2), DVec3::new(0.0, 20.0, 0.0), DVec3::new(0.0, 0.0, 1.3)], 1.0)?;
+    // A 26 degree field: the sphere large (its fringes scale with its
+    // image, docs/physics.md §22), whole, its reflection beside it.
+    s.camera = Camera::look_at(DVec3::ZERO, DVec3::new(3.0, 0.0, 0.0), DVec3::Z, 26.0, o.width, o.height);
     Ok(())
 }
 
@@ -200,7 +231,9 @@ fn rainbow_card(s: &mut World, o: &SceneOptions) -> Result<()> {
     card_lamps(s, o)?;
     s.photon_shares = Some(vec![1.0, 1e-9, 1e-9]);
     s.direct_lighting = true;
-    s.camera = Camera::look_at(DVec3::new(4.6, 0.45, 0.3), DVec3::new(0.0, -0.15, 0.0), DVec3::Z, 20.0, o.width, o.height);
+    // The camera to the side, so the sphere and the card are seen
+    // apart, with the beam (in the scene file's haze) between them.
+    s.camera = Camera::look_at(DVec3::new(4.8, 1.9, 0.6), DVec3::new(1.3, -0.05, -0.05), DVec3::Z, 24.0, o.width, o.height);
     Ok(())
 }
 
