@@ -321,9 +321,6 @@ fn add_bench(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism) -> Result<
     // §13): the table and the white slit image come out without photon
     // noise; the photons carry what crosses the prism.
     scene.direct_lighting = true;
-    if !o.no_prism {
-        add_chamfers(scene, prism);
-    }
     // The glass is seen through two cemented faces to the card under it:
     // eye paths split at the first `BENCH_SPLIT_DEPTH` faces (no roulette
     // grain on the prism's faces).
@@ -383,40 +380,6 @@ fn add_bench(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism) -> Result<
 const BENCH_SLIT: (f64, f64) = (0.01, 0.03);
 /// How far the lamp's slit stands before the prism's entry face, m.
 const BENCH_LAMP_GAP: f64 = 0.15;
-/// The width of the ground chamfers along the bench prism's top edges, m.
-const CHAMFER: f64 = 0.002;
-
-/// The ground chamfers along the bench prism's top edges (docs/physics.md
-/// §12: matte): an optician grinds the pieces' edges, so the top's outline
-/// and the two cemented joints show as thin pale lines and the three
-/// wedges read from above (with the joints alone the top seemed to float
-/// over the glass). Each is a matte strip `CHAMFER` wide, a tenth of a
-/// millimetre above the glass. They cost the window's photons through the
-/// prism their fast path (its light 2.4 s to 8.7 s at quick size).
-fn add_chamfers(scene: &mut World, prism: &AmiciPrism) {
-    let half = prism.size / 2.0;
-    let frosted = [0.85; 3];
-    let mut edges: Vec<(DVec2, DVec2)> = Vec::new();
-    for tri in &prism.parts {
-        for e in 0..3 {
-            let (a, b) = (tri[e], tri[(e + 1) % 3]);
-            // A cemented joint is an edge of two pieces: drawn once.
-            let twin = |(p, q): (DVec2, DVec2)| (p - b).length() < 1e-9 && (q - a).length() < 1e-9;
-            if !edges.iter().copied().any(twin) {
-                edges.push((a, b));
-            }
-        }
-    }
-    let z = half + 1e-4;
-    for &(a, b) in &edges {
-        // Along the top, centred on the edge; u x v points up.
-        let along = b - a;
-        let n = DVec2::new(-along.y, along.x).normalize() * CHAMFER;
-        let corner = DVec3::new(a.x - n.x / 2.0, a.y - n.y / 2.0, z);
-        super::matte(scene, "prism chamfer", corner, DVec3::new(along.x, along.y, 0.0), DVec3::new(n.x, n.y, 0.0), frosted);
-    }
-}
-
 /// Faces an eye path through the bench's prism splits at (`World::
 /// eye_split_depth`): top, two cemented faces, base and back; measured at
 /// quick size, 4 left the prism's top grainy, 8 smooth, for 10 % more eye
