@@ -224,18 +224,21 @@ fn add_bench(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism) -> Result<
     let z = -sh / 2.0;
     scene.faces[screen] =
         Face::rect("screen", DVec3::new(strip_centre.x, strip_centre.y + sw / 2.0, z), DVec3::new(0.0, -sw, 0.0), DVec3::new(0.0, 0.0, sh), surface);
-    // The slit: the beam 6 mm wide and 3 cm tall, its image on the screen
-    // large enough to read from the camera of Pictures 4-6.
-    let Emission::Beam { centre: start, half, .. } = &mut scene.lights[0].emission else { unreachable!("the bench's first light is the slit beam") };
-    *half = DVec2::new(0.003, 0.015);
+    // The slit (`BENCH_SLIT`): its image on the screen large enough to
+    // read from the camera of Pictures 4-6.
+    // The lamp stands `BENCH_LAMP_GAP` before the prism's entry face, close
+    // enough that the camera of Pictures 4-6 has it in frame with the prism.
+    let Emission::Beam { centre: start, half, dir, .. } = &mut scene.lights[0].emission else { unreachable!("the bench's first light is the slit beam") };
+    *half = DVec2::new(BENCH_SLIT.0 / 2.0, BENCH_SLIT.1 / 2.0);
+    *start += *dir * (0.3 - BENCH_LAMP_GAP);
     let start = *start;
-    // The camera of Pictures 4-6: beside the lamp, 25 cm to the side of
-    // the beam and 15 cm above it, looking down the bench with a long lens
-    // (24 degrees across): the prism whole in the near left, seen a little
-    // from above so its top shows the three wedges; the screen whole at the
-    // top right, the fan of colours reaching it from below the strip, not
-    // across it (the lamp itself just out of view).
-    let bench_cam = DVec3::new(-0.8, -0.25, 0.15);
+    // The camera of Pictures 4-6: behind and beside the lamp, 34 cm to the
+    // side of the beam and 24 cm above it, looking down the bench (34
+    // degrees across): the lamp housing in the near left with the beam
+    // leaving its slit, the prism whole beside it, seen from above so its
+    // top shows the three wedges and their joints; the screen whole at the
+    // top right, the fan of colours reaching it from below the strip.
+    let bench_cam = DVec3::new(-0.95, -0.34, 0.24);
     let (x0, x1) = (bench_cam.x - 0.5, strip_centre.x + 0.06);
     let (y0, y1) = (strip_centre.y.min(0.0) - 1.3, strip_centre.y.max(0.0) + 0.3);
     super::matte(scene, "table", DVec3::new(x0, y0, z), DVec3::new(x1 - x0, 0.0, 0.0), DVec3::new(0.0, y1 - y0, 0.0), [0.45; 3]);
@@ -257,7 +260,7 @@ fn add_bench(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism) -> Result<
     // 1 mm behind where the beam starts, so the beam leaves through it.
     let (bx, bd, bw, bh) = (start.x - 0.001, 0.12, 0.08, 0.035 - z);
     let (by0, by1) = (start.y - bw / 2.0, start.y + bw / 2.0);
-    let housing = [0.12; 3];
+    let housing = [0.3; 3];
     // Outward normals: front +x, back -x, sides -y / +y, top +z.
     super::matte(scene, "lamp front", DVec3::new(bx, by0, z), DVec3::new(0.0, bw, 0.0), DVec3::new(0.0, 0.0, bh), housing);
     super::matte(scene, "lamp back", DVec3::new(bx - bd, by0, z), DVec3::new(0.0, 0.0, bh), DVec3::new(0.0, bw, 0.0), housing);
@@ -329,14 +332,14 @@ fn add_bench(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism) -> Result<
     let (cam, target, hfov): (DVec3, DVec3, f64) = match o.view {
         // Beside the lamp (`bench_cam`): the prism near, the strip on the
         // screen large beyond it.
-        View::Scene => (bench_cam, DVec3::new(0.35, 0.0, -0.02), 24.0),
+        View::Scene => (bench_cam, DVec3::new(0.35, 0.0, -0.01), 34.0),
         // Square on to the strip from 40 cm: the strip across the frame.
         View::Screen => (strip_centre - DVec3::new(0.4, 0.0, 0.0), strip_centre, 2.0 * (0.5 * 0.7 * sw / 0.4).atan().to_degrees()),
         // Above the bench, behind the lamp and to its near side: the camera
         // of Pictures 4-6, the lamp, the prism, the fan and the screen all
         // in view, the prism as large as a view of the whole bench allows
         // (it is 16 cm of a bench 2.5 m long).
-        View::Overview => (DVec3::new(-1.4, -1.3, 0.6), DVec3::new(0.05, 0.0, -0.08), 44.0),
+        View::Overview => (DVec3::new(-1.5, -1.25, 0.6), DVec3::new(-0.05, -0.05, -0.08), 46.0),
     };
     if o.view == View::Overview {
         // That camera drawn where it stands: a grey body 8 x 5 x 5 cm on a
@@ -348,6 +351,15 @@ fn add_bench(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism) -> Result<
         super::matte(scene, "camera side", c, DVec3::new(l, 0.0, 0.0), DVec3::new(0.0, 0.0, h), body);
         super::matte(scene, "camera front", c + DVec3::new(l, 0.0, 0.0), DVec3::new(0.0, w, 0.0), DVec3::new(0.0, 0.0, h), body);
         super::matte(scene, "camera back", c, DVec3::new(0.0, 0.0, h), DVec3::new(0.0, w, 0.0), body);
+        // Its lens: a black barrel 3 x 3 cm, 5 cm long, from the body's
+        // front toward the bench.
+        let (lb, ll) = (0.03, 0.05);
+        let f = c + DVec3::new(l, (w - lb) / 2.0, (h - lb) / 2.0);
+        let lens = [0.05; 3];
+        super::matte(scene, "camera lens top", f + DVec3::new(0.0, 0.0, lb), DVec3::new(ll, 0.0, 0.0), DVec3::new(0.0, lb, 0.0), lens);
+        super::matte(scene, "camera lens side", f, DVec3::new(ll, 0.0, 0.0), DVec3::new(0.0, 0.0, lb), lens);
+        super::matte(scene, "camera lens side", f + DVec3::new(0.0, lb, 0.0), DVec3::new(0.0, 0.0, lb), DVec3::new(ll, 0.0, 0.0), lens);
+        super::matte(scene, "camera lens front", f + DVec3::new(ll, 0.0, 0.0), DVec3::new(0.0, lb, 0.0), DVec3::new(0.0, 0.0, lb), lens);
         super::matte(
             scene,
             "tripod",
@@ -362,6 +374,12 @@ fn add_bench(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism) -> Result<
     Ok(())
 }
 
+/// The bench's slit, width and height, m: its white image on the screen
+/// a patch the camera of Pictures 4-6 reads (1 cm blurs the 19 cm strip
+/// by a twentieth of its length).
+const BENCH_SLIT: (f64, f64) = (0.01, 0.03);
+/// How far the lamp's slit stands before the prism's entry face, m.
+const BENCH_LAMP_GAP: f64 = 0.15;
 /// Faces an eye path through the bench's prism splits at (`World::
 /// eye_split_depth`): top, two cemented faces, base and back; measured at
 /// quick size, 4 left the prism's top grainy, 8 smooth, for 10 % more eye

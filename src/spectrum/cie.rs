@@ -312,13 +312,30 @@ pub fn agx(v: DVec3) -> DVec3 {
 /// and offset 0 on AgX's display-linear output.
 const PUNCHY_POWER: f64 = 1.6;
 const PUNCHY_SATURATION: f64 = 1.3;
+/// How far toward the gamut's edge the print look's saturation may go.
+const PUNCHY_EDGE: f64 = 0.85;
 
 /// The print look (§23): ASC CDL power, then saturation about Rec. 709
-/// luma, clamped to [0, 1].
+/// luma, raised by `PUNCHY_SATURATION` but never past 85 % of the way to
+/// the gamut's edge, so no channel is clipped and a colour already at the
+/// edge (a spectrum's cyan-green, which AgX leaves with R = 0) is drawn in
+/// a little and keeps some of its weakest channel, as film's dyes do.
 pub fn punchy(v: DVec3) -> DVec3 {
     let c = v.max(DVec3::ZERO).powf(PUNCHY_POWER);
-    let y = DVec3::splat(SRGB_LUMA.dot(c));
-    (y + (c - y) * PUNCHY_SATURATION).clamp(DVec3::ZERO, DVec3::ONE)
+    let y = SRGB_LUMA.dot(c);
+    // The largest factor s with y + (c - y) s inside [0, 1]^3.
+    let edge = (0..3).fold(f64::INFINITY, |m, i| {
+        let d = c[i] - y;
+        if d < 0.0 {
+            m.min(y / -d)
+        } else if d > 0.0 {
+            m.min((1.0 - y) / d)
+        } else {
+            m
+        }
+    });
+    let s = PUNCHY_SATURATION.min(PUNCHY_EDGE * edge);
+    (DVec3::splat(y) + (c - DVec3::splat(y)) * s).clamp(DVec3::ZERO, DVec3::ONE)
 }
 
 /// AgX's sigmoid (§23) on the log-encoded x in [0, 1], giving a display
@@ -501,6 +518,10 @@ mod tests {
         // Saturation rises: a muted red moves away from its luma.
         let (c, p) = (DVec3::new(0.6, 0.3, 0.3), punchy(DVec3::new(0.6, 0.3, 0.3)));
         assert!(p.x / p.y > (c.x / c.y).powf(1.6), "{p}");
+        // A colour at the gamut's edge is drawn in: its weakest channel
+        // rises above 0.
+        let edge = punchy(DVec3::new(0.0, 0.6, 0.4));
+        assert!(edge.x > 0.0 && edge.min_element() > 0.0, "{edge}");
         // Through the whole map, faint light is darker than under plain AgX.
         let faint = LinearRgb(DVec3::splat(0.01));
         assert!(GamutMap::AgxPunchy.apply(faint).x < 0.5 * GamutMap::Agx.apply(faint).x);
@@ -525,6 +546,23 @@ mod tests {
         let (clip, agx) = (runs(GamutMap::Clip), runs(GamutMap::Agx));
         assert!(clip >= 10, "clip's longest flat run: {clip} nm");
         assert!(agx <= 4 && agx * 3 <= clip, "AgX's longest flat run: {agx} nm, clip's {clip} nm");
+    }
+
+    #[test]
+    fn the_print_look_keeps_red_in_a_bright_spectrums_cyan_green() {
+        // 480-520 nm exposed from dim to eight times over: under the print
+        // look the red channel never falls to 0 where green leads (a clip
+        // of the boosted saturation made R = 0 over the whole cyan-green,
+        // a flat band), as on film, where cyan keeps some red.
+        for nm in 480..=520 {
+            let c = Xyz(cmf(nm as f64)).to_linear_srgb();
+            for e in [0.3, 1.0, 3.0, 8.0] {
+                let [r, g, b] = to_srgb8(LinearRgb(c.0 / c.0.max_element()), e, GamutMap::AgxPunchy);
+                if g.max(b) > 60 {
+                    assert!(r > 0, "{nm} nm at {e}: {r} {g} {b}");
+                }
+            }
+        }
     }
 
     #[test]
