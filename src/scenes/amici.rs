@@ -196,7 +196,7 @@ const WALL_HEIGHT: f64 = 0.6;
 
 /// Pictures 3-6 as photographs of an optics bench would show them: a grey
 /// table; the prism on a white card on a dark post (a prism table), so
-/// the beam runs half the screen's height above the table; a lamp housing whose slit sends the white beam (6 mm x
+/// the beam runs half the screen's height above the table; a lamp housing whose slit sends the white beam (1 cm x
 /// 3 cm here, wide enough to see as a patch on the screen) down the bench;
 /// the beam's path shown by a thin haze, white up to the prism and a
 /// narrow fan of colours after it; a white screen standing on the table
@@ -232,13 +232,13 @@ fn add_bench(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism) -> Result<
     *half = DVec2::new(BENCH_SLIT.0 / 2.0, BENCH_SLIT.1 / 2.0);
     *start += *dir * (0.3 - BENCH_LAMP_GAP);
     let start = *start;
-    // The camera of Pictures 4-6: behind and beside the lamp, 34 cm to the
-    // side of the beam and 24 cm above it, looking down the bench (34
-    // degrees across): the lamp housing in the near left with the beam
-    // leaving its slit, the prism whole beside it, seen from above so its
-    // top shows the three wedges and their joints; the screen whole at the
-    // top right, the fan of colours reaching it from below the strip.
-    let bench_cam = DVec3::new(-0.95, -0.34, 0.24);
+    // The camera of Pictures 4-6: beside the lamp, 25 cm to the side of
+    // the beam and 15 cm above it, looking down the bench with a long lens
+    // (24 degrees across): the prism whole in the near left, seen a little
+    // from above so its top shows the three wedges; the screen whole at the
+    // top right, the fan of colours reaching it from below the strip, not
+    // across it.
+    let bench_cam = DVec3::new(-0.8, -0.25, 0.15);
     let (x0, x1) = (bench_cam.x - 0.5, strip_centre.x + 0.06);
     let (y0, y1) = (strip_centre.y.min(0.0) - 1.3, strip_centre.y.max(0.0) + 0.3);
     super::matte(scene, "table", DVec3::new(x0, y0, z), DVec3::new(x1 - x0, 0.0, 0.0), DVec3::new(0.0, y1 - y0, 0.0), [0.45; 3]);
@@ -332,7 +332,7 @@ fn add_bench(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism) -> Result<
     let (cam, target, hfov): (DVec3, DVec3, f64) = match o.view {
         // Beside the lamp (`bench_cam`): the prism near, the strip on the
         // screen large beyond it.
-        View::Scene => (bench_cam, DVec3::new(0.35, 0.0, -0.01), 34.0),
+        View::Scene => (bench_cam, DVec3::new(0.35, 0.0, -0.02), 24.0),
         // Square on to the strip from 40 cm: the strip across the frame.
         View::Screen => (strip_centre - DVec3::new(0.4, 0.0, 0.0), strip_centre, 2.0 * (0.5 * 0.7 * sw / 0.4).atan().to_degrees()),
         // Above the bench, behind the lamp and to its near side: the camera
