@@ -11,7 +11,7 @@
 //! through the prism onto a matte screen 2 m away, the rainbow strip
 //! (Picture 5; `--no-prism` gives Picture 4, `--no-dispersion` Picture 6);
 //! `amici-lamp`, the camera looks through the prism at a fluorescent tube
-//! 20 m away: one image of the tube per spectral line (Picture 1).
+//! 1 m away: one image of the tube per spectral line (Picture 1).
 
 use super::{glass_medium, light_spectrum, rotate_z, SceneKind, SceneOptions, View};
 use super::{Result, SceneError};
@@ -395,13 +395,11 @@ const BENCH_HAZE: f64 = 3.0;
 /// and the camera just before the entry face looking back through the
 /// prism at it. The lamp is a twin-tube CFL, its two legs side by side as
 /// seen. Its width as seen through the prism (`LAMP_WIDTH` at
-/// `LAMP_DISTANCE`, 0.063 degrees) is about the gap between neighbouring
-/// europium lines (593, 599 nm) and half the gap between the 599 and 611
-/// nm copies with the 80 degree flint (0.117 degrees), so the red 611 nm
-/// copy stands apart from the orange 587-599 nm ones, with black between
-/// them; the phosphors' continuum,
-/// whose brightness at a point grows with the band of wavelengths one
-/// lamp's width spans, stays a few per cent of theirs.
+/// `LAMP_DISTANCE`, 0.12 degrees) is about the gap between the orange
+/// (587 nm) and red (611 nm) copies with the 80 degree flint, the closest
+/// bright pair, so the copies stand apart; the phosphors' continuum, whose
+/// brightness at a point grows with the band of wavelengths one lamp's
+/// width spans, stays a few per cent of theirs.
 fn add_lamp(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism, design: &World, d_line: &ProbeRay) -> Result<()> {
     let x = d_line.exit_point.x + LAMP_DISTANCE;
     let spectrum = light_spectrum(o, "cfl-lines")?;
@@ -419,22 +417,22 @@ fn add_lamp(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism, design: &Wo
         });
     }
     // The camera frames the lamp's images from the blue mercury line to
-    // the last bright red europium line (`FRAME_NM`; where each appears,
-    // found by tracing back through the prism), with 2 % to spare on each
-    // side. The violet 404.7 nm image lies beyond the blue one, outside
-    // the frame: to the eye (the CIE observer) it is 30-40 times fainter
-    // than the 435.8 nm image (under half the power, a fourteenth of the
-    // blue response), black in any exposure that does not blow out the rest.
+    // the red europium lines (`FRAME_NM`; where each appears, found by
+    // tracing back through the prism), with 5 % to spare on each side. The
+    // violet 404.7 nm image lies beyond the blue one, outside the frame: to
+    // the eye (the CIE observer) it is about 40 times fainter than the
+    // 435.8 nm image (half the power, a fifteenth of the blue response),
+    // black in any exposure that does not blow out the rest.
     let cam = DVec3::new(prism.parts[0][1].x - 0.03, 0.0, 0.0);
     let blue = lamp_image_angle(design, cam, x, FRAME_NM.0);
     let (Some(blue), Some(red)) = (blue, lamp_image_angle(design, cam, x, FRAME_NM.1)) else {
         match o.incidence_deg {
-            Some(_) => return Err(SceneError::param("incidence", "the lamp cannot be seen through the prism at 436-631 nm")),
-            None => return Err(SceneError::design(o, "the lamp cannot be seen through this prism at 436-631 nm")),
+            Some(_) => return Err(SceneError::param("incidence", "the lamp cannot be seen through the prism at 436-711 nm")),
+            None => return Err(SceneError::design(o, "the lamp cannot be seen through this prism at 436-711 nm")),
         }
     };
     let look = rotate_z(DVec3::X, (blue + red) / 2.0);
-    let hfov = (blue - red).abs() * 1.04 + 2.0 * LAMP_WIDTH / LAMP_DISTANCE;
+    let hfov = (blue - red).abs() * 1.1 + 2.0 * LAMP_WIDTH / LAMP_DISTANCE;
     let vfov = 2.0 * ((hfov / 2.0).tan() * o.height as f64 / o.width as f64).atan();
     scene.camera = Camera::look_at(cam, cam + look, DVec3::Z, vfov.to_degrees(), o.width, o.height);
     scene.probe = (cam, DVec3::X);
@@ -467,17 +465,16 @@ pub fn lamp_image_angle(design: &World, cam: DVec3, lamp_x: f64, nm: f64) -> Opt
 }
 
 /// The wavelengths, nm, whose copies of the lamp the frame spans: the
-/// blue mercury line to the last bright europium line (631).
-pub const FRAME_NM: (f64, f64) = (435.834, 631.0);
+/// blue mercury line to past the last bright europium lines (626, 631).
+const FRAME_NM: (f64, f64) = (435.834, 640.0);
 
 /// How far the lamp stands past the prism's exit face, m.
-pub const LAMP_DISTANCE: f64 = 20.0;
+pub const LAMP_DISTANCE: f64 = 14.0;
 /// The lamp's width and height and its tube's diameter, m: a twin-tube
-/// ("2U") compact fluorescent lamp of T3 tube (9.5 mm), its two legs 3 mm
-/// apart, joined across the top.
-pub const LAMP_WIDTH: f64 = 0.022;
+/// ("2U") compact fluorescent lamp, two legs joined across the top.
+pub const LAMP_WIDTH: f64 = 0.030;
 const LAMP_HEIGHT: f64 = 0.13;
-const LAMP_TUBE: f64 = 0.0095;
+const LAMP_TUBE: f64 = 0.0075;
 
 /// The twin-tube lamp at distance `x` along the axis, seen from the side
 /// its legs stand in: as emitting rectangles facing -x (corner, edge
