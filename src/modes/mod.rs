@@ -172,20 +172,22 @@ impl Mode {
     /// key set to its default is let be: `params::first_ignored_change`),
     /// and why; an error if the configuration itself is refused.
     pub fn first_ignored<'k>(self, given: &[(String, Value)], keys: impl IntoIterator<Item = &'k str>) -> Result<Option<(String, String)>> {
-        with_mode!(self, M => {
-            let cfg = config::<M>(given)?;
-            let set = keys.into_iter().filter_map(|k| params::find(M::params(), k));
-            Ok(params::first_ignored_change(set, &cfg, &M::defaults()).map(|(p, why)| (p.key.to_string(), why)))
-        })
+        self.first_ignored_at(given, keys, None)
     }
 
     /// As `first_ignored`, for the run writing its image to `out` (a
     /// scene file's keys are checked before its output is named; the
     /// output's format may leave one unused, as a .pfm leaves the tone).
     pub fn first_ignored_writing<'k>(self, given: &[(String, Value)], keys: impl IntoIterator<Item = &'k str>, out: &Path) -> Result<Option<(String, String)>> {
+        self.first_ignored_at(given, keys, Some(out))
+    }
+
+    fn first_ignored_at<'k>(self, given: &[(String, Value)], keys: impl IntoIterator<Item = &'k str>, out: Option<&Path>) -> Result<Option<(String, String)>> {
         with_mode!(self, M => {
             let mut cfg = config::<M>(given)?;
-            M::set_out(&mut cfg, out);
+            if let Some(out) = out {
+                M::set_out(&mut cfg, out);
+            }
             let set = keys.into_iter().filter_map(|k| params::find(M::params(), k));
             Ok(params::first_ignored_change(set, &cfg, &M::defaults()).map(|(p, why)| (p.key.to_string(), why)))
         })
