@@ -139,130 +139,150 @@ fn vec(v: DVec3) -> [f64; 3] {
 }
 
 /// The world as a glTF document: its JSON and binary buffer.
-pub fn document(w: &World) -> (Json, Vec<u8>) {
-    let mut d = Doc::default();
-    let mut light_nodes = Vec::new();
-    // Glasses: one material and one mesh each.
-    for (m, medium) in w.media.iter().enumerate() {
-        let Medium::Glass { name, ior } = medium else { continue };
-        let mut tris = Vec::new();
-        for f in &w.faces {
-            if let Surface::Interface { front, back } = f.surface {
-                if back == m {
-                    tris.extend(face_triangles(f));
-                } else if front == m {
-                    tris.extend(face_triangles(f).into_iter().map(|[a, b, c]| [a, c, b]));
+/// The steps of `document`, each adding one kind of object.
+impl Doc {
+    /// Glasses: one material and one mesh each.
+    fn add_glasses(&mut self, w: &World) {
+        for (m, medium) in w.media.iter().enumerate() {
+            let Medium::Glass { name, ior } = medium else { continue };
+            let mut tris = Vec::new();
+            for f in &w.faces {
+                if let Surface::Interface { front, back } = f.surface {
+                    if back == m {
+                        tris.extend(face_triangles(f));
+                    } else if front == m {
+                        tris.extend(face_triangles(f).into_iter().map(|[a, b, c]| [a, c, b]));
+                    }
                 }
             }
-        }
-        let (n_d, abbe) = super::glass::nd_abbe(ior);
-        let mut ext = json!({
-            "KHR_materials_transmission": {"transmissionFactor": 1.0},
-            "KHR_materials_ior": {"ior": n_d},
-        });
-        // Thickness: a viewer's hint for refraction through a volume.
-        let (mut lo, mut hi) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
-        for v in tris.iter().flatten() {
-            lo = lo.min(*v);
-            hi = hi.max(*v);
-        }
-        for s in w.spheres.iter().filter(|s| s.surface == Surface::Interface { front: 0, back: m }) {
-            lo = lo.min(s.centre - s.radius);
-            hi = hi.max(s.centre + s.radius);
-        }
-        let thick = (hi - lo).min_element();
-        ext["KHR_materials_volume"] = json!({"thicknessFactor": if thick.is_finite() { thick } else { 0.05 }});
-        if let Some(v) = abbe {
-            ext["KHR_materials_dispersion"] = json!({"dispersion": 20.0 / v});
-        }
-        d.materials.push(json!({
-            "name": name,
-            "pbrMetallicRoughness": {"baseColorFactor": [1.0, 1.0, 1.0, 1.0], "metallicFactor": 0.0, "roughnessFactor": 0.0},
-            "extensions": ext,
-            "extras": {"refract": {"glass": model_json(name, ior)}},
-        }));
-        let mat = d.materials.len() - 1;
-        if !tris.is_empty() {
-            let mesh = d.mesh(name, &tris, mat, None);
-            d.nodes.push(json!({"name": name, "mesh": mesh}));
-        }
-        for s in w.spheres.iter().filter(|s| s.surface == Surface::Interface { front: 0, back: m }) {
-            let mesh = d.mesh(&s.name, &sphere_triangles(s.radius), mat, None);
-            d.nodes.push(json!({"name": s.name, "mesh": mesh, "translation": vec(to_gltf(s.centre)), "extras": {"refract": {"sphere": {"radius": s.radius}}}}));
-        }
-    }
-    // Matte surfaces by colour, mirrors by reflectance, each in one mesh.
-    let mut groups: Vec<(String, Json, Vec<[DVec3; 3]>)> = Vec::new();
-    for f in &w.faces {
-        let (key, mat) = match &f.surface {
-            Surface::Diffuse { albedo, .. } => {
-                let c = albedo.rgb;
-                (
-                    format!("matte {:?}", c),
-                    json!({"name": format!("matte {:.3} {:.3} {:.3}", c[0], c[1], c[2]), "pbrMetallicRoughness": {"baseColorFactor": [c[0], c[1], c[2], 1.0], "metallicFactor": 0.0, "roughnessFactor": 1.0}}),
-                )
+            let (n_d, abbe) = super::glass::nd_abbe(ior);
+            let mut ext = json!({
+                "KHR_materials_transmission": {"transmissionFactor": 1.0},
+                "KHR_materials_ior": {"ior": n_d},
+            });
+            // Thickness: a viewer's hint for refraction through a volume.
+            let (mut lo, mut hi) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
+            for v in tris.iter().flatten() {
+                lo = lo.min(*v);
+                hi = hi.max(*v);
             }
-            Surface::Mirror { reflectance } => (
-                format!("mirror {reflectance}"),
-                json!({"name": format!("mirror {reflectance:.3}"), "pbrMetallicRoughness": {"baseColorFactor": [reflectance, reflectance, reflectance, 1.0], "metallicFactor": 1.0, "roughnessFactor": 0.0}}),
-            ),
-            _ => continue,
-        };
-        match groups.iter_mut().find(|g| g.0 == key) {
-            Some(g) => g.2.extend(face_triangles(f)),
-            None => groups.push((key, mat, face_triangles(f))),
-        }
-    }
-    for (_, mat, tris) in groups {
-        let name = mat["name"].as_str().unwrap_or("surface").to_string();
-        d.materials.push(mat);
-        let mesh = d.mesh(&name, &tris, d.materials.len() - 1, None);
-        d.nodes.push(json!({"name": name, "mesh": mesh}));
-    }
-    // Lights.
-    for (i, l) in w.lights.iter().enumerate() {
-        let c = colour(&l.spectrum);
-        let mut extras = json!({"refract": {"light": i, "spectrum": spectrum_json(&l.spectrum), "power": l.power}});
-        match &l.emission {
-            Emission::Beam { centre, dir, u, v, half, disc, polarisation } => {
-                // Local x, y across the beam and -z along it, right-handed.
-                let (gu, gv, gd) = (to_gltf(*u), to_gltf(*v), to_gltf(*dir));
-                let (x, _, hx, hy) = if gu.cross(gv).dot(-gd) > 0.0 { (gu, gv, half.x, half.y) } else { (gv, gu, half.y, half.x) };
-                let y = (-gd).cross(x).normalize();
-                let area = if *disc { std::f64::consts::PI * hx * hy } else { 4.0 * hx * hy };
-                let pol = polarisation.map(|p| match p {
-                    crate::world::interface::Polarisation::S => "s",
-                    crate::world::interface::Polarisation::P => "p",
-                });
-                extras["refract"]["beam"] = json!({"half": [hx, hy], "disc": disc, "polarisation": pol});
-                d.lights.push(
-                    json!({"name": l.name, "type": "directional", "color": c, "intensity": l.power / area * LUMENS_PER_WATT / luma(c), "extras": extras}),
-                );
-                light_nodes.push(json!({"name": l.name, "translation": vec(to_gltf(*centre)), "rotation": rotation(x, y), "extensions": {"KHR_lights_punctual": {"light": d.lights.len() - 1}}}));
+            for s in w.spheres.iter().filter(|s| s.surface == Surface::Interface { front: 0, back: m }) {
+                lo = lo.min(s.centre - s.radius);
+                hi = hi.max(s.centre + s.radius);
             }
-            Emission::Point { pos } => {
-                d.lights.push(json!({"name": l.name, "type": "point", "color": c, "intensity": l.power * LUMENS_PER_WATT / (4.0 * std::f64::consts::PI) / luma(c), "extras": extras}));
-                light_nodes
-                    .push(json!({"name": l.name, "translation": vec(to_gltf(*pos)), "extensions": {"KHR_lights_punctual": {"light": d.lights.len() - 1}}}));
+            let thick = (hi - lo).min_element();
+            ext["KHR_materials_volume"] = json!({"thicknessFactor": if thick.is_finite() { thick } else { 0.05 }});
+            if let Some(v) = abbe {
+                ext["KHR_materials_dispersion"] = json!({"dispersion": 20.0 / v});
             }
-            Emission::Area { face } => {
-                let f = &w.faces[*face];
-                let nits = l.power / (std::f64::consts::PI * f.area()) * LUMENS_PER_WATT / luma(c);
-                d.materials.push(json!({"name": l.name, "emissiveFactor": c, "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": nits}}, "pbrMetallicRoughness": {"baseColorFactor": [0.0, 0.0, 0.0, 1.0], "metallicFactor": 0.0}, "extras": extras}));
-                let mesh = d.mesh(&l.name, &face_triangles(f), d.materials.len() - 1, None);
-                d.nodes.push(json!({"name": l.name, "mesh": mesh}));
+            self.materials.push(json!({
+                "name": name,
+                "pbrMetallicRoughness": {"baseColorFactor": [1.0, 1.0, 1.0, 1.0], "metallicFactor": 0.0, "roughnessFactor": 0.0},
+                "extensions": ext,
+                "extras": {"refract": {"glass": model_json(name, ior)}},
+            }));
+            let mat = self.materials.len() - 1;
+            if !tris.is_empty() {
+                let mesh = self.mesh(name, &tris, mat, None);
+                self.nodes.push(json!({"name": name, "mesh": mesh}));
             }
-            Emission::Sphere { sphere } => {
-                let s = &w.spheres[*sphere];
-                let nits = l.power / (std::f64::consts::PI * 4.0 * std::f64::consts::PI * s.radius * s.radius) * LUMENS_PER_WATT / luma(c);
-                d.materials.push(json!({"name": l.name, "emissiveFactor": c, "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": nits}}, "pbrMetallicRoughness": {"baseColorFactor": [0.0, 0.0, 0.0, 1.0], "metallicFactor": 0.0}, "extras": extras}));
-                let mesh = d.mesh(&s.name, &sphere_triangles(s.radius), d.materials.len() - 1, None);
-                d.nodes.push(
+            for s in w.spheres.iter().filter(|s| s.surface == Surface::Interface { front: 0, back: m }) {
+                let mesh = self.mesh(&s.name, &sphere_triangles(s.radius), mat, None);
+                self.nodes.push(
                     json!({"name": s.name, "mesh": mesh, "translation": vec(to_gltf(s.centre)), "extras": {"refract": {"sphere": {"radius": s.radius}}}}),
                 );
             }
         }
     }
+
+    /// Matte surfaces by colour, mirrors by reflectance, each in one mesh.
+    fn add_surfaces(&mut self, w: &World) {
+        let mut groups: Vec<(String, Json, Vec<[DVec3; 3]>)> = Vec::new();
+        for f in &w.faces {
+            let (key, mat) = match &f.surface {
+                Surface::Diffuse { albedo, .. } => {
+                    let c = albedo.rgb;
+                    (
+                        format!("matte {:?}", c),
+                        json!({"name": format!("matte {:.3} {:.3} {:.3}", c[0], c[1], c[2]), "pbrMetallicRoughness": {"baseColorFactor": [c[0], c[1], c[2], 1.0], "metallicFactor": 0.0, "roughnessFactor": 1.0}}),
+                    )
+                }
+                Surface::Mirror { reflectance } => (
+                    format!("mirror {reflectance}"),
+                    json!({"name": format!("mirror {reflectance:.3}"), "pbrMetallicRoughness": {"baseColorFactor": [reflectance, reflectance, reflectance, 1.0], "metallicFactor": 1.0, "roughnessFactor": 0.0}}),
+                ),
+                _ => continue,
+            };
+            match groups.iter_mut().find(|g| g.0 == key) {
+                Some(g) => g.2.extend(face_triangles(f)),
+                None => groups.push((key, mat, face_triangles(f))),
+            }
+        }
+        for (_, mat, tris) in groups {
+            let name = mat["name"].as_str().unwrap_or("surface").to_string();
+            self.materials.push(mat);
+            let mesh = self.mesh(&name, &tris, self.materials.len() - 1, None);
+            self.nodes.push(json!({"name": name, "mesh": mesh}));
+        }
+    }
+
+    /// Lights: punctual lights (their nodes returned, to follow the meshes'
+    /// nodes) and emissive meshes for area and sphere lights.
+    fn add_lights(&mut self, w: &World) -> Vec<Json> {
+        let mut nodes = Vec::new();
+        for (i, l) in w.lights.iter().enumerate() {
+            let c = colour(&l.spectrum);
+            let mut extras = json!({"refract": {"light": i, "spectrum": spectrum_json(&l.spectrum), "power": l.power}});
+            match &l.emission {
+                Emission::Beam { centre, dir, u, v, half, disc, polarisation } => {
+                    // Local x, y across the beam and -z along it, right-handed.
+                    let (gu, gv, gd) = (to_gltf(*u), to_gltf(*v), to_gltf(*dir));
+                    let (x, _, hx, hy) = if gu.cross(gv).dot(-gd) > 0.0 { (gu, gv, half.x, half.y) } else { (gv, gu, half.y, half.x) };
+                    let y = (-gd).cross(x).normalize();
+                    let area = if *disc { std::f64::consts::PI * hx * hy } else { 4.0 * hx * hy };
+                    let pol = polarisation.map(|p| match p {
+                        crate::world::interface::Polarisation::S => "s",
+                        crate::world::interface::Polarisation::P => "p",
+                    });
+                    extras["refract"]["beam"] = json!({"half": [hx, hy], "disc": disc, "polarisation": pol});
+                    self.lights.push(
+                        json!({"name": l.name, "type": "directional", "color": c, "intensity": l.power / area * LUMENS_PER_WATT / luma(c), "extras": extras}),
+                    );
+                    nodes.push(json!({"name": l.name, "translation": vec(to_gltf(*centre)), "rotation": rotation(x, y), "extensions": {"KHR_lights_punctual": {"light": self.lights.len() - 1}}}));
+                }
+                Emission::Point { pos } => {
+                    self.lights.push(json!({"name": l.name, "type": "point", "color": c, "intensity": l.power * LUMENS_PER_WATT / (4.0 * std::f64::consts::PI) / luma(c), "extras": extras}));
+                    nodes.push(
+                        json!({"name": l.name, "translation": vec(to_gltf(*pos)), "extensions": {"KHR_lights_punctual": {"light": self.lights.len() - 1}}}),
+                    );
+                }
+                Emission::Area { face } => {
+                    let f = &w.faces[*face];
+                    let nits = l.power / (std::f64::consts::PI * f.area()) * LUMENS_PER_WATT / luma(c);
+                    self.materials.push(json!({"name": l.name, "emissiveFactor": c, "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": nits}}, "pbrMetallicRoughness": {"baseColorFactor": [0.0, 0.0, 0.0, 1.0], "metallicFactor": 0.0}, "extras": extras}));
+                    let mesh = self.mesh(&l.name, &face_triangles(f), self.materials.len() - 1, None);
+                    self.nodes.push(json!({"name": l.name, "mesh": mesh}));
+                }
+                Emission::Sphere { sphere } => {
+                    let s = &w.spheres[*sphere];
+                    let nits = l.power / (std::f64::consts::PI * 4.0 * std::f64::consts::PI * s.radius * s.radius) * LUMENS_PER_WATT / luma(c);
+                    self.materials.push(json!({"name": l.name, "emissiveFactor": c, "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": nits}}, "pbrMetallicRoughness": {"baseColorFactor": [0.0, 0.0, 0.0, 1.0], "metallicFactor": 0.0}, "extras": extras}));
+                    let mesh = self.mesh(&s.name, &sphere_triangles(s.radius), self.materials.len() - 1, None);
+                    self.nodes.push(
+                        json!({"name": s.name, "mesh": mesh, "translation": vec(to_gltf(s.centre)), "extras": {"refract": {"sphere": {"radius": s.radius}}}}),
+                    );
+                }
+            }
+        }
+        nodes
+    }
+}
+
+pub fn document(w: &World) -> (Json, Vec<u8>) {
+    let mut d = Doc::default();
+    d.add_glasses(w);
+    d.add_surfaces(w);
+    let light_nodes = d.add_lights(w);
     d.nodes.extend(light_nodes);
     // The camera: local x right, y up, looking down -z.
     let cam = &w.camera;
