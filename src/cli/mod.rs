@@ -537,7 +537,7 @@ pub fn run(cli: Cli) -> Result<()> {
             Ok(())
         }
         Command::Export { scene, out, set } => run_export(&scene, &out, &set),
-        Command::Render { file, quick, out, set } if crate::gltf::is_gltf(&file) => run_gltf(file, quick, out, &set),
+        Command::Render { file, quick, out, set } if modes::gltf_file::is_gltf(&file) => run_gltf(file, quick, out, &set),
         Command::Render { file, quick, out, set } => {
             let mut scene = crate::experiment::scene_file::SceneFile::load(&file, quick)?;
             if quick && scene.params == crate::experiment::scene_file::SceneFile::load(&file, false)?.params {
@@ -567,51 +567,22 @@ pub fn run(cli: Cli) -> Result<()> {
 /// `refract export`: the built-in scene, with the parameters given, as glTF.
 fn run_export(name: &str, out: &std::path::Path, set: &[String]) -> Result<()> {
     use crate::experiment::scene_file::SceneFile;
-    use crate::names::Named;
-    if !crate::gltf::is_gltf(out) {
-        bail!("--out: `{}` must end in .glb or .gltf", out.display());
+    modes::export::check(name, !set.is_empty(), out)?;
+    let mut params = Vec::new();
+    if !modes::export::is_example(name) {
+        let mut file = SceneFile {
+            id: name.into(),
+            report: String::new(),
+            caption: String::new(),
+            mode: modes::Mode::Prism,
+            params: modes::export::scene_params(name),
+            close_up: None,
+            labels: Vec::new(),
+        };
+        file.set(set)?;
+        params = file.params;
     }
-    let example = crate::scenes::examples::EXAMPLES.iter().any(|(n, _)| *n == name);
-    let kind = crate::scenes::SceneKind::from_name(name);
-    if kind.is_none() && !example {
-        let all: Vec<&str> = crate::scenes::SceneKind::VALUES.iter().map(|v| v.1).chain(crate::scenes::examples::EXAMPLES.iter().map(|e| e.0)).collect();
-        bail!("`{name}` is not a scene; the scenes: {}", all.join(", "));
-    }
-    crate::image_io::check_writable(out).map_err(|e| anyhow::anyhow!("--out: {e}"))?;
-    if example {
-        if !set.is_empty() {
-            bail!("--set: the glTF examples take no parameters");
-        }
-        let world = crate::scenes::examples::by_name(name, 640, 480).expect("an example");
-        crate::gltf::write::write(&world, out)?;
-        eprintln!("wrote {}", out.display());
-        return Ok(());
-    }
-    let kind = kind.expect("a built-in scene");
-    let mut file = SceneFile {
-        id: kind.name().into(),
-        report: String::new(),
-        caption: String::new(),
-        mode: modes::Mode::Prism,
-        params: vec![("scene".into(), toml::Value::String(kind.name().into()))],
-        close_up: None,
-        labels: Vec::new(),
-    };
-    file.set(set)?;
-    let cfg = modes::config::<modes::prism::Prism>(&file.params)?;
-    if cfg.scene.gltf_file().is_some() {
-        bail!("--set gltf: export writes a built-in scene; a glTF file is one already");
-    }
-    let world = crate::scenes::build(&cfg.scene)?;
-    crate::gltf::write::write(&world, out)?;
-    eprintln!(
-        "wrote {} ({} faces, {} spheres, {} lights, {} glasses)",
-        out.display(),
-        world.faces.len(),
-        world.spheres.len(),
-        world.lights.len(),
-        world.media.len() - 1
-    );
+    eprintln!("{}", modes::export::export(name, &params, out)?);
     Ok(())
 }
 
@@ -643,9 +614,9 @@ fn run_gltf(file: PathBuf, quick: bool, out: Option<PathBuf>, set: &[String]) ->
     scene.set(set)?;
     let mut cfg = modes::config::<modes::prism::Prism>(&scene.params)?;
     if !given("size") {
-        let [w, h] = crate::gltf::read::default_size(cfg.scene.gltf_file().expect("set above"), if quick { 320 } else { 640 });
+        modes::gltf_file::fit_frame(&mut cfg, if quick { 320 } else { 640 });
+        let (w, h) = (cfg.scene.width, cfg.scene.height);
         scene.params.push(("size".into(), toml::Value::Array(vec![toml::Value::Integer(w as i64), toml::Value::Integer(h as i64)])));
-        (cfg.scene.width, cfg.scene.height) = (w, h);
     }
     if let Some(w) = modes::prism::gltf_check(&cfg)? {
         eprintln!("warning: {w}");
@@ -742,8 +713,8 @@ fn run_prism(args: PrismArgs) -> Result<()> {
     }
     let mut cfg = args.params.config();
     cfg.out = args.out.clone();
-    if let (Some(g), false) = (cfg.scene.gltf_file(), args.params.has("size")) {
-        [cfg.scene.width, cfg.scene.height] = crate::gltf::read::default_size(g, 640);
+    if !args.params.has("size") {
+        modes::gltf_file::fit_frame(&mut cfg, 640);
     }
     if args.quick {
         modes::prism::quick(&mut cfg, |k| args.params.has(k));

@@ -9,7 +9,9 @@
 //! May import everything below it (the renderers, `params`, the physics);
 //! `experiment`, `bench` and `cli` import it.
 
+pub mod export;
 pub mod glass;
+pub mod gltf_file;
 pub mod interior;
 pub mod meshes;
 pub mod prism;
