@@ -134,7 +134,7 @@ impl SceneFile {
     /// A parameter the run would ignore (the scene has no use for it), and
     /// why: a file's key, as a flag, is refused rather than dropped.
     fn ignored(&self) -> Result<Option<(String, String)>> {
-        self.mode.first_ignored(&self.params, self.params.iter().map(|(k, _)| k.as_str()))
+        Ok(self.mode.first_ignored(&self.params, self.params.iter().map(|(k, _)| k.as_str()))?)
     }
 
     /// Renders to `out`; returns the render time in seconds (light pass,
