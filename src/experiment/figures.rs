@@ -633,7 +633,7 @@ const SPECTRAL_CHARTS: [(&str, &str); 4] = [
 /// Draws one of the figures made in code; returns its parameter text.
 fn draw(id: &str, png: &Path, quick: bool, scenes: &Path) -> Result<String> {
     match id {
-        "css552-p2" => super::ray_diagram::draw(png),
+        "css552-p2" => Ok(super::ray_diagram::draw(png)?),
         _ => colour_compare(png, quick, scenes),
     }
 }
