@@ -6,6 +6,40 @@ use std::path::PathBuf;
 
 #[derive(Debug, thiserror::Error)]
 pub enum ExperimentError {
+    /// A scene or experiment file that could not be read.
+    #[error("{}: cannot read: {io}", .path.display())]
+    Read { path: PathBuf, io: std::io::Error },
+    /// A file that is not TOML, at the line of the mistake.
+    #[error("{file}:{line}: {why}")]
+    Syntax { file: String, line: usize, why: String },
+    /// A key of a file refused, at its line.
+    #[error("{file}:{line}: `{key}`: {why}")]
+    Key { file: String, line: usize, key: String, why: String },
+    #[error("{file}: missing `{key}`")]
+    Missing { file: String, key: String },
+    /// A key the file's scene refuses where no line holds it.
+    #[error("{file}: `{key}`: {why}")]
+    FileKey { file: String, key: String, why: String },
+    /// The scene a file describes cannot be built.
+    #[error("{file}: {error}")]
+    Scene { file: String, error: crate::scenes::SceneError },
+    /// A mistake in a file's [quick] version (the mistake with its causes).
+    #[error("{} (in the file's [quick] version)", chain(.0))]
+    Quick(Box<ExperimentError>),
+    /// `--set KEY=VALUE` naming no parameter.
+    #[error("--set `{key}`: {error}")]
+    SetUnknown { key: String, error: crate::params::KeyError },
+    /// `--set KEY=VALUE` with a value the key refuses or the run ignores.
+    #[error("--set {key}: {why}")]
+    SetValue { key: String, why: String },
+    /// A rendered image that could not be read back to draw on.
+    #[error("{}: cannot {doing}: {error}", .path.display())]
+    ReadBack { path: PathBuf, doing: &'static str, error: image::ImageError },
+    #[error("{id}: the close-up does not fit in a {width}x{height} image")]
+    CloseUpFit { id: String, width: usize, height: usize },
+    /// Labels that could not be drawn on a scene's image.
+    #[error("{id}: {what}: {error}")]
+    Label { id: String, what: &'static str, error: super::labels::LabelError },
     /// A flag's value that makes no run (the flag, then why).
     #[error("{flag}: {why}")]
     Flag { flag: &'static str, why: String },
@@ -34,7 +68,7 @@ pub enum ExperimentError {
     #[error(transparent)]
     Mode(#[from] crate::modes::ModeError),
     #[error(transparent)]
-    Scene(#[from] crate::scenes::SceneError),
+    Build(#[from] crate::scenes::SceneError),
     /// Text formatted into a table or a summary.
     #[error(transparent)]
     Fmt(#[from] std::fmt::Error),
@@ -51,6 +85,17 @@ impl ExperimentError {
         let doing = doing.into();
         move |io| ExperimentError::Io { doing, io }
     }
+}
+
+/// An error and its causes, as the program prints them (`a: b: c`).
+fn chain(e: &ExperimentError) -> String {
+    let mut text = e.to_string();
+    let mut cause = std::error::Error::source(e);
+    while let Some(c) = cause {
+        text.push_str(&format!(": {c}"));
+        cause = c.source();
+    }
+    text
 }
 
 pub(crate) type Result<T, E = ExperimentError> = std::result::Result<T, E>;

@@ -232,7 +232,7 @@ pub fn run(o: &FigureOptions) -> Result<Outcome> {
                 seconds: String::new(),
                 status: "ok".into(),
             }),
-            None => SceneFile::load(&o.scenes.join(format!("{id}.toml")), o.quick).and_then(|s| {
+            None => SceneFile::load(&o.scenes.join(format!("{id}.toml")), o.quick).map_err(anyhow::Error::from).and_then(|s| {
                 let (secs, line) = s.render_summarised(&png, &bar)?;
                 summary = line;
                 Ok(Record { report: s.report.clone(), caption: s.caption.clone(), params: s.describe(), seconds: format!("{secs:.2}"), status: "ok".into() })
