@@ -24,7 +24,7 @@ pub enum ExperimentError {
     #[error("{file}: {error}")]
     Scene { file: String, error: crate::scenes::SceneError },
     /// A mistake in a file's [quick] version (the mistake with its causes).
-    #[error("{} (in the file's [quick] version)", chain(.0))]
+    #[error("{} (in the file's [quick] version)", chain(.0.as_ref()))]
     Quick(Box<ExperimentError>),
     /// `--set KEY=VALUE` naming no parameter.
     #[error("--set `{key}`: {error}")]
@@ -40,6 +40,9 @@ pub enum ExperimentError {
     /// Labels that could not be drawn on a scene's image.
     #[error("{id}: {what}: {error}")]
     Label { id: String, what: &'static str, error: super::labels::LabelError },
+    /// The output folder that could not be made (its causes after it).
+    #[error("--out: {}", chain(.0.as_ref()))]
+    Out(Box<crate::image_io::WriteError>),
     /// A flag's value that makes no run (the flag, then why).
     #[error("{flag}: {why}")]
     Flag { flag: &'static str, why: String },
@@ -59,8 +62,47 @@ pub enum ExperimentError {
     /// A run recorded twice with different cells.
     #[error("{}: run {id} is twice, with different cells (lines {first} and {second}); delete the line you do not want, or run with --fresh to move the record aside", .path.display())]
     RunTwice { path: PathBuf, id: usize, first: u64, second: u64 },
+    /// A plot naming a column the record does not have.
+    #[error("plot column `{name}` is not in runs.csv; columns: {columns}")]
+    Column { name: String, columns: String },
+    /// A record (a runs.csv, a shard's folder) refused, naming it.
+    #[error("{}: {why}", .path.display())]
+    Record { path: PathBuf, why: String },
+    /// A line of a record refused.
+    #[error("{}:{line}: {why}", .path.display())]
+    RecordLine { path: PathBuf, line: u64, why: String },
+    #[error("{}: unreadable header: {csv}", .path.display())]
+    Header { path: PathBuf, csv: csv::Error },
+    /// A folder named twice to merge.
+    #[error("{} is given twice", .0.display())]
+    GivenTwice(PathBuf),
+    #[error("no folders to merge")]
+    NoFolders,
+    #[error("run {id} is in both {} and {}; each run belongs to one shard", .first.display(), .second.display())]
+    InTwoShards { id: String, first: PathBuf, second: PathBuf },
+    #[error("runs {runs} are in no shard ({missing} of {total}); run them into a shard's folder with `refract sweep FILE --resume --out DIR`, or merge with --resume to run them here, then merge again")]
+    InNoShard { runs: String, missing: usize, total: usize },
+    /// What was done, and why the command still fails (a run failed).
+    #[error("{done}; {why}")]
+    Failed { done: String, why: String },
+    /// A row that could not be added to a sweep's record (with its causes).
+    #[error("writing {}: {}", .dir.display(), chain(.error.as_ref()))]
+    Writing { dir: PathBuf, error: Box<ExperimentError> },
+    /// An I/O error whose own text says enough.
     #[error(transparent)]
-    Script(#[from] std::io::Error),
+    Disk(#[from] std::io::Error),
+    #[error(transparent)]
+    Csv(#[from] csv::Error),
+    #[error(transparent)]
+    Glass(#[from] crate::optics::glass::UnknownGlass),
+    #[error(transparent)]
+    Lock(#[from] super::lock::LockError),
+    #[error(transparent)]
+    Threads(#[from] rayon::ThreadPoolBuildError),
+    #[error(transparent)]
+    Labels(#[from] super::labels::LabelError),
+    #[error(transparent)]
+    Render(#[from] crate::spectral::RunError),
     #[error(transparent)]
     Plot(#[from] super::plot::PlotError),
     #[error(transparent)]
@@ -88,7 +130,7 @@ impl ExperimentError {
 }
 
 /// An error and its causes, as the program prints them (`a: b: c`).
-fn chain(e: &ExperimentError) -> String {
+pub fn chain(e: &dyn std::error::Error) -> String {
     let mut text = e.to_string();
     let mut cause = std::error::Error::source(e);
     while let Some(c) = cause {
