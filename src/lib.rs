@@ -23,8 +23,10 @@
 //! - the edge: `experiment` (scene and experiment files, sweeps, metrics,
 //!   plots, figures), `bench` (`refract bench`), `cli` (the command line).
 //!
-//! Below `modes` every error is a typed (`thiserror`) value that names the
-//! file, line or parameter; `anyhow` starts at the runners above.
+//! Every error of the library is a typed (`thiserror`) value that names the
+//! file, line or parameter (`modes::ModeError`, `experiment::error`,
+//! `bench::BenchError` wrap those below them); `anyhow` is used only by
+//! the command line (`cli`) and `main`.
 
 // `!(a <= b)` is written on purpose throughout: unlike `a > b` it is true
 // for NaN, so a NaN fails every range check instead of slipping through.

@@ -12,8 +12,8 @@ use crate::optics::glass::Glass;
 use crate::optics::ior::{IorKind, IorModel};
 use crate::spectral::film::XyzImage;
 use crate::world::{Emission, Medium, Surface, World};
-use anyhow::{bail, Context, Result};
 use std::fmt::Write;
+use std::num::{ParseFloatError, ParseIntError};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -38,6 +38,51 @@ pub struct PeerRun {
     pub error: f64,
 }
 
+/// Why the peer cannot run, or ran and gave no numbers (one line each).
+#[derive(Debug, thiserror::Error)]
+pub enum PeerError {
+    #[error("no Python environment at {} (make it with `bash scripts/mitsuba-venv`)", .0.display())]
+    NoEnvironment(PathBuf),
+    #[error("cannot run {}: {io}", .python.display())]
+    CannotRun { python: PathBuf, io: std::io::Error },
+    #[error("{} cannot load Mitsuba's scalar_spectral variant: {why} (make the environment with `bash scripts/mitsuba-venv`)", .python.display())]
+    NoVariant { python: PathBuf, why: String },
+    #[error("cannot make the temporary folder {}: {io}", .path.display())]
+    TempDir { path: PathBuf, io: std::io::Error },
+    #[error("running Mitsuba: {0}")]
+    Running(std::io::Error),
+    /// Mitsuba's last line on its error output.
+    #[error("Mitsuba failed: {0}")]
+    Failed(String),
+    #[error("Mitsuba's script printed `{0}`")]
+    Printed(String),
+    #[error(transparent)]
+    Count(#[from] ParseIntError),
+    #[error(transparent)]
+    Seconds(#[from] ParseFloatError),
+    #[error("Mitsuba's image at {spp} spp has {bytes} bytes, not {expected}")]
+    ImageSize { spp: u32, bytes: usize, expected: usize },
+    #[error("Mitsuba rendered {got} of {asked} sample counts")]
+    Counts { got: usize, asked: usize },
+    #[error("the peer's screen must be grey")]
+    NotGrey,
+    #[error("the peer renders glass and a matte screen only; face {0} is neither")]
+    Face(String),
+    #[error("the peer needs a matte screen")]
+    NoScreen,
+    #[error("the peer renders one beam; the scene has {0} lights")]
+    Lights(usize),
+    #[error("the peer renders a round collimated beam")]
+    NotBeam,
+    /// The scene's files in the temporary folder.
+    #[error(transparent)]
+    Io(#[from] std::io::Error),
+    #[error(transparent)]
+    Fmt(#[from] std::fmt::Error),
+}
+
+type Result<T> = std::result::Result<T, PeerError>;
+
 /// Mitsuba, found: the environment's Python and the version it reports.
 pub struct Mitsuba {
     python: PathBuf,
@@ -47,21 +92,18 @@ pub struct Mitsuba {
 impl Mitsuba {
     /// The Python of the environment `venv` with Mitsuba importable, or
     /// why not (one line): checked before any work.
-    pub fn find(venv: &Path) -> Result<Mitsuba, String> {
+    pub fn find(venv: &Path) -> Result<Mitsuba> {
         let python = venv.join("bin").join("python");
         if !python.is_file() {
-            return Err(format!("no Python environment at {} (make it with `bash scripts/mitsuba-venv`)", venv.display()));
+            return Err(PeerError::NoEnvironment(venv.into()));
         }
         let out = Command::new(&python)
             .args(["-c", "import mitsuba as mi; mi.set_variant('scalar_spectral'); print(mi.__version__)"])
             .output()
-            .map_err(|e| format!("cannot run {}: {e}", python.display()))?;
+            .map_err(|io| PeerError::CannotRun { python: python.clone(), io })?;
         if !out.status.success() {
             let why = String::from_utf8_lossy(&out.stderr).lines().next_back().unwrap_or("").to_string();
-            return Err(format!(
-                "{} cannot load Mitsuba's scalar_spectral variant: {why} (make the environment with `bash scripts/mitsuba-venv`)",
-                python.display()
-            ));
+            return Err(PeerError::NoVariant { python, why });
         }
         Ok(Mitsuba { python, version: String::from_utf8_lossy(&out.stdout).trim().to_string() })
     }
@@ -78,25 +120,29 @@ impl Mitsuba {
         let json_path = dir.path().join("scene.json");
         std::fs::write(&json_path, json)?;
         let list = spps.iter().map(u32::to_string).collect::<Vec<_>>().join(",");
-        let out = Command::new(&self.python).arg(&script).arg(&json_path).arg(dir.path()).arg(&list).output().context("running Mitsuba")?;
+        let out = Command::new(&self.python).arg(&script).arg(&json_path).arg(dir.path()).arg(&list).output().map_err(PeerError::Running)?;
         if !out.status.success() {
             let err = String::from_utf8_lossy(&out.stderr);
-            bail!("Mitsuba failed: {}", err.lines().rfind(|l| !l.trim().is_empty()).unwrap_or("no message"));
+            return Err(PeerError::Failed(err.lines().rfind(|l| !l.trim().is_empty()).unwrap_or("no message").to_string()));
         }
         let (w, h) = (reference.width, reference.height);
         let mut runs = Vec::new();
         let stdout = String::from_utf8_lossy(&out.stdout);
         let variant = stdout.lines().find_map(|l| l.strip_prefix("mitsuba ")).and_then(|l| l.split_whitespace().nth(1)).unwrap_or("?").to_string();
         for line in stdout.lines().filter(|l| !l.starts_with("mitsuba")) {
-            let (spp, secs) = line.split_once(' ').with_context(|| format!("Mitsuba's script printed `{line}`"))?;
+            let (spp, secs) = line.split_once(' ').ok_or_else(|| PeerError::Printed(line.to_string()))?;
             let (spp, secs): (u32, f64) = (spp.parse()?, secs.parse()?);
             let bytes = std::fs::read(dir.path().join(format!("xyz-{spp}.f32")))?;
-            anyhow::ensure!(bytes.len() == w * h * 12, "Mitsuba's image at {spp} spp has {} bytes, not {}", bytes.len(), w * h * 12);
+            if bytes.len() != w * h * 12 {
+                return Err(PeerError::ImageSize { spp, bytes: bytes.len(), expected: w * h * 12 });
+            }
             let v: Vec<f64> = bytes.chunks_exact(4).map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]]) as f64).collect();
             let img = XyzImage { width: w, height: h, xyz: v.chunks_exact(3).map(|p| glam::DVec3::new(p[0], p[1], p[2])).collect() };
             runs.push(PeerRun { spp, seconds: secs, error: crate::spectral::exact::relative_error(&img, reference) });
         }
-        anyhow::ensure!(runs.len() == spps.len(), "Mitsuba rendered {} of {} sample counts", runs.len(), spps.len());
+        if runs.len() != spps.len() {
+            return Err(PeerError::Counts { got: runs.len(), asked: spps.len() });
+        }
         Ok((variant, runs))
     }
 }
@@ -108,7 +154,7 @@ struct TempDir(PathBuf);
 impl TempDir {
     fn new() -> Result<TempDir> {
         let p = std::env::temp_dir().join(format!("refract-mitsuba-{}", std::process::id()));
-        std::fs::create_dir_all(&p).with_context(|| format!("cannot make the temporary folder {}", p.display()))?;
+        std::fs::create_dir_all(&p).map_err(|io| PeerError::TempDir { path: p.clone(), io })?;
         Ok(TempDir(p))
     }
 
@@ -144,10 +190,12 @@ fn scene_json(scene: &World, glass: &Glass, dir: &Path) -> Result<String> {
             }
             Surface::Diffuse { albedo: a, .. } => {
                 albedo = Some(a.rgb[1]);
-                anyhow::ensure!(a.rgb.iter().all(|&c| c == a.rgb[0]), "the peer's screen must be grey");
+                if !a.rgb.iter().all(|&c| c == a.rgb[0]) {
+                    return Err(PeerError::NotGrey);
+                }
                 (&mut screen, &mut ns, f.verts.clone())
             }
-            _ => bail!("the peer renders glass and a matte screen only; face {} is neither", f.name),
+            _ => return Err(PeerError::Face(f.name.clone())),
         };
         for v in &verts {
             writeln!(obj, "v {:?} {:?} {:?}", v.x, v.y, v.z)?;
@@ -158,9 +206,9 @@ fn scene_json(scene: &World, glass: &Glass, dir: &Path) -> Result<String> {
         }
         *n += verts.len();
     }
-    let albedo = albedo.context("the peer needs a matte screen")?;
-    let [light] = &scene.lights[..] else { bail!("the peer renders one beam; the scene has {} lights", scene.lights.len()) };
-    let Emission::Beam { centre, dir: beam_dir, v, half, disc: true, .. } = light.emission else { bail!("the peer renders a round collimated beam") };
+    let albedo = albedo.ok_or(PeerError::NoScreen)?;
+    let [light] = &scene.lights[..] else { return Err(PeerError::Lights(scene.lights.len())) };
+    let Emission::Beam { centre, dir: beam_dir, v, half, disc: true, .. } = light.emission else { return Err(PeerError::NotBeam) };
     let IorModel::Cauchy { a, b_um2 } = IorModel::for_glass(glass, IorKind::Cauchy) else { unreachable!("IorKind::Cauchy makes a Cauchy model") };
     let nm: Vec<f64> = (360..=830).map(f64::from).collect();
     let values: Vec<f64> = nm.iter().map(|&l| light.spectrum.eval(l)).collect();

@@ -1,6 +1,7 @@
 //! `refract bench`: speed measured in one run and printed as a table.
 //! Timings are never asserted in tests; they are recorded here.
 
+pub mod error;
 pub mod error_chart;
 pub mod mitsuba;
 
@@ -16,10 +17,12 @@ use crate::spectral::options::RenderOptions;
 use crate::spectral::render::render;
 use crate::spectrum::cie::GamutMap;
 use crate::spectrum::colormap::ColorMap;
-use anyhow::{ensure, Context, Result};
+pub use error::BenchError;
 use error_chart::Runs;
 use std::fmt::Write;
 use std::time::Instant;
+
+type Result<T> = std::result::Result<T, BenchError>;
 
 /// Casts the camera's primary rays for `rows` and returns (hits, seconds).
 fn cast(accel: &Accel, scene: &InteriorScene, rows: &[usize]) -> (u64, f64) {
@@ -131,7 +134,9 @@ pub fn interior(quick: bool) -> Result<String> {
             });
             (full, rows_b, rows_l, r1)
         });
-        ensure!(row_hits == lin_hits, "bvh and linear disagree on {tris} triangles: {row_hits} vs {lin_hits} hits");
+        if row_hits != lin_hits {
+            return Err(BenchError::RowHits { triangles: tris, bvh: row_hits, linear: lin_hits });
+        }
         // Incoherent rays: origins inside the mesh's box, directions
         // uniform; the BVH checked against the scan on the first 1000.
         let bounds = match &bvh {
@@ -141,8 +146,12 @@ pub fn interior(quick: bool) -> Result<String> {
         let rays = incoherent_rays(bounds, n_incoherent);
         let ((incoh_hits, t_incoh), (check_b, check_l)) =
             one.install(|| (best_of(repeats, || cast_rays(&bvh, &rays)), (cast_rays(&bvh, &rays[..1000]).0, cast_rays(&lin, &rays[..1000]).0)));
-        ensure!(check_b == check_l, "bvh and linear disagree on incoherent rays: {check_b} vs {check_l} hits");
-        ensure!(full_hits > 0, "the benchmark sphere is not in view");
+        if check_b != check_l {
+            return Err(BenchError::IncoherentHits { bvh: check_b, linear: check_l });
+        }
+        if full_hits == 0 {
+            return Err(BenchError::NotInView);
+        }
         let tracer = Tracer::new(&scene, &bvh, &cfg);
         let t_render_n = best_of(repeats, || {
             let t = Instant::now();
@@ -334,9 +343,9 @@ pub fn prism(b: &PrismBench, out_dir: &std::path::Path, say: &mut dyn FnMut(Stri
     let csv_path = out_dir.join(error_chart::CSV);
     let about_path = out_dir.join(error_chart::ABOUT);
     // The folder, every file and the peer are checked before the minutes of work.
-    crate::image_io::create_folder(out_dir).context("--out")?;
+    crate::image_io::create_folder(out_dir).map_err(BenchError::Out)?;
     for path in [&csv_path, &about_path, &out_dir.join("prism-error-vs-time.png"), &out_dir.join("prism-error-vs-time.svg")] {
-        crate::data::check_regular(path).map_err(|e| anyhow::anyhow!("--out: {e}"))?;
+        crate::data::check_regular(path).map_err(BenchError::OutFile)?;
     }
     let peer = match &b.peer {
         Some(venv) => match mitsuba::Mitsuba::find(venv) {
@@ -365,8 +374,8 @@ pub fn prism(b: &PrismBench, out_dir: &std::path::Path, say: &mut dyn FnMut(Stri
     }
     let threads = rayon::current_num_threads();
     let about = error_chart::About::now(threads, &load_start, &load_1min());
-    crate::image_io::write_text(&csv_path, &csv).with_context(|| format!("cannot write {}", csv_path.display()))?;
-    crate::image_io::write_text(&about_path, &about.to_csv()?).with_context(|| format!("cannot write {}", about_path.display()))?;
+    crate::image_io::write_text(&csv_path, &csv).map_err(|error| BenchError::CannotWrite { path: csv_path.clone(), error })?;
+    crate::image_io::write_text(&about_path, &about.to_csv()?).map_err(|error| BenchError::CannotWrite { path: about_path.clone(), error })?;
     error_chart::draw(out_dir, &series, &about)?;
     writeln!(out, "wrote {}/prism-error-vs-time.{{csv,about.csv,png,svg}}", out_dir.display())?;
     Ok(out)
@@ -600,7 +609,7 @@ impl ErrorCsv {
     }
 
     fn finish(self) -> Result<String> {
-        let bytes = self.0.into_inner().map_err(|e| anyhow::anyhow!("writing the error CSV: {}", e.error()))?;
+        let bytes = self.0.into_inner().map_err(|e| BenchError::ErrorCsv(e.into_error()))?;
         Ok(String::from_utf8(bytes)?)
     }
 }
@@ -664,7 +673,7 @@ pub const PHOTOGRAPH_LIKE: [&str; 9] = [
 /// target: under 2 %), and the time of one render.
 pub fn figures(quick: bool, scenes: &std::path::Path, only: &[String]) -> Result<String> {
     if let Some(bad) = only.iter().find(|o| !PHOTOGRAPH_LIKE.contains(&o.as_str())) {
-        anyhow::bail!("--only: {bad} is not one of the photograph-like figures ({})", PHOTOGRAPH_LIKE.join(", "));
+        return Err(BenchError::Only { bad: bad.clone(), figures: PHOTOGRAPH_LIKE.join(", ") });
     }
     let mut out = String::new();
     writeln!(out, "figure convergence: two renders of each scene file, seeds 1 and 2, {} parameters", if quick { "quick" } else { "full" })?;

@@ -525,7 +525,7 @@ pub fn parse_failure(e: clap::Error, args: &[OsString]) -> u8 {
 pub fn run(cli: Cli) -> Result<()> {
     match cli.command {
         Command::Interior(args) => run_interior(args),
-        Command::Meshes { dir } => modes::meshes::write(&dir, &mut |path| eprintln!("wrote {}", path.display())),
+        Command::Meshes { dir } => Ok(modes::meshes::write(&dir, &mut |path| eprintln!("wrote {}", path.display()))?),
         Command::Prism(args) => run_prism(args),
         Command::Figures { quick, only, out, scenes, gallery_only } => {
             let out = out.unwrap_or_else(|| PathBuf::from(if quick { "results/quick" } else { "results" }));
@@ -679,7 +679,7 @@ fn run_interior(args: InteriorArgs) -> Result<()> {
         args.params.check_used(&cfg).map_err(anyhow::Error::msg)?;
         cfg
     };
-    modes::interior::run_to_files(&cfg, args.timing_csv.as_deref(), &mut |line| eprintln!("{line}"))
+    Ok(modes::interior::run_to_files(&cfg, args.timing_csv.as_deref(), &mut |line| eprintln!("{line}"))?)
 }
 
 /// Writes to standard output; a closed pipe (`| head`) is not an error.
@@ -721,7 +721,7 @@ fn run_prism(args: PrismArgs) -> Result<()> {
     }
     args.params.check_used(&cfg).map_err(anyhow::Error::msg)?;
     let bars = crate::terminal::Bars::new();
-    modes::prism::run_to_files(&cfg, args.timing_csv.as_deref(), &bars, &mut |line| bars.println(&line))
+    Ok(modes::prism::run_to_files(&cfg, args.timing_csv.as_deref(), &bars, &mut |line| bars.println(&line))?)
 }
 
 /// This command line as it would go on from where it stops: `--fresh`

@@ -5,11 +5,12 @@
 //! report's claim judged where the plot names one; dot plots where x is
 //! text; and a pass/fail table for stability experiments.
 
+use super::error::{ExperimentError, Result};
+use super::plot::PlotError;
 use super::plot::{render, tick, LineChart, Series, PALETTE};
 use super::spec::PlotKind;
 use super::spec::{Experiment, PlotSpec};
 use crate::image_io::write_rgb8;
-use anyhow::{anyhow, Result};
 use plotters::prelude::*;
 use std::path::Path;
 
@@ -91,7 +92,7 @@ fn fixed_value(v: &toml::Value) -> String {
 }
 
 fn col(header: &[String], name: &str) -> Result<usize> {
-    header.iter().position(|h| h == name).ok_or_else(|| anyhow!("plot column `{name}` is not in runs.csv; columns: {}", header.join(", ")))
+    header.iter().position(|h| h == name).ok_or_else(|| ExperimentError::Column { name: name.into(), columns: header.join(", ") })
 }
 
 /// Median of sorted values (the mean of the middle two for an even count).
@@ -880,15 +881,15 @@ fn status_table(e: &Experiment, p: &PlotSpec, dir: &Path, header: &[String], row
     let mut buf = vec![255u8; (w * h * 3) as usize];
     {
         let root = super::glyphs::Glyphs(BitMapBackend::with_buffer(&mut buf, (w, h))).into_drawing_area();
-        root.fill(&WHITE).map_err(|e| anyhow!("{e}"))?;
+        root.fill(&WHITE).map_err(PlotError::draw)?;
         let font = super::plot::font(super::plot::TEXT_PX);
-        root.draw(&Text::new(p.title.clone(), (10, 10), super::plot::font(22.0))).map_err(|e| anyhow!("{e}"))?;
+        root.draw(&Text::new(p.title.clone(), (10, 10), super::plot::font(22.0))).map_err(PlotError::draw)?;
         let key = "grey = refused, as its case declares (expect = \"error\"): the condition is recorded, not a failure; red = a failure no case expects";
-        root.draw(&Text::new(key, (10, 42), font.clone().color(&RGBColor(60, 60, 60)))).map_err(|e| anyhow!("{e}"))?;
+        root.draw(&Text::new(key, (10, 42), font.clone().color(&RGBColor(60, 60, 60)))).map_err(PlotError::draw)?;
         let heads = ["case / parameters", "result", "NaN px", "fireflies", "TIR (fraction)"];
         let xs = [10, 760, 1010, 1110, 1210];
         for (t, x) in heads.iter().zip(xs) {
-            root.draw(&Text::new(t.to_string(), (x, 48 + top), font.clone())).map_err(|e| anyhow!("{e}"))?;
+            root.draw(&Text::new(t.to_string(), (x, 48 + top), font.clone())).map_err(PlotError::draw)?;
         }
         let mut y = 72 + top - line as i32;
         for (i, r) in rows.iter().enumerate() {
@@ -905,7 +906,7 @@ fn status_table(e: &Experiment, p: &PlotSpec, dir: &Path, header: &[String], row
                 _ => TABLE_GREEN,
             };
             let tall = line as i32 * (1 + extra[i] as i32);
-            root.draw(&Rectangle::new([(5, y - 2), (w as i32 - 5, y + tall - 4)], colour.filled())).map_err(|e| anyhow!("{e}"))?;
+            root.draw(&Rectangle::new([(5, y - 2), (w as i32 - 5, y + tall - 4)], colour.filled())).map_err(PlotError::draw)?;
             let result = match (failed, expected) {
                 (true, true) => "refused, as expected (below)",
                 (true, false) => "error (below)",
@@ -914,21 +915,21 @@ fn status_table(e: &Experiment, p: &PlotSpec, dir: &Path, header: &[String], row
             }
             .to_string();
             for (k, part) in labels[i].iter().enumerate() {
-                root.draw(&Text::new(part.clone(), (xs[0], y + 2 + line as i32 * k as i32), font.clone())).map_err(|e| anyhow!("{e}"))?;
+                root.draw(&Text::new(part.clone(), (xs[0], y + 2 + line as i32 * k as i32), font.clone())).map_err(PlotError::draw)?;
             }
             let cells = [result, r[nan].clone(), r[ff].clone(), r[tir].chars().take(6).collect()];
             for (t, x) in cells.iter().zip(&xs[1..]) {
-                root.draw(&Text::new(t.clone(), (*x, y + 2), font.clone())).map_err(|e| anyhow!("{e}"))?;
+                root.draw(&Text::new(t.clone(), (*x, y + 2), font.clone())).map_err(PlotError::draw)?;
             }
             if failed {
                 let below = labels[i].len() as i32;
                 let what = if expected { "refused" } else { "error" };
                 for (k, part) in wrap(&format!("{what}: {}", r[error])).into_iter().enumerate() {
-                    root.draw(&Text::new(part, (30, y + 2 + line as i32 * (k as i32 + below)), font.clone())).map_err(|e| anyhow!("{e}"))?;
+                    root.draw(&Text::new(part, (30, y + 2 + line as i32 * (k as i32 + below)), font.clone())).map_err(PlotError::draw)?;
                 }
             }
         }
-        root.present().map_err(|e| anyhow!("{e}"))?;
+        root.present().map_err(PlotError::draw)?;
     }
     Ok(write_rgb8(&dir.join(format!("{}.png", p.file)), w as usize, h as usize, &buf)?)
 }

@@ -5,11 +5,11 @@
 //! and as a camera's sensor and print would show it (§25), so a reader can see what each
 //! does to a spectrum: `results/display/transforms.png` in the gallery.
 
+use super::error::Result;
 use super::labels::{draw, Label};
 use super::scene_file::SceneFile;
 use crate::image_io::write_rgb8;
 use crate::spectrum::cie::GamutMap;
-use anyhow::Result;
 use std::path::Path;
 
 /// The figures compared: the lamp's lines, the bench's strip, the album
@@ -51,6 +51,6 @@ pub fn write(png: &Path, scenes: &Path) -> Result<()> {
         .enumerate()
         .map(|(k, map)| Label { text: format!("--gamut {}", map.name()), at: [(k as f64 + 0.5) / MAPS.len() as f64, 12.0 / h as f64] })
         .collect();
-    draw(&mut buf, w, h, &labels).map_err(anyhow::Error::msg)?;
+    draw(&mut buf, w, h, &labels)?;
     Ok(write_rgb8(png, w, h, &buf)?)
 }

@@ -8,10 +8,11 @@
 //! the ray diagram (css552-p2, `ray_diagram`) and the colour-map comparison
 //! (pm-spectra-compare).
 
+use super::error::{chain, ExperimentError, Result};
+use super::plot::PlotError;
 use super::scene_file::SceneFile;
 use crate::image_io::{atomic_write, write_rgb8};
 use crate::scenes::build;
-use anyhow::{anyhow, Context, Result};
 use plotters::prelude::*;
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
@@ -180,12 +181,12 @@ impl std::fmt::Display for Outcome {
 /// Renders the figures, runs the sweeps, writes the gallery.
 pub fn run(o: &FigureOptions) -> Result<Outcome> {
     let md_path = o.scenes.join("FIGURES.md");
-    let md = std::fs::read_to_string(&md_path).with_context(|| format!("cannot read {}", md_path.display()))?;
+    let md = std::fs::read_to_string(&md_path).map_err(ExperimentError::io(format!("cannot read {}", md_path.display())))?;
     let ids = figure_ids(&md);
     let is_extra = |id: &str| EXTRAS.iter().any(|e| e.0 == id);
     for id in &o.only {
         if !ids.contains(id) && !is_extra(id) {
-            return Err(anyhow!("--only: unknown figure `{id}`; valid: {}", ids.join(", ")));
+            return Err(ExperimentError::flag("--only", format!("unknown figure `{id}`; valid: {}", ids.join(", "))));
         }
     }
     let wanted = |id: &str| o.only.is_empty() || o.only.iter().any(|o| o == id);
@@ -195,7 +196,7 @@ pub fn run(o: &FigureOptions) -> Result<Outcome> {
             todo.push(extra.to_string());
         }
     }
-    crate::image_io::create_folder(&o.out).context("--out")?;
+    crate::image_io::create_folder(&o.out).map_err(|error| ExperimentError::Out(Box::new(error)))?;
     let dir = o.out.join("figures");
     crate::image_io::create_folder(&dir)?;
     // What a figures run killed while writing left behind (the sweeps'
@@ -239,8 +240,8 @@ pub fn run(o: &FigureOptions) -> Result<Outcome> {
             }),
         };
         let rec = result.unwrap_or_else(|e| {
-            failed.push((id.clone(), format!("{e:#}")));
-            Record { status: format!("error: {e:#}"), ..Default::default() }
+            failed.push((id.clone(), chain(&e)));
+            Record { status: format!("error: {}", chain(&e)), ..Default::default() }
         });
         bar.println(&match (rec.status.as_str(), summary.is_empty()) {
             ("ok", true) => format!("figure {}/{} {id}: drawn", i + 1, todo.len()),
@@ -633,13 +634,13 @@ const SPECTRAL_CHARTS: [(&str, &str); 4] = [
 /// Draws one of the figures made in code; returns its parameter text.
 fn draw(id: &str, png: &Path, quick: bool, scenes: &Path) -> Result<String> {
     match id {
-        "css552-p2" => super::ray_diagram::draw(png),
+        "css552-p2" => Ok(super::ray_diagram::draw(png)?),
         _ => colour_compare(png, quick, scenes),
     }
 }
 
-fn plot_err<E: std::fmt::Display>(e: E) -> anyhow::Error {
-    anyhow!("{e}")
+fn plot_err<E: std::fmt::Display>(e: E) -> PlotError {
+    PlotError::draw(e)
 }
 
 fn colour_compare(png: &Path, quick: bool, scenes: &Path) -> Result<String> {

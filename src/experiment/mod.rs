@@ -3,6 +3,7 @@
 pub mod charts;
 pub mod close_up;
 pub mod display;
+pub mod error;
 pub mod figures;
 pub mod glyphs;
 pub mod grid;

@@ -5,18 +5,17 @@
 
 use crate::interior::InteriorConfig;
 pub use crate::modes::Mode;
-use crate::modes::{config, interior::Interior, prism::Prism};
+use crate::modes::{config, interior::Interior, prism::Prism, ModeError};
 use crate::spectral::SpectralConfig;
-use anyhow::Result;
 use toml::Value;
 
 /// The interior configuration these parameters describe.
-pub fn interior_config(given: &[(String, Value)]) -> Result<InteriorConfig> {
+pub fn interior_config(given: &[(String, Value)]) -> Result<InteriorConfig, ModeError> {
     config::<Interior>(given)
 }
 
 /// The spectral configuration these parameters describe.
-pub fn prism_config(given: &[(String, Value)]) -> Result<SpectralConfig> {
+pub fn prism_config(given: &[(String, Value)]) -> Result<SpectralConfig, ModeError> {
     config::<Prism>(given)
 }
 

@@ -10,10 +10,10 @@
 //! time first); the assignment depends only on the experiment file, so any
 //! engine and any machine agree on it.
 
+use super::error::{ExperimentError, Result};
 use super::grid::{expand, RunSpec};
 use super::spec::Experiment;
 pub use crate::modes::Cost;
-use anyhow::{bail, Context, Result};
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -163,11 +163,14 @@ fn shard_count(runs: &[RunSpec], asked: Option<usize>) -> Result<usize> {
     let chains = chain_count(runs).max(1);
     Ok(match asked {
         None => DEFAULT_SHARDS.min(chains),
-        Some(n) if n == 0 || n > MAX_SHARDS => bail!("--shards: {n} is not between 1 and {MAX_SHARDS}"),
-        Some(n) if n > chains => bail!(
-            "--shards: {n} is more than the {} this grid holds (the runs along its first sweep axis stay in one shard); at most {chains}",
-            plural(chains, "chain of runs", "chains of runs")
-        ),
+        Some(n) if n == 0 || n > MAX_SHARDS => return Err(ExperimentError::flag("--shards", format!("{n} is not between 1 and {MAX_SHARDS}"))),
+        Some(n) if n > chains => {
+            let why = format!(
+                "{n} is more than the {} this grid holds (the runs along its first sweep axis stay in one shard); at most {chains}",
+                plural(chains, "chain of runs", "chains of runs")
+            );
+            return Err(ExperimentError::flag("--shards", why));
+        }
         Some(n) => n,
     })
 }
@@ -273,13 +276,13 @@ pub fn write(e: &Experiment, o: &PlanOptions) -> Result<String> {
     let runs = expand(e);
     let n = shard_count(&runs, o.shards)?;
     if o.cpus_per_task == 0 || o.cpus_per_task > 1024 {
-        bail!("--cpus-per-task: {} is not between 1 and 1024", o.cpus_per_task);
+        return Err(ExperimentError::flag("--cpus-per-task", format!("{} is not between 1 and 1024", o.cpus_per_task)));
     }
     let dir = o.out.clone().unwrap_or_else(|| e.default_folder());
     crate::image_io::create_folder(&dir)?;
     let dir = absolute(&dir)?;
     let file = absolute(&o.file)?;
-    let workdir = std::env::current_dir().context("cannot read the current folder")?;
+    let workdir = std::env::current_dir().map_err(ExperimentError::io("cannot read the current folder"))?;
     let loads = loads(e, &runs, n);
     let s = scripts(e, o, n, &loads, &dir, &file, &workdir);
     for (name, text) in &s.files {
@@ -299,7 +302,7 @@ fn slurm_time(seconds: f64) -> String {
 }
 
 fn absolute(p: &Path) -> Result<PathBuf> {
-    std::path::absolute(p).with_context(|| format!("cannot resolve {}", p.display()))
+    std::path::absolute(p).map_err(ExperimentError::io(format!("cannot resolve {}", p.display())))
 }
 
 /// A path in single quotes for bash.

@@ -4,11 +4,29 @@
 //! file's extension) through a temporary file and a rename.
 
 use crate::image_io::{write_rgb8, write_text};
-use anyhow::{anyhow, Result};
 use plotters::coord::ranged1d::ValueFormatter;
 use plotters::prelude::*;
 use std::path::Path;
 use std::sync::Once;
+
+/// Why a chart or a picture was not made: the drawing (in the words of
+/// `plotters`, whose errors differ by backend) or the file.
+#[derive(Debug, thiserror::Error)]
+pub enum PlotError {
+    #[error("{0}")]
+    Draw(String),
+    #[error(transparent)]
+    Write(#[from] crate::image_io::WriteError),
+}
+
+impl PlotError {
+    /// A drawing error of any backend, as its text.
+    pub fn draw(e: impl std::fmt::Display) -> PlotError {
+        PlotError::Draw(e.to_string())
+    }
+}
+
+type Result<T> = std::result::Result<T, PlotError>;
 
 const FONT: &[u8] = include_bytes!("../../assets/fonts/DejaVuSans.ttf");
 
@@ -356,7 +374,7 @@ where
     let (w, _) = area.dim_in_pixel();
     let cols = legend_columns(chart) as i32;
     let col_w = (w as i32 - 120) / cols;
-    let e = |e: DrawingAreaErrorKind<DB::ErrorType>| anyhow!("{e}");
+    let e = PlotError::draw;
     let entries = legend_entries(chart);
     for (k, (name, color, shape, dashed, is_fit)) in entries.iter().enumerate() {
         let (x, y) = (60 + (k as i32 % cols) * col_w, 8 + (k as i32 / cols) * 22);
@@ -441,14 +459,14 @@ fn draw<DB: DrawingBackend>(root: DrawingArea<DB, plotters::coord::Shift>, chart
 where
     DB::ErrorType: 'static,
 {
-    root.fill(&WHITE).map_err(|e| anyhow!("{e}"))?;
-    let mut root = root.titled(&chart.title, font(24.0)).map_err(|e| anyhow!("{e}"))?;
+    root.fill(&WHITE).map_err(PlotError::draw)?;
+    let mut root = root.titled(&chart.title, font(24.0)).map_err(PlotError::draw)?;
     if !chart.subtitle.is_empty() {
-        root = root.titled(&chart.subtitle, font(TEXT_PX)).map_err(|e| anyhow!("{e}"))?;
+        root = root.titled(&chart.subtitle, font(TEXT_PX)).map_err(PlotError::draw)?;
     }
     let notes = all_notes(chart);
     for (note, colour) in notes.iter().flat_map(|(n, c)| wrap(n, NOTE_CHARS).into_iter().map(move |l| (l, c))) {
-        root = root.titled(&note, font(TEXT_PX).color(colour)).map_err(|e| anyhow!("{e}"))?;
+        root = root.titled(&note, font(TEXT_PX).color(colour)).map_err(PlotError::draw)?;
     }
     let (_, h) = root.dim_in_pixel();
     let (root, below) = root.split_vertically(h.saturating_sub(legend_height(chart)));
@@ -468,12 +486,12 @@ where
     let lx = || (x.0..x.1).log_scale().with_key_points(decade_ticks(x));
     let ly = || (y.0..y.1).log_scale().with_key_points(decade_ticks(y));
     match (chart.log_x, chart.log_y) {
-        (false, false) => finish(b.build_cartesian_2d(x.0..x.1, y.0..y.1).map_err(|e| anyhow!("{e}"))?, chart),
-        (true, false) => finish(b.build_cartesian_2d(lx(), y.0..y.1).map_err(|e| anyhow!("{e}"))?, chart),
-        (false, true) => finish(b.build_cartesian_2d(x.0..x.1, ly()).map_err(|e| anyhow!("{e}"))?, chart),
-        (true, true) => finish(b.build_cartesian_2d(lx(), ly()).map_err(|e| anyhow!("{e}"))?, chart),
+        (false, false) => finish(b.build_cartesian_2d(x.0..x.1, y.0..y.1).map_err(PlotError::draw)?, chart),
+        (true, false) => finish(b.build_cartesian_2d(lx(), y.0..y.1).map_err(PlotError::draw)?, chart),
+        (false, true) => finish(b.build_cartesian_2d(x.0..x.1, ly()).map_err(PlotError::draw)?, chart),
+        (true, true) => finish(b.build_cartesian_2d(lx(), ly()).map_err(PlotError::draw)?, chart),
     }?;
-    root.present().map_err(|e| anyhow!("{e}"))?;
+    root.present().map_err(PlotError::draw)?;
     Ok(())
 }
 
@@ -488,7 +506,7 @@ where
 {
     draw_mesh(&mut c, chart)?;
     let cats = &chart.categories;
-    let err = |e: DrawingAreaErrorKind<DB::ErrorType>| anyhow!("{e}");
+    let err = PlotError::draw;
     let ok = |p: &(f64, f64)| p.0.is_finite() && p.1.is_finite() && (!chart.log_x || p.0 > 0.0) && (!chart.log_y || p.1 > 0.0);
     let n = chart.series.len().max(1) as f64;
     // The levels first, under the data, each labelled at its left end.
@@ -575,7 +593,7 @@ where
     } else {
         mesh.x_labels(2 * cats.len() + 1).x_label_formatter(&cat_label).disable_x_mesh();
     }
-    mesh.draw().map_err(|e| anyhow!("{e}"))?;
+    mesh.draw().map_err(PlotError::draw)?;
     Ok(())
 }
 
@@ -588,7 +606,7 @@ where
     X: Ranged<ValueType = f64> + ValueFormatter<f64>,
     Y: Ranged<ValueType = f64> + ValueFormatter<f64>,
 {
-    let err = |e: DrawingAreaErrorKind<DB::ErrorType>| anyhow!("{e}");
+    let err = PlotError::draw;
     let color = s.color;
     let pos = |v: f64, log: bool| !log || v > 0.0;
     for &i in keep {
@@ -639,14 +657,14 @@ pub fn colour_strips(path: &Path, title: &str, x_range: (f64, f64), rows: &[Stri
     let mut buf = vec![0u8; (size.0 * size.1 * 3) as usize];
     {
         let root = super::glyphs::Glyphs(BitMapBackend::with_buffer(&mut buf, size)).into_drawing_area();
-        root.fill(&WHITE).map_err(|e| anyhow!("{e}"))?;
+        root.fill(&WHITE).map_err(PlotError::draw)?;
         let mut c = ChartBuilder::on(&root)
             .caption(title, font(24.0))
             .margin(16)
             .x_label_area_size(44)
             .y_label_area_size(110)
             .build_cartesian_2d(x_range.0..x_range.1, 0.0..rows.len() as f64)
-            .map_err(|e| anyhow!("{e}"))?;
+            .map_err(PlotError::draw)?;
         let labels: Vec<String> = rows.iter().map(|r| r.0.clone()).collect();
         let n = rows.len();
         c.configure_mesh()
@@ -663,7 +681,7 @@ pub fn colour_strips(path: &Path, title: &str, x_range: (f64, f64), rows: &[Stri
             })
             .label_style(font(TEXT_PX))
             .draw()
-            .map_err(|e| anyhow!("{e}"))?;
+            .map_err(PlotError::draw)?;
         let steps = ((x_range.1 - x_range.0).ceil() as usize).max(1);
         for (i, (_, f)) in rows.iter().enumerate() {
             let y = (n - 1 - i) as f64;
@@ -672,9 +690,9 @@ pub fn colour_strips(path: &Path, title: &str, x_range: (f64, f64), rows: &[Stri
                 let [r, g, b] = f(x + 0.5);
                 Rectangle::new([(x, y + 0.1), (x + 1.0, y + 0.9)], RGBColor(r, g, b).filled())
             }))
-            .map_err(|e| anyhow!("{e}"))?;
+            .map_err(PlotError::draw)?;
         }
-        root.present().map_err(|e| anyhow!("{e}"))?;
+        root.present().map_err(PlotError::draw)?;
     }
     Ok(write_rgb8(path, size.0 as usize, size.1 as usize, &buf)?)
 }

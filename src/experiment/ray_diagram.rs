@@ -5,9 +5,10 @@
 //! prism, where the wavelengths part by about a millimetre, an inset
 //! magnifies its exit face at true angles.
 
+use super::error::Result;
+use super::plot::PlotError;
 use crate::image_io::write_rgb8;
 use crate::world::probe::{probe, ProbeRay};
-use anyhow::{anyhow, Result};
 use plotters::prelude::*;
 use std::path::Path;
 
@@ -25,8 +26,8 @@ const INSET_AT: ((f64, f64), (f64, f64)) = ((0.055, 0.255), (-0.095, -0.03));
 /// cyan-green, green, yellow, orange, red.
 pub const LAMBDAS: [f64; 8] = [404.7, 465.0, 485.0, 505.0, 546.1, 575.0, 600.0, 656.3];
 
-fn plot_err<E: std::fmt::Display>(e: E) -> anyhow::Error {
-    anyhow!("{e}")
+fn plot_err<E: std::fmt::Display>(e: E) -> PlotError {
+    PlotError::draw(e)
 }
 
 /// How much the inset magnifies (the same along x and y).

@@ -38,11 +38,11 @@
 //! Parameter names are the mode's flag names with `_` for `-`. Errors name
 //! the key and its line.
 
+use super::error::{ExperimentError, Result};
 use super::key_lines::KeyLines;
 use super::spec::{fnv1a, Case, Expect, Experiment, PlotKind, PlotSpec, MAX_RUNS};
 use crate::modes::Mode;
 use crate::names::Named;
-use anyhow::{anyhow, Result};
 use std::path::Path;
 use toml::{Table, Value};
 
@@ -50,13 +50,13 @@ use toml::{Table, Value};
 pub fn parse_toml(text: &str, file: &str) -> Result<Table> {
     text.parse::<Table>().map_err(|e| {
         let line = e.span().map_or(1, |s| text[..s.start.min(text.len())].lines().count().max(1));
-        anyhow!("{file}:{line}: {}", e.message())
+        ExperimentError::Syntax { file: file.into(), line, why: e.message().into() }
     })
 }
 
 impl Experiment {
     pub fn load(path: &Path, quick: bool) -> Result<Experiment> {
-        let text = crate::data::read_settings_text(path).map_err(|e| anyhow!("{}: cannot read: {e}", path.display()))?;
+        let text = crate::data::read_settings_text(path).map_err(|io| ExperimentError::Read { path: path.into(), io })?;
         Experiment::parse(&text, &path.display().to_string(), quick)
     }
 
@@ -232,7 +232,7 @@ impl Experiment {
         // The [quick] version is checked too, with or without --quick: a
         // mistake there is found now, not when someone first runs it.
         if !quick && p.root.contains_key("quick") {
-            Experiment::parse(text, file, true).map_err(|err| anyhow!("{err:#} (in the file's [quick] version)"))?;
+            Experiment::parse(text, file, true).map_err(|err| ExperimentError::Quick(Box::new(err)))?;
         }
         Ok(e)
     }
@@ -290,10 +290,10 @@ impl<'a> FileParser<'a> {
 
     /// An error at `key` of the `nth` `[section]`, with its line (under
     /// --quick, the line of `[quick.section]`'s key where that overrides it).
-    fn err(&self, section: &str, nth: usize, key: &str, msg: impl std::fmt::Display) -> anyhow::Error {
+    fn err(&self, section: &str, nth: usize, key: &str, msg: impl std::fmt::Display) -> ExperimentError {
         let quick = format!("quick.{section}");
         let section = if self.quick.contains_key(section) && self.keys.offset(&quick, nth, key).is_some() { quick.as_str() } else { section };
-        anyhow!("{}:{}: `{key}`: {msg}", self.file, self.keys.line(section, nth, key))
+        ExperimentError::Key { file: self.file.into(), line: self.keys.line(section, nth, key), key: key.into(), why: msg.to_string() }
     }
 
     fn table(&self, key: &str) -> Result<Table> {
@@ -326,7 +326,7 @@ impl<'a> FileParser<'a> {
         match self.root.get(key) {
             Some(Value::String(s)) => Ok(s.clone()),
             Some(_) => Err(self.err("", 0, key, "must be a string")),
-            None => Err(anyhow!("{}: missing `{key}`", self.file)),
+            None => Err(ExperimentError::Missing { file: self.file.into(), key: key.into() }),
         }
     }
 
@@ -483,20 +483,33 @@ impl<'a> FileParser<'a> {
 
 /// `{ from, to, step }` as the list of values, inclusive of `to` within
 /// rounding; integers stay integers.
-fn range(t: &Table) -> Result<Vec<Value>, String> {
+/// Why a `{ from, to, step }` makes no list of values.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+enum RangeError {
+    #[error("unknown range key `{0}`; expected from, to, step")]
+    Key(String),
+    #[error("a range needs a number `{0}`")]
+    Number(&'static str),
+    #[error("range from {from} to {to} step {step}: need from <= to and step > 0")]
+    Order { from: f64, to: f64, step: f64 },
+    #[error("range gives {0} values; at most 100000")]
+    TooMany(usize),
+}
+
+fn range(t: &Table) -> Result<Vec<Value>, RangeError> {
     for k in t.keys() {
         if !["from", "to", "step"].contains(&k.as_str()) {
-            return Err(format!("unknown range key `{k}`; expected from, to, step"));
+            return Err(RangeError::Key(k.clone()));
         }
     }
-    let num = |k: &str| t.get(k).and_then(|v| v.as_float().or(v.as_integer().map(|i| i as f64))).ok_or(format!("a range needs a number `{k}`"));
+    let num = |k: &'static str| t.get(k).and_then(|v| v.as_float().or(v.as_integer().map(|i| i as f64))).ok_or(RangeError::Number(k));
     let (from, to, step) = (num("from")?, num("to")?, num("step")?);
     if !(step > 0.0) || !(to >= from) || !from.is_finite() || !to.is_finite() {
-        return Err(format!("range from {from} to {to} step {step}: need from <= to and step > 0"));
+        return Err(RangeError::Order { from, to, step });
     }
     let n = ((to - from) / step + 1e-9).floor() as usize + 1;
     if n > 100_000 {
-        return Err(format!("range gives {n} values; at most 100000"));
+        return Err(RangeError::TooMany(n));
     }
     let ints = t.values().all(|v| v.is_integer());
     Ok((0..n)

@@ -3,7 +3,7 @@
 //! before a sweep writes the folder, and moved aside, never truncated,
 //! when a sweep starts afresh.
 
-use anyhow::{Context, Result};
+use super::error::{ExperimentError, Result};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
@@ -28,7 +28,7 @@ pub fn inspect(dir: &Path, header: &[String]) -> Result<Found> {
     let text = match std::fs::read_to_string(&path) {
         Ok(t) => t,
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(Found::Nothing),
-        Err(e) => return Err(e).with_context(|| format!("cannot read {}", path.display())),
+        Err(e) => return Err(ExperimentError::io(format!("cannot read {}", path.display()))(e)),
     };
     let complete = match text.rfind('\n') {
         Some(i) => &text[..=i],
@@ -39,7 +39,7 @@ pub fn inspect(dir: &Path, header: &[String]) -> Result<Found> {
     let h: Vec<String> = r.headers().map(|h| h.iter().map(str::to_string).collect()).unwrap_or_default();
     let mut rows = Vec::new();
     for x in r.records() {
-        let x = x.map_err(|e| anyhow::anyhow!("{}:{}: unreadable row: {e}", path.display(), e.position().map_or(0, |p| p.line())))?;
+        let x = x.map_err(|csv| ExperimentError::UnreadableRow { path: path.clone(), line: csv.position().map_or(0, |p| p.line()), csv })?;
         rows.push((x.position().map_or(0, |p| p.line()), x.iter().map(str::to_string).collect::<Vec<_>>()));
     }
     if rows.is_empty() {
@@ -49,12 +49,7 @@ pub fn inspect(dir: &Path, header: &[String]) -> Result<Found> {
         return Ok(Found::OtherColumns(rows.len()));
     }
     if let Some((line, r)) = rows.iter().find(|(_, r)| r.len() != header.len()) {
-        anyhow::bail!(
-            "{}:{line}: not a whole run ({} of {} cells); delete that line, or run with --fresh to move the record aside",
-            path.display(),
-            r.len(),
-            header.len()
-        );
+        return Err(ExperimentError::PartRow { path, line: *line, cells: r.len(), columns: header.len() });
     }
     let fp = header.iter().position(|c| c == "experiment");
     let mut fingerprints = BTreeMap::new();
@@ -74,22 +69,14 @@ pub fn check_rows(path: &Path, rows: Vec<(u64, Vec<String>)>, total: usize) -> R
     for (line, r) in rows {
         let id = match r[0].parse::<usize>() {
             Ok(id) if id < total => id,
-            _ => anyhow::bail!(
-                "{}:{line}: `{}` is not a run of this experiment (its runs are 0 to {}); delete that line, or run with --fresh to move the record aside",
-                path.display(),
-                r[0],
-                total.saturating_sub(1)
-            ),
+            _ => return Err(ExperimentError::NotARun { path: path.into(), line, id: r[0].clone(), last: total.saturating_sub(1) }),
         };
         match first.get(&id) {
             None => {
                 first.insert(id, (line, r));
             }
             Some((l0, r0)) if *r0 == r => notes.push(format!("{}: run {id} is twice (lines {l0} and {line}), the same both times; kept once", path.display())),
-            Some((l0, _)) => anyhow::bail!(
-                "{}: run {id} is twice, with different cells (lines {l0} and {line}); delete the line you do not want, or run with --fresh to move the record aside",
-                path.display()
-            ),
+            Some((l0, _)) => return Err(ExperimentError::RunTwice { path: path.into(), id, first: *l0, second: line }),
         }
     }
     Ok((first.into_values().map(|(_, r)| r).collect(), notes))
@@ -107,7 +94,7 @@ pub fn move_aside(dir: &Path) -> Result<PathBuf> {
         let from = dir.join(p);
         if from.exists() {
             let to = dir.join(format!("{p}.{n}"));
-            std::fs::rename(&from, &to).with_context(|| format!("cannot move {} aside to {}", from.display(), to.display()))?;
+            std::fs::rename(&from, &to).map_err(ExperimentError::io(format!("cannot move {} aside to {}", from.display(), to.display())))?;
         }
     }
     Ok(dir.join(format!("runs.csv.{n}")))

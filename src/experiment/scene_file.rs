@@ -22,13 +22,13 @@
 //! at = [0.8, 0.2]
 //! ```
 
+use super::error::{ExperimentError, Result};
 use super::key_lines::KeyLines;
 use super::reader::parse_toml;
 use crate::modes::Mode;
 use crate::names::Named;
 use crate::progress::Progress;
 use crate::scenes::SceneError;
-use anyhow::{anyhow, Result};
 use std::path::Path;
 use toml::Value;
 
@@ -46,7 +46,7 @@ pub struct SceneFile {
 
 impl SceneFile {
     pub fn load(path: &Path, quick: bool) -> Result<SceneFile> {
-        let text = crate::data::read_settings_text(path).map_err(|e| anyhow!("{}: cannot read: {e}", path.display()))?;
+        let text = crate::data::read_settings_text(path).map_err(|io| ExperimentError::Read { path: path.into(), io })?;
         Self::parse(&text, &path.display().to_string(), quick)
     }
 
@@ -55,7 +55,7 @@ impl SceneFile {
         // Paths in the file are resolved from its folder.
         let base = Path::new(file).parent().unwrap_or(Path::new(""));
         let keys = KeyLines::new(text);
-        let err = |section: &str, key: &str, msg: String| anyhow!("{file}:{}: `{key}`: {msg}", keys.line(section, 0, key));
+        let err = |section: &str, key: &str, why: String| ExperimentError::Key { file: file.into(), line: keys.line(section, 0, key), key: key.into(), why };
         for k in root.keys() {
             if !["id", "report", "caption", "mode", "params", "quick", "close_up", "label"].contains(&k.as_str()) {
                 return Err(err("", k, "unknown key; expected id, report, caption, mode, params, quick, close_up or label".into()));
@@ -65,7 +65,7 @@ impl SceneFile {
             match root.get(key) {
                 Some(Value::String(v)) => Ok(v.clone()),
                 Some(_) => Err(err("", key, "must be a string".into())),
-                None => Err(anyhow!("{file}: missing `{key}`")),
+                None => Err(ExperimentError::Missing { file: file.into(), key: key.into() }),
             }
         };
         let id = s("id")?;
@@ -101,7 +101,7 @@ impl SceneFile {
             params,
             close_up: match root.get("close_up") {
                 Some(v) => {
-                    let mut close = super::close_up::parse(v).map_err(|m| anyhow!("{file}:{}: `close_up`: {m}", keys.line("", 0, "close_up")))?;
+                    let mut close = super::close_up::parse(v).map_err(|m| err("", "close_up", m.to_string()))?;
                     for (k, v) in &mut close.params {
                         *v = mode.check(k, v, base).map_err(|m| err("close_up.params", k, m.to_string()))?;
                     }
@@ -110,7 +110,7 @@ impl SceneFile {
                 None => None,
             },
             labels: match root.get("label") {
-                Some(v) => super::labels::parse(v).map_err(|m| anyhow!("{file}:{}: `label`: {m}", keys.line("", 0, "label")))?,
+                Some(v) => super::labels::parse(v).map_err(|m| err("", "label", m.to_string()))?,
                 None => Vec::new(),
             },
         };
@@ -124,9 +124,9 @@ impl SceneFile {
             None => {}
             Some(SceneError::Param { key, why }) => match from.iter().find(|(k, _)| mode.canonical(k) == Some(key)) {
                 Some((k, section)) => return Err(err(section, k, why)),
-                None => return Err(anyhow!("{file}: `{key}`: {why}")),
+                None => return Err(ExperimentError::FileKey { file: file.into(), key: key.into(), why }),
             },
-            Some(e) => return Err(anyhow!("{file}: {e}")),
+            Some(error) => return Err(ExperimentError::Scene { file: file.into(), error }),
         }
         Ok(scene)
     }
@@ -134,7 +134,7 @@ impl SceneFile {
     /// A parameter the run would ignore (the scene has no use for it), and
     /// why: a file's key, as a flag, is refused rather than dropped.
     fn ignored(&self) -> Result<Option<(String, String)>> {
-        self.mode.first_ignored(&self.params, self.params.iter().map(|(k, _)| k.as_str()))
+        Ok(self.mode.first_ignored(&self.params, self.params.iter().map(|(k, _)| k.as_str()))?)
     }
 
     /// Renders to `out`; returns the render time in seconds (light pass,
@@ -164,11 +164,11 @@ impl SceneFile {
             eprintln!("note: the scene file's close-up and labels are drawn on PNG images only; {} has none", out.display());
             return Ok((secs, summary));
         }
-        let img = image::open(out).map_err(|e| anyhow!("{}: cannot read back to annotate: {e}", out.display()))?.to_rgb8();
+        let img = image::open(out).map_err(|error| ExperimentError::ReadBack { path: out.into(), doing: "read back to annotate", error })?.to_rgb8();
         let (w, h) = (img.width() as usize, img.height() as usize);
         let mut buf = img.into_raw();
         if let Some(view) = &self.close_up {
-            let (size, at) = view.place(w, h).ok_or_else(|| anyhow!("{}: the close-up does not fit in a {w}x{h} image", self.id))?;
+            let (size, at) = view.place(w, h).ok_or_else(|| ExperimentError::CloseUpFit { id: self.id.clone(), width: w, height: h })?;
             let mut other = self.clone();
             other.close_up = None;
             other.labels.clear();
@@ -186,16 +186,16 @@ impl SceneFile {
             secs += close_s;
             // The close-up is a second render: its time is said too.
             summary.push_str(&format!(" (the close-up's render {close_s:.2} s)"));
-            let pixels = pixels.expect("rendered").map_err(|e| anyhow!("{}: cannot read the close-up back: {e}", tmp.display()))?;
+            let pixels = pixels.expect("rendered").map_err(|error| ExperimentError::ReadBack { path: tmp.clone(), doing: "read the close-up back", error })?;
             super::close_up::paste(&mut buf, w, &pixels, size, at);
             if let Some(text) = &view.label {
                 // Under the close-up's top edge, centred.
                 let label =
                     super::labels::Label { text: text.clone(), at: [(at[0] as f64 + size[0] as f64 / 2.0) / w as f64, (at[1] as f64 + 12.0) / h as f64] };
-                super::labels::draw(&mut buf, w, h, &[label]).map_err(|e| anyhow!("{}: close-up label: {e}", self.id))?;
+                super::labels::draw(&mut buf, w, h, &[label]).map_err(|error| ExperimentError::Label { id: self.id.clone(), what: "close-up label", error })?;
             }
         }
-        super::labels::draw(&mut buf, w, h, &self.labels).map_err(|e| anyhow!("{}: labels: {e}", self.id))?;
+        super::labels::draw(&mut buf, w, h, &self.labels).map_err(|error| ExperimentError::Label { id: self.id.clone(), what: "labels", error })?;
         crate::image_io::write_rgb8(out, w, h, &buf)?;
         summary.push_str(&format!("; {:.2} s in all", start.elapsed().as_secs_f64()));
         Ok((secs, summary))
@@ -209,17 +209,17 @@ impl SceneFile {
     /// line), each checked by its row of the mode's table.
     pub fn set(&mut self, overrides: &[String]) -> Result<()> {
         for o in overrides {
-            let (k, v) = o.split_once('=').ok_or_else(|| anyhow!("--set: `{o}` is not KEY=VALUE"))?;
+            let (k, v) = o.split_once('=').ok_or_else(|| ExperimentError::flag("--set", format!("`{o}` is not KEY=VALUE")))?;
             let k = k.trim().replace('-', "_");
-            let value = self.mode.parse_text(&k, v).map_err(|e| match e {
-                crate::params::KeyError::Unknown { .. } => anyhow!("--set `{k}`: {e}"),
-                crate::params::KeyError::Value(_) => anyhow!("--set {k}: {e}"),
+            let value = self.mode.parse_text(&k, v).map_err(|error| match error {
+                crate::params::KeyError::Unknown { .. } => ExperimentError::SetUnknown { key: k.clone(), error },
+                crate::params::KeyError::Value(_) => ExperimentError::SetValue { key: k.clone(), why: error.to_string() },
             })?;
             self.params.retain(|(p, _)| *p != k);
             self.params.push((k, value.to_toml()));
         }
         match self.ignored()? {
-            Some((key, why)) => Err(anyhow!("--set {key}: {why}")),
+            Some((key, why)) => Err(ExperimentError::SetValue { key, why }),
             None => Ok(()),
         }
     }

@@ -2,6 +2,7 @@
 //! model's n(lambda) against Sellmeier for a glass, and every
 //! wavelength-to-colour map against CIE, as CSVs and plots.
 
+use super::error::Result;
 use super::plot::{colour_strips, render, LineChart, Series, PALETTE};
 use crate::image_io::write_text;
 use crate::optics::glass::Glass;
@@ -9,7 +10,6 @@ use crate::optics::ior::{IorKind, IorModel};
 use crate::spectrum::cie::srgb_encode;
 use crate::spectrum::colormap::{error_vs_cie, ColorMap};
 use crate::timing::cell;
-use anyhow::Result;
 use std::fmt::Write;
 use std::path::Path;
 

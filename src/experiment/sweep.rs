@@ -4,6 +4,7 @@
 //! `refract sweep merge` joins shards.
 //! A run that fails is a row with its error, never a crashed sweep.
 
+use super::error::{chain, ExperimentError, Result};
 pub use super::grid::{expand, RunSpec};
 use super::interrupt;
 use super::lock::{FolderLock, Taken};
@@ -13,7 +14,6 @@ use super::spec::Experiment;
 use super::spec::METRICS;
 use crate::image_io::{atomic_write, write_rgb8};
 use crate::modes::MeshCache;
-use anyhow::{bail, Context, Result};
 use std::collections::{HashMap, HashSet};
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -80,7 +80,7 @@ struct RunOutcome {
 /// and in the process's CPU time (every thread; what a shared machine's
 /// other load does not add to).
 fn run_one(mode: Mode, params: &[(String, Value)], meshes: &MeshCache, min_time: f64) -> RunOutcome {
-    let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| -> Result<RunOutcome> {
+    let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| -> Result<RunOutcome, crate::modes::ModeError> {
         let cpu = crate::timing::process_cpu_seconds();
         let mut run = mode.render(params, &crate::progress::Silent, meshes)?;
         let (mut build, mut trace, mut render, mut n) = (run.record.build_s, run.record.trace_s, run.record.render_s, 1u32);
@@ -111,7 +111,7 @@ fn run_one(mode: Mode, params: &[(String, Value)], meshes: &MeshCache, min_time:
     }));
     match result {
         Ok(Ok(o)) => o,
-        Ok(Err(e)) => RunOutcome { frame: None, cells: vec![("status", "error".into()), ("error", format!("{e:#}")), ("failed", "1".into())] },
+        Ok(Err(e)) => RunOutcome { frame: None, cells: vec![("status", "error".into()), ("error", chain(&e)), ("failed", "1".into())] },
         Err(p) => {
             let msg = p.downcast_ref::<String>().cloned().or_else(|| p.downcast_ref::<&str>().map(|s| s.to_string())).unwrap_or_else(|| "panic".into());
             RunOutcome { frame: None, cells: vec![("status", "error".into()), ("error", format!("internal error: {msg}")), ("failed", "1".into())] }
@@ -159,7 +159,7 @@ fn read_rows(path: &Path, header: &[String]) -> Result<Vec<Vec<String>>> {
     let text = match std::fs::read_to_string(path) {
         Ok(t) => t,
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(Vec::new()),
-        Err(e) => return Err(e).with_context(|| format!("cannot read {}", path.display())),
+        Err(e) => return Err(ExperimentError::io(format!("cannot read {}", path.display()))(e)),
     };
     let complete = match text.rfind('\n') {
         Some(i) => &text[..=i],
@@ -168,7 +168,7 @@ fn read_rows(path: &Path, header: &[String]) -> Result<Vec<Vec<String>>> {
     let mut r = csv::ReaderBuilder::new().flexible(true).from_reader(complete.as_bytes());
     let h: Vec<String> = r.headers()?.iter().map(str::to_string).collect();
     if !h.is_empty() && h != header {
-        bail!("{}: its columns differ from this experiment's; use another --out or delete it", path.display());
+        return Err(ExperimentError::Record { path: path.into(), why: "its columns differ from this experiment's; use another --out or delete it".into() });
     }
     Ok(r.records().filter_map(|x| x.ok()).map(|x| x.iter().map(str::to_string).collect::<Vec<_>>()).filter(|x: &Vec<String>| x.len() == header.len()).collect())
 }
@@ -201,7 +201,7 @@ struct Sweep<'a> {
     frames: Mutex<HashMap<usize, Frame>>,
     /// runs.csv, open for appending one row per run.
     file: Arc<Mutex<std::fs::File>>,
-    errors: Mutex<Vec<anyhow::Error>>,
+    errors: Mutex<Vec<ExperimentError>>,
 }
 
 /// Takes `dir`'s lock (`lock::FolderLock`) for this command, saying so
@@ -221,7 +221,7 @@ fn take_lock(dir: &Path, break_lock: bool) -> Result<FolderLock> {
 pub fn run(e: &Experiment, opts: &SweepOptions) -> Result<Outcome> {
     let dir = opts.out.clone().unwrap_or_else(|| e.default_folder());
     if dir.exists() && !dir.is_dir() {
-        bail!("--out: {} is not a folder; a sweep writes a folder of results", dir.display());
+        return Err(ExperimentError::flag("--out", format!("{} is not a folder; a sweep writes a folder of results", dir.display())));
     }
     crate::image_io::create_folder(&dir)?;
     let lock = Arc::new(take_lock(&dir, opts.break_lock)?);
@@ -331,11 +331,9 @@ fn keep_or_move(e: &Experiment, dir: &Path, header: &[String], how: OnRecord) ->
     use super::record::{describe, inspect, move_aside, Found};
     let found = inspect(dir, header)?;
     let csv = dir.join("runs.csv");
-    let fresh_hint = |what: &str| {
-        format!(
-            "{}: holds {what}; write elsewhere with --out, or run again with --fresh to move that record aside (to runs.csv.N, images.N) and start anew",
-            csv.display()
-        )
+    let fresh_hint = |what: &str| ExperimentError::Record {
+        path: csv.clone(),
+        why: format!("holds {what}; write elsewhere with --out, or run again with --fresh to move that record aside (to runs.csv.N, images.N) and start anew"),
     };
     let move_it = |note: &str| -> Result<Vec<Vec<String>>> {
         let to = move_aside(dir)?;
@@ -346,7 +344,7 @@ fn keep_or_move(e: &Experiment, dir: &Path, header: &[String], how: OnRecord) ->
         Found::Nothing => Ok(Vec::new()),
         Found::OtherColumns(n) => match how {
             OnRecord::Fresh | OnRecord::ResumeOrFresh => move_it(&format!("{} holds {n} rows with other columns", csv.display())),
-            _ => bail!("{}", fresh_hint(&format!("{n} rows with other columns than this experiment's (another experiment, or another version of refract)"))),
+            _ => Err(fresh_hint(&format!("{n} rows with other columns than this experiment's (another experiment, or another version of refract)"))),
         },
         Found::Rows { rows, fingerprints, torn } => {
             let ours = fingerprints.len() == 1 && fingerprints.contains_key(&e.fingerprint);
@@ -357,7 +355,7 @@ fn keep_or_move(e: &Experiment, dir: &Path, header: &[String], how: OnRecord) ->
                 }
                 _ if !ours => {
                     let version = if e.quick { "this experiment file's --quick version" } else { "this experiment file (full quality, not --quick)" };
-                    bail!("{}", fresh_hint(&format!("{}, not of {} ({version})", describe(&fingerprints), e.fingerprint)))
+                    Err(fresh_hint(&format!("{}, not of {} ({version})", describe(&fingerprints), e.fingerprint)))
                 }
                 OnRecord::Resume | OnRecord::ResumeOrFresh => {
                     let (kept, notes) = super::record::check_rows(&csv, rows, expand(e).len())?;
@@ -372,10 +370,10 @@ fn keep_or_move(e: &Experiment, dir: &Path, header: &[String], how: OnRecord) ->
                 OnRecord::Refuse => {
                     let total = expand(e).len();
                     let have = rows.iter().filter_map(|(_, r)| r[0].parse::<usize>().ok()).filter(|&id| id < total).collect::<HashSet<_>>().len();
-                    bail!(
-                        "{}: already holds {have} of the {total} runs of this experiment; run again with --resume to run only the missing ones, or with --fresh to move the record aside (to runs.csv.N) and run them all",
-                        csv.display()
-                    )
+                    Err(ExperimentError::Record {
+                        path: csv.clone(),
+                        why: format!("already holds {have} of the {total} runs of this experiment; run again with --resume to run only the missing ones, or with --fresh to move the record aside (to runs.csv.N) and run them all"),
+                    })
                 }
             }
         }
@@ -444,7 +442,7 @@ impl Sweep<'_> {
         }
         bar.finish_and_clear();
         match self.errors.lock().unwrap().drain(..).next() {
-            Some(err) => Err(err.context(format!("writing {}", self.dir.display()))),
+            Some(err) => Err(ExperimentError::Writing { dir: self.dir.clone(), error: Box::new(err) }),
             None => Ok(()),
         }
     }
@@ -514,10 +512,10 @@ impl Sweep<'_> {
         row.extend(self.names.iter().map(|n| r.params.iter().find(|(k, _)| k == n).map_or(String::new(), |(_, v)| cell(v))));
         row.extend(METRICS.iter().map(|m| cells.get(m).cloned().unwrap_or_default()));
         let mut w = csv::WriterBuilder::new().has_headers(false).from_writer(Vec::new());
-        let line = w.write_record(&row).map_err(anyhow::Error::from).and_then(|_| w.into_inner().map_err(|e| anyhow::anyhow!("{e}")));
+        let line = w.write_record(&row).map_err(ExperimentError::from).and_then(|_| w.into_inner().map_err(|e| ExperimentError::Disk(e.into_error())));
         let written = line.and_then(|bytes| {
             let mut f = self.file.lock().unwrap();
-            f.write_all(&bytes).and_then(|_| f.flush()).map_err(anyhow::Error::from)
+            f.write_all(&bytes).and_then(|_| f.flush()).map_err(ExperimentError::from)
         });
         if let Err(err) = written {
             self.errors.lock().unwrap().push(err);
@@ -608,35 +606,37 @@ pub fn merge(dirs: &[PathBuf], out: &Path, experiment: Option<&Experiment>, o: &
     let mut lines: Vec<u64> = Vec::new();
     for (k, d) in dirs.iter().enumerate() {
         if dirs[..k].contains(d) {
-            bail!("{} is given twice", d.display());
+            return Err(ExperimentError::GivenTwice(d.clone()));
         }
         // A shard still being written is not merged.
         if let Some(holder) = FolderLock::holder(d) {
-            bail!(
-                "{}: this shard is still being written (its lock is held by {holder}); merge when it has finished, or if that sweep is gone, delete {}",
-                d.display(),
+            let why = format!(
+                "this shard is still being written (its lock is held by {holder}); merge when it has finished, or if that sweep is gone, delete {}",
                 d.join(".lock").display()
             );
+            return Err(ExperimentError::Record { path: d.clone(), why });
         }
         let p = d.join("runs.csv");
-        let text = crate::data::read_input_text(&p).with_context(|| format!("cannot read {}", p.display()))?;
+        let text = crate::data::read_input_text(&p).map_err(ExperimentError::io(format!("cannot read {}", p.display())))?;
         // A last line without its newline was cut off mid-write: its last
         // cell may be a shorter, wrong number (0.757080 read as 0.757).
         if !text.is_empty() && !text.ends_with('\n') {
-            bail!(
-                "{}:{}: the last line does not end in a newline (the shard was cut off while writing it); finish the shard with `refract sweep FILE --resume --shard I/N --out {}` first",
-                p.display(),
-                text.matches('\n').count() + 1,
+            let why = format!(
+                "the last line does not end in a newline (the shard was cut off while writing it); finish the shard with `refract sweep FILE --resume --shard I/N --out {}` first",
                 d.display()
             );
+            return Err(ExperimentError::RecordLine { path: p, line: text.matches('\n').count() as u64 + 1, why });
         }
         let mut r = csv::Reader::from_reader(text.as_bytes());
-        let h: Vec<String> = r.headers().with_context(|| format!("{}: unreadable header", p.display()))?.iter().map(str::to_string).collect();
+        let h: Vec<String> = r.headers().map_err(|csv| ExperimentError::Header { path: p.clone(), csv })?.iter().map(str::to_string).collect();
         if h.first().map(String::as_str) != Some("run_id") {
-            bail!("{}:1: not a sweep's runs.csv (its first column is `{}`, not run_id)", p.display(), h.first().map_or("", String::as_str));
+            let why = format!("not a sweep's runs.csv (its first column is `{}`, not run_id)", h.first().map_or("", String::as_str));
+            return Err(ExperimentError::RecordLine { path: p, line: 1, why });
         }
         match &header {
-            Some(x) if *x != h => bail!("{}: its columns differ from {}", p.display(), dirs[0].join("runs.csv").display()),
+            Some(x) if *x != h => {
+                return Err(ExperimentError::Record { path: p, why: format!("its columns differ from {}", dirs[0].join("runs.csv").display()) })
+            }
             _ => header = Some(h.clone()),
         }
         // Every row is a whole run: a short or unreadable one (a shard
@@ -645,32 +645,32 @@ pub fn merge(dirs: &[PathBuf], out: &Path, experiment: Option<&Experiment>, o: &
             let x = record.map_err(|e| {
                 let at = e.position().map_or(0, |at| at.line());
                 match e.kind() {
-                    csv::ErrorKind::UnequalLengths { len, .. } => anyhow::anyhow!("{}:{at}: not a whole run ({len} of {} cells)", p.display(), h.len()),
-                    _ => anyhow::anyhow!("{}:{at}: unreadable row: {e}", p.display()),
+                    csv::ErrorKind::UnequalLengths { len, .. } => {
+                        ExperimentError::RecordLine { path: p.clone(), line: at, why: format!("not a whole run ({len} of {} cells)", h.len()) }
+                    }
+                    _ => ExperimentError::UnreadableRow { path: p.clone(), line: at, csv: e },
                 }
             })?;
             // (The reader refuses a row of another length than the header's.)
             if x[0].parse::<usize>().is_err() {
-                bail!("{}:{}: `{}` is not a run id", p.display(), x.position().map_or(0, |at| at.line()), &x[0]);
+                return Err(ExperimentError::RecordLine { path: p, line: x.position().map_or(0, |at| at.line()), why: format!("`{}` is not a run id", &x[0]) });
             }
             rows.push((x.iter().map(str::to_string).collect(), k));
             lines.push(x.position().map_or(0, |at| at.line()));
         }
     }
-    let header = header.ok_or_else(|| anyhow::anyhow!("no folders to merge"))?;
+    let header = header.ok_or(ExperimentError::NoFolders)?;
     if let Some(col) = header.iter().position(|h| h == "experiment") {
         let want = match experiment {
             Some(e) => e.fingerprint.clone(),
             None => rows.first().map(|(r, _)| r[col].clone()).unwrap_or_default(),
         };
         if let Some((r, k)) = rows.iter().find(|(r, _)| r[col] != want) {
-            bail!(
-                "{}: run {} is from experiment {}, not {} (another experiment, or another version of its file); merge only shards of one run",
-                dirs[*k].join("runs.csv").display(),
-                r[0],
-                r[col],
-                want
+            let why = format!(
+                "run {} is from experiment {}, not {} (another experiment, or another version of its file); merge only shards of one run",
+                r[0], r[col], want
             );
+            return Err(ExperimentError::Record { path: dirs[*k].join("runs.csv"), why });
         }
     }
     let mut order: Vec<usize> = (0..rows.len()).collect();
@@ -678,9 +678,10 @@ pub fn merge(dirs: &[PathBuf], out: &Path, experiment: Option<&Experiment>, o: &
     if let Some(w) = order.windows(2).find(|w| rows[w[0]].0[0] == rows[w[1]].0[0]) {
         let ((a, ka), (b, kb)) = (&rows[w[0]], &rows[w[1]]);
         if ka == kb {
-            bail!("{}: run {} is twice (lines {} and {}); each run is one row", dirs[*ka].join("runs.csv").display(), a[0], lines[w[0]], lines[w[1]]);
+            let why = format!("run {} is twice (lines {} and {}); each run is one row", a[0], lines[w[0]], lines[w[1]]);
+            return Err(ExperimentError::Record { path: dirs[*ka].join("runs.csv"), why });
         }
-        bail!("run {} is in both {} and {}; each run belongs to one shard", b[0], dirs[*ka].display(), dirs[*kb].display());
+        return Err(ExperimentError::InTwoShards { id: b[0].clone(), first: dirs[*ka].clone(), second: dirs[*kb].clone() });
     }
     let rows: Vec<(Vec<String>, usize)> = order.into_iter().map(|i| rows[i].clone()).collect();
     let mut missing = Vec::new();
@@ -689,12 +690,7 @@ pub fn merge(dirs: &[PathBuf], out: &Path, experiment: Option<&Experiment>, o: &
         let total = expand(e).len();
         missing = (0..total).filter(|id| !have.contains(id)).map(|id| id.to_string()).collect();
         if !missing.is_empty() && !o.resume {
-            bail!(
-                "runs {} are in no shard ({} of {}); run them into a shard's folder with `refract sweep FILE --resume --out DIR`, or merge with --resume to run them here, then merge again",
-                missing.join(", "),
-                missing.len(),
-                total
-            );
+            return Err(ExperimentError::InNoShard { runs: missing.join(", "), missing: missing.len(), total });
         }
     }
     crate::image_io::create_folder(out)?;
@@ -710,11 +706,13 @@ pub fn merge(dirs: &[PathBuf], out: &Path, experiment: Option<&Experiment>, o: &
                     let to = super::record::move_aside(out)?;
                     eprintln!("note: moved the record in {} aside to {}", out.display(), to.display());
                 }
-                Some((line, r)) => bail!(
-                    "{}:{line}: holds run {} as the merge does not (another run, or another version of the experiment); merge into another --out, or with --fresh to move that record aside (to runs.csv.N)",
-                    out.join("runs.csv").display(),
-                    r[0]
-                ),
+                Some((line, r)) => {
+                    let why = format!(
+                        "holds run {} as the merge does not (another run, or another version of the experiment); merge into another --out, or with --fresh to move that record aside (to runs.csv.N)",
+                        r[0]
+                    );
+                    return Err(ExperimentError::RecordLine { path: out.join("runs.csv"), line: *line, why });
+                }
             }
         }
         // The run images (named by their parameters) and the reference
@@ -747,7 +745,7 @@ pub fn merge(dirs: &[PathBuf], out: &Path, experiment: Option<&Experiment>, o: &
             let o = run(e, &SweepOptions { on_record: OnRecord::Resume, jobs: 1, out: Some(out.to_path_buf()), ..Default::default() })?;
             let line = format!("{merged}; ran the {} missing here: {}", missing.len(), o.summary);
             match o.failure {
-                Some(why) => bail!("{line}; {why}"),
+                Some(why) => Err(ExperimentError::Failed { done: line, why }),
                 None => Ok(line),
             }
         }
@@ -768,6 +766,6 @@ pub struct MergeOptions {
 
 /// Copies a file to a temporary sibling of `to`, then renames it there.
 fn copy_into_place(from: &Path, to: &Path) -> Result<()> {
-    let bytes = std::fs::read(from).with_context(|| format!("cannot read {}", from.display()))?;
+    let bytes = std::fs::read(from).map_err(ExperimentError::io(format!("cannot read {}", from.display())))?;
     Ok(atomic_write(to, |f| f.write_all(&bytes))?)
 }

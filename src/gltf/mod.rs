@@ -78,9 +78,15 @@ pub enum AddedLight {
     Point(DVec3),
 }
 
+/// A light added to a glTF scene, not of the form sun:X,Y,Z or point:X,Y,Z
+/// (the text given).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("`{0}`: expected sun:X,Y,Z (a beam travelling along X,Y,Z in the file's axes) or point:X,Y,Z (a point light there)")]
+pub struct BadAddedLight(pub String);
+
 impl AddedLight {
-    pub fn parse(s: &str) -> Result<AddedLight, String> {
-        let bad = || format!("`{s}`: expected sun:X,Y,Z (a beam travelling along X,Y,Z in the file's axes) or point:X,Y,Z (a point light there)");
+    pub fn parse(s: &str) -> Result<AddedLight, BadAddedLight> {
+        let bad = || BadAddedLight(s.to_string());
         let (kind, xyz) = s.trim().split_once(':').ok_or_else(bad)?;
         let v: Vec<f64> = xyz.split(',').map(|c| c.trim().parse::<f64>()).collect::<Result<_, _>>().map_err(|_| bad())?;
         let &[x, y, z] = v.as_slice() else { return Err(bad()) };
@@ -133,7 +139,7 @@ mod tests {
         assert_eq!(AddedLight::parse("sun:0,0,-2").unwrap(), AddedLight::Sun(DVec3::new(0.0, 0.0, -1.0)));
         assert_eq!(AddedLight::parse("point:1,2,3").unwrap(), AddedLight::Point(DVec3::new(1.0, 2.0, 3.0)));
         for bad in ["sun:0,0,0", "sun:1,2", "lamp:1,2,3", "point:a,b,c", "sun"] {
-            assert!(AddedLight::parse(bad).unwrap_err().contains("sun:X,Y,Z"), "{bad}");
+            assert!(AddedLight::parse(bad).unwrap_err().to_string().contains("sun:X,Y,Z"), "{bad}");
         }
     }
 }

@@ -3,12 +3,12 @@
 //! read (once per sweep, through a [`MeshCache`]), rendered, recorded.
 
 use super::run::{Cost, MeshCache, ModeKind, Record, Report, Run};
+use super::ModeError;
 use crate::image_io::ImageFormat;
 use crate::interior::{InteriorConfig, RunReport, TimingRow};
 use crate::mesh::source::MeshSource;
 use crate::params::{self, Param};
 use crate::progress::Progress;
-use anyhow::Result;
 use std::path::{Path, PathBuf};
 
 /// The interior mode.
@@ -26,8 +26,8 @@ impl ModeKind for Interior {
         params::interior::defaults()
     }
 
-    fn validate(cfg: &InteriorConfig) -> Result<()> {
-        params::check_threads(cfg.threads).map_err(|e| anyhow::anyhow!("--threads: {e}"))
+    fn validate(cfg: &InteriorConfig) -> Result<(), ModeError> {
+        params::check_threads(cfg.threads).map_err(ModeError::Threads)
     }
 
     fn mesh_file(cfg: &InteriorConfig, key: &str) -> Option<PathBuf> {
@@ -43,7 +43,7 @@ impl ModeKind for Interior {
         Cost { seconds: 0.01 + segments / 2.5e6, bytes: px * 40.0 }
     }
 
-    fn render(cfg: &InteriorConfig, _: &dyn Progress, meshes: &MeshCache) -> Result<Run> {
+    fn render(cfg: &InteriorConfig, _: &dyn Progress, meshes: &MeshCache) -> Result<Run, ModeError> {
         let (mesh, load_s) = meshes.get(&cfg.off)?;
         let mut r = crate::interior::render_mesh(mesh, cfg)?;
         r.load_s = load_s;
@@ -54,7 +54,7 @@ impl ModeKind for Interior {
         cfg.out = out.to_path_buf();
     }
 
-    fn render_to(mut cfg: InteriorConfig, out: &Path, _: &dyn Progress) -> Result<Run> {
+    fn render_to(mut cfg: InteriorConfig, out: &Path, _: &dyn Progress) -> Result<Run, ModeError> {
         Self::set_out(&mut cfg, out);
         Ok(run_of(&cfg, crate::interior::run(&cfg)?))
     }
@@ -79,14 +79,14 @@ fn run_of(cfg: &InteriorConfig, mut r: RunReport) -> Run {
 }
 
 /// Checks the timing CSV a run would append to, before any work.
-pub fn check_timing_csv(path: &Path) -> Result<()> {
+pub fn check_timing_csv(path: &Path) -> Result<(), ModeError> {
     Ok(crate::timing::check_header::<TimingRow>(path)?)
 }
 
 /// A run of the command line: renders `cfg`, writes its image to `cfg.out`
 /// and a row to `timing_csv`; tells the user (`say`) of its notes and of what
 /// it wrote.
-pub fn run_to_files(cfg: &InteriorConfig, timing_csv: Option<&Path>, say: &mut dyn FnMut(String)) -> Result<()> {
+pub fn run_to_files(cfg: &InteriorConfig, timing_csv: Option<&Path>, say: &mut dyn FnMut(String)) -> Result<(), ModeError> {
     let start = std::time::Instant::now();
     crate::image_io::remove_stale_temps(cfg.out.parent().unwrap_or(Path::new("")));
     let report = crate::interior::run(cfg)?;

@@ -1,10 +1,10 @@
 //! `refract meshes`: the meshes shipped in `off/`, written again.
 
-use anyhow::Result;
+use super::ModeError;
 use std::path::{Path, PathBuf};
 
 /// Writes every shipped mesh into `dir`, calling `wrote` after each file.
-pub fn write(dir: &Path, wrote: &mut dyn FnMut(&Path)) -> Result<()> {
+pub fn write(dir: &Path, wrote: &mut dyn FnMut(&Path)) -> Result<(), ModeError> {
     crate::image_io::create_folder(dir)?;
     for (name, what, mesh) in crate::mesh::generate::shipped() {
         let path = dir.join(name);

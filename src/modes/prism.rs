@@ -3,11 +3,11 @@
 //! defaults and checks, and its run: the scene built, rendered, recorded.
 
 use super::run::{Cost, MeshCache, ModeKind, Record, Report, Run};
+use super::ModeError;
 use crate::image_io::ImageFormat;
 use crate::params::{self, Param};
 use crate::progress::Progress;
 use crate::spectral::{SpectralConfig, SpectralReport, TimingRow};
-use anyhow::{Context, Result};
 use std::path::{Path, PathBuf};
 
 /// The prism mode.
@@ -25,8 +25,8 @@ impl ModeKind for Prism {
         params::prism::defaults()
     }
 
-    fn validate(cfg: &SpectralConfig) -> Result<()> {
-        params::check_threads(cfg.threads).map_err(|e| anyhow::anyhow!("--threads: {e}"))?;
+    fn validate(cfg: &SpectralConfig) -> Result<(), ModeError> {
+        params::check_threads(cfg.threads).map_err(ModeError::Threads)?;
         Ok(cfg.validate()?)
     }
 
@@ -44,7 +44,7 @@ impl ModeKind for Prism {
         Cost { seconds: 0.05 + photons / 1.7e6 + px * c.spp as f64 / 1e6, bytes: photons * 4.0 * 40.0 + px * 27.0 }
     }
 
-    fn render(cfg: &SpectralConfig, progress: &dyn Progress, _: &MeshCache) -> Result<Run> {
+    fn render(cfg: &SpectralConfig, progress: &dyn Progress, _: &MeshCache) -> Result<Run, ModeError> {
         Ok(run_of(cfg, crate::spectral::render_config(cfg, progress)?))
     }
 
@@ -52,7 +52,7 @@ impl ModeKind for Prism {
         cfg.out = out.to_path_buf();
     }
 
-    fn render_to(mut cfg: SpectralConfig, out: &Path, progress: &dyn Progress) -> Result<Run> {
+    fn render_to(mut cfg: SpectralConfig, out: &Path, progress: &dyn Progress) -> Result<Run, ModeError> {
         Self::set_out(&mut cfg, out);
         Ok(run_of(&cfg, crate::spectral::run(&cfg, progress)?))
     }
@@ -82,7 +82,7 @@ fn run_of(cfg: &SpectralConfig, mut report: SpectralReport) -> Run {
 /// A glTF scene read once before any work: its errors (one line naming
 /// the file), and the one warning listing what it holds that refract does
 /// not model.
-pub fn gltf_check(cfg: &SpectralConfig) -> Result<Option<String>> {
+pub fn gltf_check(cfg: &SpectralConfig) -> Result<Option<String>, ModeError> {
     let Some(g) = cfg.scene.gltf_file() else { return Ok(None) };
     let imported = crate::gltf::read::load(g, cfg.scene.width.max(1), cfg.scene.height.max(1))?;
     Ok(imported.warning(&g.path))
@@ -107,17 +107,17 @@ pub fn quick(cfg: &mut SpectralConfig, given: impl Fn(&str) -> bool) {
 /// work, renders, writes the image to `cfg.out` and a row to `timing_csv`;
 /// tells the user (`say`) of its warnings and of
 /// what it wrote.
-pub fn run_to_files(cfg: &SpectralConfig, timing_csv: Option<&Path>, progress: &dyn Progress, say: &mut dyn FnMut(String)) -> Result<()> {
+pub fn run_to_files(cfg: &SpectralConfig, timing_csv: Option<&Path>, progress: &dyn Progress, say: &mut dyn FnMut(String)) -> Result<(), ModeError> {
     cfg.validate()?;
-    params::check_threads(cfg.threads).map_err(|e| anyhow::anyhow!("--threads: {e}"))?;
+    params::check_threads(cfg.threads).map_err(ModeError::Threads)?;
     // The default folder, results/, is made; any other must exist.
     if let Some(parent) = cfg.out.parent().filter(|p| !p.as_os_str().is_empty() && cfg.out.starts_with("results")) {
         crate::image_io::create_folder(parent)?;
     }
-    crate::image_io::check_output(&cfg.out, Prism::FORMATS).map_err(|e| anyhow::anyhow!("--out: {e}"))?;
+    crate::image_io::check_output(&cfg.out, Prism::FORMATS).map_err(ModeError::Out)?;
     crate::image_io::remove_stale_temps(cfg.out.parent().unwrap_or(Path::new("")));
     if let Some(path) = timing_csv {
-        crate::timing::check_header::<TimingRow>(path).context("--timing-csv")?;
+        crate::timing::check_header::<TimingRow>(path).map_err(ModeError::TimingCsv)?;
     }
     if let Some(w) = gltf_check(cfg)? {
         say(format!("warning: {w}"));

@@ -2,12 +2,12 @@
 //! run gives back (its typed [`Record`], its [`Frame`], its report), with
 //! the mesh cache a sweep shares over its runs.
 
+use super::ModeError as Error;
 use crate::image_io::ImageFormat;
 use crate::mesh::source::MeshSource;
 use crate::mesh::Mesh;
 use crate::params::Param;
 use crate::progress::Progress;
-use anyhow::Result;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
@@ -21,7 +21,7 @@ pub trait ModeKind {
     fn params() -> &'static [Param<Self::Config>];
     fn defaults() -> Self::Config;
     /// Checks of the whole configuration, before any work.
-    fn validate(cfg: &Self::Config) -> Result<()>;
+    fn validate(cfg: &Self::Config) -> Result<(), Error>;
     /// The mesh file that `key` sets in `cfg`, if it sets one (looked for
     /// when the file naming it is read).
     fn mesh_file(cfg: &Self::Config, key: &str) -> Option<PathBuf>;
@@ -30,10 +30,10 @@ pub trait ModeKind {
     /// A rough cost on one core, to balance shards.
     fn cost(cfg: &Self::Config) -> Cost;
     /// Renders `cfg`: the image and the run's record, nothing written.
-    fn render(cfg: &Self::Config, progress: &dyn Progress, meshes: &MeshCache) -> Result<Run>;
+    fn render(cfg: &Self::Config, progress: &dyn Progress, meshes: &MeshCache) -> Result<Run, Error>;
     /// Renders `cfg` and writes its image to `out` (the single run of a
     /// scene file or the command line).
-    fn render_to(cfg: Self::Config, out: &Path, progress: &dyn Progress) -> Result<Run>;
+    fn render_to(cfg: Self::Config, out: &Path, progress: &dyn Progress) -> Result<Run, Error>;
     /// Names `out` as the run's image (what a parameter's use may depend
     /// on: a .pfm output has no tone).
     fn set_out(cfg: &mut Self::Config, out: &Path);
@@ -192,7 +192,7 @@ pub enum Report {
 
 impl Run {
     /// Writes the image to `out` (its format by the extension).
-    pub fn write(&self, out: &Path) -> Result<()> {
+    pub fn write(&self, out: &Path) -> Result<(), Error> {
         match &self.report {
             Report::Interior(r) => Ok(crate::image_io::write_image(out, &r.image, &r.display)?),
             Report::Prism { report, gamut, exr } => Ok(report.render.image.write(out, report.exposure, *gamut, *exr)?),
@@ -230,7 +230,7 @@ pub struct MeshCache(Mutex<HashMap<MeshSource, (Mesh, f64)>>);
 
 impl MeshCache {
     /// The mesh and the seconds its reading took.
-    pub fn get(&self, source: &MeshSource) -> Result<(Mesh, f64)> {
+    pub fn get(&self, source: &MeshSource) -> Result<(Mesh, f64), crate::mesh::MeshError> {
         if let Some(m) = self.0.lock().unwrap().get(source) {
             return Ok(m.clone());
         }

@@ -1,9 +1,9 @@
 //! `refract spectrum locus` and `illuminant`: the CIE locus and a light's
 //! colour, as CSV text.
 
+use super::ModeError;
 use crate::spectrum::cie::{cmf, srgb_encode_odd, Xyz};
 use crate::spectrum::Spectrum;
-use anyhow::Result;
 use std::fmt::Write as _;
 
 /// A unit monochromatic stimulus, 380-780 nm in 5 nm steps: wavelength_nm,
@@ -20,7 +20,7 @@ pub fn locus() -> String {
 
 /// XYZ, chromaticity, linear and encoded sRGB of the light `name`,
 /// normalised to Y = 1.
-pub fn illuminant(name: &str) -> Result<String> {
+pub fn illuminant(name: &str) -> Result<String, ModeError> {
     let s = Spectrum::light(name)?;
     let xyz = s.to_xyz().normalised();
     let (x, y) = xyz.xy();

@@ -1,20 +1,17 @@
 //! `refract prism trace`: one ray per wavelength through the scene's prism
 //! with the renderer's own optics (`world::probe`), as CSV.
 
+use super::ModeError;
 use crate::spectral::SpectralConfig;
-use anyhow::{bail, Result};
 use std::fmt::Write as _;
 
 /// wavelength_nm, exit direction, deviation and transmittance of a ray at
 /// each wavelength; a ray totally reflected inside leaves the direction
 /// cells empty.
-pub fn trace(cfg: &SpectralConfig, wavelengths: &[f64]) -> Result<String> {
+pub fn trace(cfg: &SpectralConfig, wavelengths: &[f64]) -> Result<String, ModeError> {
     let built = crate::scenes::build(&cfg.scene)?;
     if !built.faces.iter().any(|f| matches!(f.surface, crate::world::Surface::Interface { .. })) {
-        bail!(
-            "prism trace: the {} scene has no prism to trace through (amici-screen, amici-lamp, single-prism, the cornell scenes and dark-side have one)",
-            built.name
-        );
+        return Err(ModeError::NoPrism(built.name.clone()));
     }
     let mut o = String::from("wavelength_nm,exit_x,exit_y,exit_z,deviation_deg,transmittance\n");
     for &nm in wavelengths {

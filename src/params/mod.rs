@@ -63,9 +63,8 @@ pub enum ValueError {
     Inset(#[from] crate::spectral::inset::InsetError),
     #[error(transparent)]
     Light(#[from] crate::spectrum::spectra::UnknownSpectrum),
-    /// A light added to a glTF scene, not of the form sun:X,Y,Z or point:X,Y,Z.
-    #[error("{0}")]
-    AddedLight(String),
+    #[error(transparent)]
+    AddedLight(#[from] crate::gltf::BadAddedLight),
 }
 
 /// Why `key = value` of a file is refused (the caller adds the file and line).
@@ -599,8 +598,9 @@ pub fn apply_toml<C>(params: &'static [Param<C>], c: &mut C, key: &str, v: &toml
 mod tests {
     use super::*;
 
-    /// Checks every parameter's current value against its kind, naming the flag.
-    pub fn check_all<C>(params: &'static [Param<C>], c: &C) -> Result<(), String> {
+    /// Checks every parameter's current value against its kind: the first
+    /// refused, with its flag.
+    pub fn check_all<C>(params: &'static [Param<C>], c: &C) -> Result<(), (String, ValueError)> {
         let not_finite = |v: &Value| ValueError::NotFinite(v.to_string());
         for p in params {
             let Some(v) = (p.get)(c) else { continue };
@@ -611,7 +611,7 @@ mod tests {
                 (Kind::Triple, Value::Triple(t)) if t.iter().any(|x| !x.is_finite()) => Err(not_finite(&v)),
                 _ => Ok(()),
             };
-            ok.map_err(|e| format!("--{}: {e}", p.flag()))?;
+            ok.map_err(|e| (p.flag(), e))?;
         }
         Ok(())
     }
@@ -677,9 +677,10 @@ mod tests {
     fn check_all_names_the_flag_of_a_bad_value() {
         let mut c = prism::defaults();
         c.photons = 0;
-        assert_eq!(check_all(prism::PARAMS, &c).unwrap_err(), "--photons: 0 is not between 1 and 2000000000");
+        let said = |(flag, e): (String, ValueError)| format!("--{flag}: {e}");
+        assert_eq!(check_all(prism::PARAMS, &c).map_err(said).unwrap_err(), "--photons: 0 is not between 1 and 2000000000");
         let mut c = interior::defaults();
         c.opacity = 120.0;
-        assert_eq!(check_all(interior::PARAMS, &c).unwrap_err(), "--opacity: 120 is not between 0 and 100");
+        assert_eq!(check_all(interior::PARAMS, &c).map_err(said).unwrap_err(), "--opacity: 120 is not between 0 and 100");
     }
 }

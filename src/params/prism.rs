@@ -63,7 +63,7 @@ fn gltf_of(c: &mut SpectralConfig) -> &mut crate::gltf::GltfOptions {
 }
 
 fn added_light(s: &str) -> Result<(), ValueError> {
-    crate::gltf::AddedLight::parse(s).map(|_| ()).map_err(ValueError::AddedLight)
+    crate::gltf::AddedLight::parse(s).map(|_| ()).map_err(ValueError::from)
 }
 
 fn amici_only(c: &SpectralConfig) -> Option<String> {
@@ -654,8 +654,8 @@ mod tests {
 
     /// A built scene's faces, lights and camera, as text (or the builder's
     /// refusal, which shows it read the option too).
-    fn world(o: &SceneOptions) -> Result<String, String> {
-        let w = crate::scenes::build(o).map_err(|e| e.to_string())?;
+    fn world(o: &SceneOptions) -> Result<String, crate::scenes::SceneError> {
+        let w = crate::scenes::build(o)?;
         Ok(format!("{:?} {:?} {:?}", w.faces, w.lights, w.camera))
     }
 
@@ -678,7 +678,7 @@ mod tests {
             for (key, change) in changes {
                 let mut o = c.scene.clone();
                 change(&mut o);
-                let changed = world(&o) != Ok(base.clone());
+                let changed = world(&o).ok() != Some(base.clone());
                 let refused = (row(key).ignored)(&c);
                 assert_eq!(changed, refused.is_none(), "{name}: --{key} changes the scene: {changed}; refused: {refused:?}");
             }
