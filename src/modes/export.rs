@@ -3,9 +3,9 @@
 //! render would build it, so what is exported is what renders.
 
 use super::prism::Prism;
+use super::{ModeError, Result};
 use crate::names::Named;
 use crate::scenes::{examples, SceneKind};
-use anyhow::{anyhow, bail, Result};
 use std::path::Path;
 use toml::Value;
 
@@ -23,14 +23,14 @@ pub fn is_example(name: &str) -> bool {
 /// written, the scene exists, and an example is given no parameters.
 pub fn check(name: &str, any_given: bool, out: &Path) -> Result<()> {
     if !crate::gltf::is_gltf(out) {
-        bail!("--out: `{}` must end in .glb or .gltf", out.display());
+        return Err(ModeError::NotGltf(out.to_path_buf()));
     }
     if SceneKind::from_name(name).is_none() && !is_example(name) {
-        bail!("`{name}` is not a scene; the scenes: {}", scene_names().join(", "));
+        return Err(ModeError::UnknownScene { name: name.into(), all: scene_names().join(", ") });
     }
-    crate::image_io::check_writable(out).map_err(|e| anyhow!("--out: {e}"))?;
+    crate::image_io::check_writable(out).map_err(ModeError::Out)?;
     if is_example(name) && any_given {
-        bail!("--set: the glTF examples take no parameters");
+        return Err(ModeError::ExampleParameters);
     }
     Ok(())
 }
@@ -46,13 +46,13 @@ pub fn scene_params(name: &str) -> Vec<(String, Value)> {
 pub fn export(name: &str, params: &[(String, Value)], out: &Path) -> Result<String> {
     check(name, !params.is_empty(), out)?;
     if is_example(name) {
-        let world = examples::by_name(name, 640, 480).ok_or_else(|| anyhow!("`{name}` is not a scene"))?;
+        let world = examples::by_name(name, 640, 480).ok_or_else(|| ModeError::UnknownScene { name: name.into(), all: scene_names().join(", ") })?;
         crate::gltf::write::write(&world, out)?;
         return Ok(format!("wrote {}", out.display()));
     }
     let cfg = super::config::<Prism>(params)?;
     if cfg.scene.gltf_file().is_some() {
-        bail!("--set gltf: export writes a built-in scene; a glTF file is one already");
+        return Err(ModeError::ExportGltf);
     }
     let world = crate::scenes::build(&cfg.scene)?;
     crate::gltf::write::write(&world, out)?;

@@ -110,6 +110,18 @@ pub enum ModeError {
     /// A CSV table the tools write.
     #[error("a CSV row: {0}")]
     Csv(#[from] csv::Error),
+    /// `export`: an output that is no glTF file.
+    #[error("--out: `{}` must end in .glb or .gltf", .0.display())]
+    NotGltf(PathBuf),
+    /// `export`: a scene that is neither built in nor a glTF example.
+    #[error("`{name}` is not a scene; the scenes: {all}")]
+    UnknownScene { name: String, all: String },
+    /// `export`: parameters given to a glTF example.
+    #[error("--set: the glTF examples take no parameters")]
+    ExampleParameters,
+    /// `export`: a glTF file given as the scene to export.
+    #[error("--set gltf: export writes a built-in scene; a glTF file is one already")]
+    ExportGltf,
     /// `prism trace` on a scene without a prism.
     #[error("prism trace: the {0} scene has no prism to trace through (amici-screen, amici-lamp, single-prism, the cornell scenes and dark-side have one)")]
     NoPrism(String),
