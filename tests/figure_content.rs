@@ -242,6 +242,16 @@ fn the_index_figures_draw_no_guide() {
         assert!(!cfg.tir_circle, "{id} draws the critical-angle guide");
         assert_eq!(orange(&figure(id)), 0, "{id}: orange pixels");
     }
+    // The control: the guide (`tir_circle`, still a user's option) drawn on
+    // lab-ior1.8 shows as over 100 orange pixels, every one on the cube.
+    let guided = figure_with("lab-ior1.8", |c| c.tir_circle = true);
+    let g = grey(&figure("lab-ior1.8"));
+    let px = guided.to_rgb8();
+    let ring: Vec<usize> = (0..guided.width * guided.height)
+        .filter(|&i| px[3 * i] as i32 - px[3 * i + 1] as i32 > 60 && px[3 * i + 1] as i32 - px[3 * i + 2] as i32 > 60)
+        .collect();
+    assert!(ring.len() > 100, "the guide draws {} orange px", ring.len());
+    assert!(ring.iter().all(|&i| g[i] > 0.0), "the guide drawn off the cube");
 }
 
 /// Pixels of the cube's faces in figure `id` (at its quick size), each
