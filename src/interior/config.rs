@@ -94,6 +94,12 @@ pub struct InteriorConfig {
     /// it at the critical angle asin(1/n): the edge of the circle of
     /// outcoming light (a drawn guide, not part of the report's model).
     pub tir_circle: bool,
+    /// Count the diffuse light of a light behind a translucent face only
+    /// where that light gets out through the face (inside the critical
+    /// circle), as the report counts its specular: a frosted face glows
+    /// inside the circle of outcoming light and not beyond it (a choice,
+    /// not the report's diffuse term; docs/physics.md §10).
+    pub diffuse_tir: bool,
 }
 
 impl InteriorConfig {
@@ -144,6 +150,7 @@ impl InteriorConfig {
             offset: 1e-4,
             bulb: 0.0,
             tir_circle: false,
+            diffuse_tir: false,
         }
     }
 }

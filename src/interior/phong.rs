@@ -40,6 +40,9 @@ pub struct Phong {
     pub atten: f32,
     pub light_color: Rgb,
     pub ambient: Rgb,
+    /// The diffuse of a light behind a translucent face only where that
+    /// light gets out through it (a choice, not the report's term).
+    pub diffuse_tir: bool,
 }
 
 /// A hit's colour split in two, because the report's fix composites the
@@ -69,7 +72,7 @@ pub fn shade(p: Vec3, n: Vec3, view: Vec3, light: Vec3, m: &Material, k: &Phong)
     let n_view = if n.dot(view) >= 0.0 { n } else { -n };
     let l = if d > 0.0 && d.is_finite() { to_light / d } else { n_view };
     let cos_beta = n_view.dot(l);
-    let diffuse = if m.translucent { cos_beta.abs() } else { cos_beta.max(0.0) };
+    let mut diffuse = if m.translucent { cos_beta.abs() } else { cos_beta.max(0.0) };
 
     let light_behind = cos_beta < 0.0;
     let cos_alpha = if !light_behind {
@@ -79,7 +82,13 @@ pub fn shade(p: Vec3, n: Vec3, view: Vec3, light: Vec3, m: &Material, k: &Phong)
         // Opposite sides: refract the light ray out toward the viewer.
         let light_inside = n.dot(to_light) < 0.0;
         let (n_from, n_to) = if light_inside { (m.ior, 1.0) } else { (1.0, m.ior) };
-        transmitted(-l, n, n_from, n_to).map(|t| t.dot(view))
+        let out = transmitted(-l, n, n_from, n_to);
+        // Snell's law gates the diffuse too when asked: beyond the critical
+        // circle r = d tan(asin(1/n)) no light crosses the face (§10).
+        if k.diffuse_tir && out.is_none() {
+            diffuse = 0.0;
+        }
+        out.map(|t| t.dot(view))
     } else {
         None
     };
@@ -100,7 +109,7 @@ mod tests {
         Material { color: Rgb::WHITE, alpha: 0.25, ior, translucent: true }
     }
 
-    const K: Phong = Phong { ka: 0.0, kd: 1.0, ks: 1.0, shininess: 16.0, atten: 0.0, light_color: Rgb::WHITE, ambient: Rgb::WHITE };
+    const K: Phong = Phong { ka: 0.0, kd: 1.0, ks: 1.0, shininess: 16.0, atten: 0.0, light_color: Rgb::WHITE, ambient: Rgb::WHITE, diffuse_tir: false };
 
     #[test]
     fn light_at_sphere_centre_is_normal_incidence_everywhere() {
@@ -139,6 +148,32 @@ mod tests {
             let view = out.unwrap_or(Vec3::new(0.3, 0.0, 1.0).normalize());
             let s = shade(p, Vec3::Z, view, light, &glass(n), &K);
             assert_eq!(s.specular.0.x > 0.0, r < radius, "r = {r}");
+        }
+    }
+
+    #[test]
+    fn the_gated_diffuse_glows_only_inside_the_critical_circle() {
+        // Face z = 0, light inside at depth d: with the gate, a face seen
+        // head-on has diffuse exactly where r < d tan(asin(1/n)) (the
+        // circle of outcoming light, with an edge); without it, everywhere.
+        let (d, n) = (0.5f32, 3.0f32);
+        let radius = d * (1.0 / n).asin().tan();
+        let light = Vec3::new(0.0, 0.0, -d);
+        let gated = Phong { ks: 0.0, diffuse_tir: true, ..K };
+        let plain = Phong { ks: 0.0, ..K };
+        for i in 0..300 {
+            let r = i as f32 / 300.0 * 3.0 * radius;
+            if (r - radius).abs() < 1e-3 * radius {
+                continue;
+            }
+            let p = Vec3::new(r * 0.8, -r * 0.6, 0.0);
+            let g = shade(p, Vec3::Z, Vec3::Z, light, &glass(n), &gated).lit.0.x;
+            assert_eq!(g > 0.0, r < radius, "r = {r}, circle {radius}: {g}");
+            // Inside, the edge is a step: at least cos(theta_c) of the full diffuse.
+            if r < radius {
+                assert!(g >= (1.0 - 1.0 / (n * n)).sqrt() - 1e-4, "r = {r}: {g}");
+            }
+            assert!(shade(p, Vec3::Z, Vec3::Z, light, &glass(n), &plain).lit.0.x > 0.0);
         }
     }
 

@@ -68,8 +68,16 @@ pub struct Tracer<'a> {
 
 impl<'a> Tracer<'a> {
     pub fn new(scene: &'a InteriorScene, accel: &'a Accel, cfg: &InteriorConfig) -> Self {
-        let phong =
-            Phong { ka: cfg.ka, kd: cfg.kd, ks: cfg.ks, shininess: cfg.shininess, atten: cfg.attenuation(), light_color: cfg.light_color, ambient: Rgb::WHITE };
+        let phong = Phong {
+            ka: cfg.ka,
+            kd: cfg.kd,
+            ks: cfg.ks,
+            shininess: cfg.shininess,
+            atten: cfg.attenuation(),
+            light_color: cfg.light_color,
+            ambient: Rgb::WHITE,
+            diffuse_tir: cfg.diffuse_tir,
+        };
         Tracer {
             scene,
             accel,

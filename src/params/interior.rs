@@ -336,6 +336,18 @@ pub static PARAMS: &[Param<InteriorConfig>] = &[
         ignored: |c| (c.ior <= 1.0).then(|| "below index 1 light from inside always gets out: there is no critical angle".to_string()),
     },
     Param {
+        key: "diffuse_tir",
+        aliases: &[],
+        section: SCENE,
+        help: "Count the diffuse light of the light behind a face only where that light gets out through it (inside the critical circle), as the specular is: a frosted face glows inside the circle of outcoming light (a choice, not the report's diffuse term)",
+        unit: "",
+        kind: Kind::Flag,
+        auto: "",
+        get: |c| Some(Value::Flag(c.diffuse_tir)),
+        set: |c, v| c.diffuse_tir = v.flag(),
+        ignored: |c| (c.ior <= 1.0).then(|| "below index 1 light from inside always gets out: there is no critical angle".to_string()),
+    },
+    Param {
         key: "spp",
         aliases: &[],
         section: SCENE,
