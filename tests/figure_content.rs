@@ -525,6 +525,52 @@ fn report_000_pictures_4_to_6_differ_where_their_captions_say() {
 }
 
 #[test]
+fn report_000_picture_5_strip_runs_yellow_orange_red_without_a_pink_band() {
+    // Over-exposed, the strip's red end (where the prism's dispersion is
+    // least, so its light is densest) rolled toward white through pink:
+    // AgX's log encoding lifts the blue the inset gives red light, so
+    // between yellow and red printed a salmon band (245, 154, 129),
+    // saturation 0.47. Every bright warm pixel (red the largest channel
+    // above 180, hue 0-60 degrees, not grey) keeps a saturation of at
+    // least 0.55 (measured: 67 such pixels at quick size at exposure
+    // 0.0075, none at 0.005, whose least is 0.62).
+    let p5 = prism_figure("css552-p5");
+    let (w, h) = (p5.0, p5.1);
+    let mut warm = 0;
+    let pale: Vec<[i32; 3]> = (0..h)
+        .flat_map(|y| (0..w).map(move |x| (x, y)))
+        .map(|(x, y)| rgb(&p5, x, y))
+        .filter(|&[r, g, b]| r > 180 && r >= g && g >= b && (r - b) * 5 > r)
+        .inspect(|_| warm += 1)
+        .filter(|&[r, _, b]| (r - b) * 100 < 55 * r)
+        .collect();
+    assert!(warm > 20, "the strip's yellow, orange and red: {warm} bright warm px");
+    assert!(pale.len() <= 2, "{} bright warm px paler than saturation 0.55 (a pink band), e.g. {:?}", pale.len(), pale.first());
+}
+
+#[test]
+fn report_000_picture_3_has_no_coloured_patches_on_the_walls() {
+    // The prism's faces send part of the beam back toward the lamp: slit
+    // images, white off the entry face and in colours from inside the
+    // glass, which landed as patches on the far wall behind the lamp and
+    // the camera (they go when the prism is taken away). On the lab's dark
+    // walls they stay under 20 levels: in the frame's left 40 % (the camera,
+    // the lamp and the wall behind them; the fan and the strip lie right of
+    // it) no pixel has channels more than 20 apart (measured 75 such px at
+    // quick size with light grey walls at exposure 0.0075, none now).
+    let p3 = prism_figure("css552-p3");
+    let (w, h) = (p3.0, p3.1);
+    let tinted = (0..h)
+        .flat_map(|y| (0..w * 2 / 5).map(move |x| (x, y)))
+        .filter(|&(x, y)| {
+            let c = rgb(&p3, x, y);
+            c.iter().max().unwrap() - c.iter().min().unwrap() > 20
+        })
+        .count();
+    assert!(tinted <= 3, "{tinted} tinted px on the left of Picture 3");
+}
+
+#[test]
 fn the_album_cover_has_no_stray_beams() {
     // pm-dark-side at quick size: above the prism's apex nothing is lit
     // (the beam rises from the lower left, the fan leaves down to the

@@ -191,17 +191,21 @@ const BENCH_SCREEN_DISTANCE: f64 = 1.6;
 /// exposure 0.0075), the strip's yellow-green middle rolling toward white
 /// while the screen around it stays mid grey.
 const WINDOW_POWER: f64 = 600.0;
+/// The walls' albedo: a dark grey, as an optics lab's walls are kept so
+/// that the light the prism's faces send back (a few per cent of the beam
+/// per face, in colours) leaves no bright patches on them.
+const BENCH_WALL_ALBEDO: f64 = 0.2;
 /// The height of the room's walls around the bench, m.
 const WALL_HEIGHT: f64 = 0.6;
 
 /// Pictures 3-6 as photographs of an optics bench would show them: a grey
 /// table; the prism on a white card on a dark post (a prism table), so
 /// the beam runs half the screen's height above the table; a lamp housing whose slit sends the white beam (1 cm x
-/// 3 cm here, wide enough to see as a patch on the screen) down the bench;
+/// 4 cm here, wide enough to see as a patch on the screen) down the bench;
 /// the beam's path shown by a thin haze, white up to the prism and a
 /// narrow fan of colours after it; a white screen standing on the table
 /// 1.6 m past the prism (`BENCH_SCREEN_DISTANCE`), 15 % wider than the
-/// strip; grey walls behind the screen and along the bench's far side, so
+/// strip; dark grey walls behind the screen and along the bench's far side, so
 /// the glass shows a room; the room lit from above, behind and the near
 /// side by a broad collimated light (daylight through a window: every
 /// photon lands where the camera looks, and the haze leaves it out). The
@@ -233,12 +237,12 @@ fn add_bench(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism) -> Result<
     *start += *dir * (0.3 - BENCH_LAMP_GAP);
     let start = *start;
     // The camera of Pictures 4-6: beside the lamp, 25 cm to the side of
-    // the beam and 15 cm above it, looking down the bench with a long lens
-    // (24 degrees across): the prism whole in the near left, seen a little
+    // the beam and 12 cm above it, looking down the bench with a long lens
+    // (20 degrees across): the prism whole in the near left, seen a little
     // from above so its top shows the three wedges; the screen whole at the
     // top right, the fan of colours reaching it from below the strip, not
     // across it.
-    let bench_cam = DVec3::new(-0.8, -0.25, 0.15);
+    let bench_cam = DVec3::new(-0.8, -0.25, 0.12);
     let (x0, x1) = (bench_cam.x - 0.5, strip_centre.x + 0.06);
     let (y0, y1) = (strip_centre.y.min(0.0) - 1.3, strip_centre.y.max(0.0) + 0.3);
     super::matte(scene, "table", DVec3::new(x0, y0, z), DVec3::new(x1 - x0, 0.0, 0.0), DVec3::new(0.0, y1 - y0, 0.0), [0.45; 3]);
@@ -267,11 +271,11 @@ fn add_bench(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism) -> Result<
     super::matte(scene, "lamp side", DVec3::new(bx - bd, by0, z), DVec3::new(bd, 0.0, 0.0), DVec3::new(0.0, 0.0, bh), housing);
     super::matte(scene, "lamp side", DVec3::new(bx - bd, by1, z), DVec3::new(0.0, 0.0, bh), DVec3::new(bd, 0.0, 0.0), housing);
     super::matte(scene, "lamp top", DVec3::new(bx - bd, by0, z + bh), DVec3::new(bd, 0.0, 0.0), DVec3::new(0.0, bw, 0.0), housing);
-    // The room's walls behind the screen and across the bench, light grey:
+    // The room's walls behind the screen and across the bench, dark grey:
     // what the prism's faces reflect and what is seen through them, so the
     // glass shows the room as a photograph's would, not black sky.
     // They reach down to the floor, a table's height (0.75 m) below.
-    let (wall, floor) = ([0.5; 3], z - 0.75);
+    let (wall, floor) = ([BENCH_WALL_ALBEDO; 3], z - 0.75);
     let up = DVec3::new(0.0, 0.0, WALL_HEIGHT + 0.75);
     super::matte(scene, "back wall", DVec3::new(x1, y0, floor), up, DVec3::new(0.0, y1 - y0, 0.0), wall);
     super::matte(scene, "far side wall", DVec3::new(x0, y1, floor), DVec3::new(x1 - x0, 0.0, 0.0), up, wall);
@@ -332,14 +336,14 @@ fn add_bench(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism) -> Result<
     let (cam, target, hfov): (DVec3, DVec3, f64) = match o.view {
         // Beside the lamp (`bench_cam`): the prism near, the strip on the
         // screen large beyond it.
-        View::Scene => (bench_cam, DVec3::new(0.35, 0.0, -0.02), 24.0),
+        View::Scene => (bench_cam, DVec3::new(0.45, 0.0, 0.0), 20.0),
         // Square on to the strip from 40 cm: the strip across the frame.
         View::Screen => (strip_centre - DVec3::new(0.4, 0.0, 0.0), strip_centre, 2.0 * (0.5 * 0.7 * sw / 0.4).atan().to_degrees()),
         // Above the bench, behind the lamp and to its near side: the camera
         // of Pictures 4-6, the lamp, the prism, the fan and the screen all
         // in view, the prism as large as a view of the whole bench allows
         // (it is 16 cm of a bench 2.5 m long).
-        View::Overview => (DVec3::new(-1.5, -1.25, 0.6), DVec3::new(-0.05, -0.05, -0.08), 46.0),
+        View::Overview => (DVec3::new(-1.5, -1.25, 0.6), DVec3::new(-0.05, -0.05, -0.08), 43.0),
     };
     if o.view == View::Overview {
         // That camera drawn where it stands: a grey body 8 x 5 x 5 cm on a
@@ -376,8 +380,9 @@ fn add_bench(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism) -> Result<
 
 /// The bench's slit, width and height, m: its white image on the screen
 /// a patch the camera of Pictures 4-6 reads (1 cm blurs the 19 cm strip
-/// by a twentieth of its length).
-const BENCH_SLIT: (f64, f64) = (0.01, 0.03);
+/// by a twentieth of its length; 4 cm tall, within the prism's 5 cm, so
+/// the strip is a band across the screen, not a line).
+const BENCH_SLIT: (f64, f64) = (0.01, 0.04);
 /// How far the lamp's slit stands before the prism's entry face, m.
 const BENCH_LAMP_GAP: f64 = 0.15;
 /// Faces an eye path through the bench's prism splits at (`World::
