@@ -268,7 +268,7 @@ fn picture_1_prints_sharp_copies_on_black() {
     // 599 nm copy's (the orange group's red end): the red and orange
     // copies stand apart in every leg row.
     let gap: Vec<f64> = (red + half as usize + 1..column(599.0) - half as usize).map(red_at).collect();
-    assert!(gap.iter().any(|&v| v == 0.0), "no black column between the 611 and 599 nm copies: {gap:?}");
+    assert!(gap.contains(&0.0), "no black column between the 611 and 599 nm copies: {gap:?}");
     // Speckle: printed pixels more than a quarter of white off their 3 x 3
     // neighbourhood's median, as a share of the lit pixels.
     let v = |x: usize, y: usize| at(x, y).max_element();
