@@ -10,8 +10,9 @@
 //! Report 000's scenes: `amici-screen`, a white slit beam (2 mm x 2 cm)
 //! through the prism onto a matte screen 2 m away, the rainbow strip
 //! (Picture 5; `--no-prism` gives Picture 4, `--no-dispersion` Picture 6);
-//! `amici-lamp`, the camera looks through the prism at a fluorescent tube
-//! 1 m away: one image of the tube per spectral line (Picture 1).
+//! `amici-lamp`, the camera looks through the prism at a twin-tube
+//! fluorescent lamp 30 m away: one image of the lamp per spectral line
+//! (Picture 1).
 
 use super::{glass_medium, light_spectrum, rotate_z, SceneKind, SceneOptions, View};
 use super::{Result, SceneError};
@@ -396,15 +397,18 @@ const BENCH_SPLIT_DEPTH: usize = 8;
 /// to outshine the strip.
 const BENCH_HAZE: f64 = 3.0;
 
-/// Picture 1: a compact fluorescent lamp across the room past the prism,
-/// and the camera just before the entry face looking back through the
-/// prism at it. The lamp is a twin-tube CFL, its two legs side by side as
-/// seen. Its width as seen through the prism (`LAMP_WIDTH` at
-/// `LAMP_DISTANCE`, 0.12 degrees) is about the gap between the orange
-/// (587 nm) and red (611 nm) copies with the 80 degree flint, the closest
-/// bright pair, so the copies stand apart; the phosphors' continuum, whose
-/// brightness at a point grows with the band of wavelengths one lamp's
-/// width spans, stays a few per cent of theirs.
+/// Picture 1: a compact fluorescent lamp down a hall past the prism, and
+/// the camera just before the entry face looking back through the prism
+/// at it. The lamp is a twin-tube CFL, its two legs side by side as seen.
+/// Its width as seen (`LAMP_WIDTH` at `LAMP_DISTANCE`, 0.057 degrees) is
+/// under half the gap between the red 611 nm copy and the weak 599 nm one
+/// with the 80 degree flint (0.117 degrees), so a dark column stands
+/// between the red copies and the orange ones (587-599 nm) even with each
+/// phosphor line's width smearing its copy; the Eu 615 nm copy, 0.037
+/// degrees from the 611 nm one, falls beside its left leg and leaves the
+/// gap between its legs open. The phosphors' continuum, whose brightness
+/// at a point grows with the band of wavelengths one lamp's width spans,
+/// stays a few per cent of the copies'.
 fn add_lamp(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism, design: &World, d_line: &ProbeRay) -> Result<()> {
     let x = d_line.exit_point.x + LAMP_DISTANCE;
     let spectrum = light_spectrum(o, "cfl-lines")?;
@@ -425,9 +429,13 @@ fn add_lamp(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism, design: &Wo
     // the red europium lines (`FRAME_NM`; where each appears, found by
     // tracing back through the prism), with 5 % to spare on each side. The
     // violet 404.7 nm image lies beyond the blue one, outside the frame: to
-    // the eye (the CIE observer) it is about 40 times fainter than the
-    // 435.8 nm image (half the power, a fifteenth of the blue response),
-    // black in any exposure that does not blow out the rest.
+    // the eye (the CIE observer) it is about 30 times fainter than the
+    // 435.8 nm image (half the power, a fifteenth of the blue response;
+    // its legs 1/32 of the blue copy's in linear blue, measured), black in
+    // any exposure that does not lift the continuum between the copies
+    // over the print's black point (6 times the figure's, where the
+    // violet copy first shows, prints the continuum as a haze); framing
+    // it would shrink every copy by a third for a black patch.
     let cam = DVec3::new(prism.parts[0][1].x - 0.03, 0.0, 0.0);
     let blue = lamp_image_angle(design, cam, x, FRAME_NM.0);
     let (Some(blue), Some(red)) = (blue, lamp_image_angle(design, cam, x, FRAME_NM.1)) else {
@@ -474,12 +482,12 @@ pub fn lamp_image_angle(design: &World, cam: DVec3, lamp_x: f64, nm: f64) -> Opt
 const FRAME_NM: (f64, f64) = (435.834, 640.0);
 
 /// How far the lamp stands past the prism's exit face, m.
-pub const LAMP_DISTANCE: f64 = 14.0;
+pub const LAMP_DISTANCE: f64 = 30.0;
 /// The lamp's width and height and its tube's diameter, m: a twin-tube
 /// ("2U") compact fluorescent lamp, two legs joined across the top.
 pub const LAMP_WIDTH: f64 = 0.030;
-const LAMP_HEIGHT: f64 = 0.13;
-const LAMP_TUBE: f64 = 0.0075;
+const LAMP_HEIGHT: f64 = 0.17;
+const LAMP_TUBE: f64 = 0.0085;
 
 /// The twin-tube lamp at distance `x` along the axis, seen from the side
 /// its legs stand in: as emitting rectangles facing -x (corner, edge
