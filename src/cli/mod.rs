@@ -659,7 +659,7 @@ fn run_interior(args: InteriorArgs) -> Result<()> {
     if !args.flag_mode() {
         known.max_trace = known.max_trace.max(1);
     }
-    args.params.check_used(&known).map_err(anyhow::Error::msg)?;
+    args.params.check_used(&known)?;
     crate::params::check_threads(args.params.config().threads).map_err(|e| anyhow::anyhow!("--threads: {e}"))?;
     if let Some(path) = &args.timing_csv {
         modes::interior::check_timing_csv(path).context("--timing-csv")?;
@@ -667,7 +667,7 @@ fn run_interior(args: InteriorArgs) -> Result<()> {
     let cfg = if args.flag_mode() {
         // Again with the output named: a .pfm ignores the tone.
         let cfg = args.flag_config()?;
-        args.params.check_used(&cfg).map_err(anyhow::Error::msg)?;
+        args.params.check_used(&cfg)?;
         cfg
     } else {
         use std::io::IsTerminal;
@@ -676,7 +676,7 @@ fn run_interior(args: InteriorArgs) -> Result<()> {
         let mut input = stdin.lock();
         let mut out = std::io::stdout();
         let cfg = crate::params::prompts::ask_all(&mut crate::params::prompts::Prompter::new(&mut input, &mut out, interactive), args.params.config())?;
-        args.params.check_used(&cfg).map_err(anyhow::Error::msg)?;
+        args.params.check_used(&cfg)?;
         cfg
     };
     Ok(modes::interior::run_to_files(&cfg, args.timing_csv.as_deref(), &mut |line| eprintln!("{line}"))?)
@@ -708,7 +708,7 @@ fn run_glass(args: GlassArgs) -> Result<()> {
 
 fn run_prism(args: PrismArgs) -> Result<()> {
     if let Some(PrismCommand::Trace { scene, wavelengths }) = args.probe {
-        scene.check_used(&scene.config()).map_err(anyhow::Error::msg)?;
+        scene.check_used(&scene.config())?;
         return write_stdout(&modes::trace::trace(&scene.config(), &wavelengths)?);
     }
     let mut cfg = args.params.config();
@@ -719,7 +719,7 @@ fn run_prism(args: PrismArgs) -> Result<()> {
     if args.quick {
         modes::prism::quick(&mut cfg, |k| args.params.has(k));
     }
-    args.params.check_used(&cfg).map_err(anyhow::Error::msg)?;
+    args.params.check_used(&cfg)?;
     let bars = crate::terminal::Bars::new();
     Ok(modes::prism::run_to_files(&cfg, args.timing_csv.as_deref(), &bars, &mut |line| bars.println(&line))?)
 }

@@ -11,6 +11,14 @@ use clap::parser::ValueSource;
 use clap::{Arg, ArgAction, ArgMatches, Command};
 use std::marker::PhantomData;
 
+/// A flag the run it is given to would ignore: refused, with why.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("--{flag}: {why}")]
+pub struct IgnoredFlag {
+    pub flag: String,
+    pub why: String,
+}
+
 /// A set of rows offered as flags.
 pub trait ParamSet: 'static {
     type Config: 'static;
@@ -93,9 +101,9 @@ impl<S: ParamSet> Given<S> {
 
     /// Refuses a flag that `c` (the run these flags describe) would ignore,
     /// naming it and why.
-    pub fn check_used(&self, c: &S::Config) -> Result<(), String> {
+    pub fn check_used(&self, c: &S::Config) -> Result<(), IgnoredFlag> {
         match params::first_ignored_change(S::params().into_iter().filter(|p| self.has(p.key)), c, &S::defaults()) {
-            Some((p, why)) => Err(format!("--{}: {why}", p.flag())),
+            Some((p, why)) => Err(IgnoredFlag { flag: p.flag(), why }),
             None => Ok(()),
         }
     }

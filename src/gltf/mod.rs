@@ -117,9 +117,57 @@ pub enum GltfError {
     #[error("{path}: not valid glTF 2.0: {why}")]
     Parse { path: String, why: String },
     #[error("{path}: {why}")]
-    Content { path: String, why: String },
+    Content { path: String, why: ContentError },
     #[error("{path}: cannot write: {why}")]
     Write { path: String, why: String },
+}
+
+/// What in a glTF file's content makes no world (the caller names the
+/// file).
+#[derive(Debug, thiserror::Error)]
+pub enum ContentError {
+    #[error("holds no scene")]
+    NoScene,
+    #[error("its node hierarchy is deeper than 64 levels (or loops)")]
+    Deep,
+    #[error("holds no mesh to render")]
+    NoMesh,
+    #[error("holds no triangle to render")]
+    NoTriangle,
+    #[error("mesh `{label}`: its positions (accessor {accessor}) are not three floats in a buffer")]
+    Positions { label: String, accessor: usize },
+    #[error("mesh `{0}` has a primitive without positions")]
+    NoPositions(String),
+    #[error("mesh `{label}`: its indices (accessor {accessor}) are not unsigned integers in a buffer")]
+    Indices { label: String, accessor: usize },
+    #[error("mesh `{0}` has a position that is not a finite number")]
+    NotFinite(String),
+    #[error("mesh `{label}`: index {index} is past its {vertices} vertices")]
+    Index { label: String, index: u32, vertices: usize },
+    #[error("has no light (no KHR_lights_punctual light, no emissive surface); add one with --gltf-light sun:X,Y,Z (a beam along X,Y,Z in the file's axes) or point:X,Y,Z")]
+    NoLight,
+    #[error("has no camera `{want}`; its cameras: {cameras}")]
+    NoCamera { want: String, cameras: String },
+    #[error("its camera's yfov {0} is not between 0 and pi radians")]
+    Yfov(f64),
+    #[error("its camera's node transform is degenerate")]
+    Degenerate,
+    #[error("extras.refract.photon_shares: {shares} shares for {lights} lights, or one not a non-negative number")]
+    Shares { shares: usize, lights: usize },
+    #[error("buffer {0} is the GLB's binary chunk, which the file lacks")]
+    NoBinaryChunk(usize),
+    #[error("buffer {0}: a data URI without a comma")]
+    DataUri(usize),
+    #[error("buffer {buffer}: its base64 data: {why}")]
+    Base64 { buffer: usize, why: base64::DecodeError },
+    #[error("buffer {buffer}: cannot read {}: {io}", .file.display())]
+    BufferFile { buffer: usize, file: std::path::PathBuf, io: std::io::Error },
+    #[error("buffer {buffer} holds {bytes} bytes but says {says}")]
+    BufferSize { buffer: usize, bytes: usize, says: usize },
+    #[error("buffer view {view} runs past the end of its buffer ({offset} + {length} > {bytes} bytes)")]
+    View { view: usize, offset: usize, length: usize, bytes: usize },
+    #[error("accessor {accessor} runs past the end of its buffer view ({need} > {length} bytes)")]
+    Accessor { accessor: usize, need: usize, length: usize },
 }
 
 #[cfg(test)]

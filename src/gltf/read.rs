@@ -19,7 +19,7 @@
 //! What the file holds and the world does not model is listed, not
 //! dropped in silence (`Imported::unmodelled`).
 
-use super::{from_gltf, glass, AddedLight, GlassChoice, GltfError, GltfOptions, LUMENS_PER_WATT};
+use super::{from_gltf, glass, AddedLight, ContentError, GlassChoice, GltfError, GltfOptions, LUMENS_PER_WATT};
 use crate::optics::glass as catalogue;
 use crate::optics::ior::IorModel;
 use crate::spectrum::Spectrum;
@@ -104,9 +104,9 @@ fn vec3(v: &Json, key: &str) -> Option<DVec3> {
 pub fn load(o: &GltfOptions, width: usize, height: usize) -> Result<Imported, GltfError> {
     let path = &o.path;
     let name = path.display().to_string();
-    let content = |why: String| GltfError::Content { path: name.clone(), why };
+    let content = |why: ContentError| GltfError::Content { path: name.clone(), why };
     let (doc, buffers) = open(path)?;
-    let scene = doc.default_scene().or_else(|| doc.scenes().next()).ok_or_else(|| content("holds no scene".into()))?;
+    let scene = doc.default_scene().or_else(|| doc.scenes().next()).ok_or_else(|| content(ContentError::NoScene))?;
     let nodes = scene_nodes(&scene).map_err(content)?;
     let mut g = Gather { media: vec![Medium::Air], ..Default::default() };
     read_meshes(&mut g, &nodes, &buffers, o.glass).map_err(content)?;
@@ -127,14 +127,14 @@ pub fn load(o: &GltfOptions, width: usize, height: usize) -> Result<Imported, Gl
 /// to lie inside its buffer (what the reader would not survive).
 fn open(path: &Path) -> Result<(gltf::Gltf, Vec<Vec<u8>>), GltfError> {
     let name = path.display().to_string();
-    let content = |why: String| GltfError::Content { path: name.clone(), why };
+    let content = |why: ContentError| GltfError::Content { path: name.clone(), why };
     let bytes = std::fs::read(path).map_err(|e| GltfError::Io { path: name.clone(), why: e.to_string() })?;
     let doc = gltf::Gltf::from_slice(&bytes).map_err(|e| GltfError::Parse { path: name.clone(), why: e.to_string().replace('\n', " ") })?;
     let buffers = read_buffers(&doc, path).map_err(content)?;
     for v in doc.views() {
         let len = buffers[v.buffer().index()].len();
         if v.offset() + v.length() > len {
-            return Err(content(format!("buffer view {} runs past the end of its buffer ({} + {} > {len} bytes)", v.index(), v.offset(), v.length())));
+            return Err(content(ContentError::View { view: v.index(), offset: v.offset(), length: v.length(), bytes: len }));
         }
     }
     for a in doc.accessors() {
@@ -142,7 +142,7 @@ fn open(path: &Path) -> Result<(gltf::Gltf, Vec<Vec<u8>>), GltfError> {
             let stride = v.stride().unwrap_or(a.size());
             let need = if a.count() == 0 { 0 } else { a.offset() + (a.count() - 1) * stride + a.size() };
             if need > v.length() {
-                return Err(content(format!("accessor {} runs past the end of its buffer view ({need} > {} bytes)", a.index(), v.length())));
+                return Err(content(ContentError::Accessor { accessor: a.index(), need, length: v.length() }));
             }
         }
     }
@@ -150,10 +150,10 @@ fn open(path: &Path) -> Result<(gltf::Gltf, Vec<Vec<u8>>), GltfError> {
 }
 
 /// Every node of the scene with its world matrix (glTF's axes).
-fn scene_nodes<'a>(scene: &gltf::Scene<'a>) -> Result<Vec<(gltf::Node<'a>, DMat4)>, String> {
-    fn walk<'a>(n: gltf::Node<'a>, parent: DMat4, depth: usize, out: &mut Vec<(gltf::Node<'a>, DMat4)>) -> Result<(), String> {
+fn scene_nodes<'a>(scene: &gltf::Scene<'a>) -> Result<Vec<(gltf::Node<'a>, DMat4)>, ContentError> {
+    fn walk<'a>(n: gltf::Node<'a>, parent: DMat4, depth: usize, out: &mut Vec<(gltf::Node<'a>, DMat4)>) -> Result<(), ContentError> {
         if depth > 64 {
-            return Err("its node hierarchy is deeper than 64 levels (or loops)".into());
+            return Err(ContentError::Deep);
         }
         let m = parent * DMat4::from_cols_array_2d(&n.transform().matrix().map(|c| c.map(f64::from)));
         out.push((n.clone(), m));
@@ -171,7 +171,7 @@ fn scene_nodes<'a>(scene: &gltf::Scene<'a>) -> Result<Vec<(gltf::Node<'a>, DMat4
 
 /// Every mesh of the scene as faces and spheres of `g`, their materials
 /// read once each.
-fn read_meshes(g: &mut Gather, nodes: &[(gltf::Node, DMat4)], buffers: &[Vec<u8>], glass: GlassChoice) -> Result<(), String> {
+fn read_meshes(g: &mut Gather, nodes: &[(gltf::Node, DMat4)], buffers: &[Vec<u8>], glass: GlassChoice) -> Result<(), ContentError> {
     // The scene's size, for rounding shared corners.
     let mut lo = DVec3::splat(f64::INFINITY);
     let mut hi = DVec3::splat(f64::NEG_INFINITY);
@@ -193,7 +193,7 @@ fn read_meshes(g: &mut Gather, nodes: &[(gltf::Node, DMat4)], buffers: &[Vec<u8>
         }
     }
     if meshes.is_empty() {
-        return Err("holds no mesh to render".into());
+        return Err(ContentError::NoMesh);
     }
     g.quantum = (hi - lo).max_element().max(1e-6) * 1e-7;
     let mut mats: HashMap<Option<usize>, Mat> = HashMap::new();
@@ -216,14 +216,22 @@ fn read_meshes(g: &mut Gather, nodes: &[(gltf::Node, DMat4)], buffers: &[Vec<u8>
         }
     }
     if g.faces.is_empty() && g.spheres.is_empty() {
-        return Err("holds no triangle to render".into());
+        return Err(ContentError::NoTriangle);
     }
     Ok(())
 }
 
 /// One primitive of a mesh placed by `m`: an analytic sphere refract
 /// wrote, or its triangles (degenerate ones dropped).
-fn read_primitive(g: &mut Gather, prim: &gltf::Primitive, label: &str, m: &DMat4, mat: &Mat, sphere: Option<&Json>, buffers: &[Vec<u8>]) -> Result<(), String> {
+fn read_primitive(
+    g: &mut Gather,
+    prim: &gltf::Primitive,
+    label: &str,
+    m: &DMat4,
+    mat: &Mat,
+    sphere: Option<&Json>,
+    buffers: &[Vec<u8>],
+) -> Result<(), ContentError> {
     if prim.mode() != gltf::mesh::Mode::Triangles {
         g.note(format!("{:?} primitives (only triangles are read)", prim.mode()).to_lowercase());
         return Ok(());
@@ -245,28 +253,28 @@ fn read_primitive(g: &mut Gather, prim: &gltf::Primitive, label: &str, m: &DMat4
     use gltf::accessor::{DataType, Dimensions};
     match prim.get(&gltf::Semantic::Positions) {
         Some(a) if a.dimensions() == Dimensions::Vec3 && a.data_type() == DataType::F32 && a.view().is_some() => {}
-        Some(a) => return Err(format!("mesh `{label}`: its positions (accessor {}) are not three floats in a buffer", a.index())),
-        None => return Err(format!("mesh `{label}` has a primitive without positions")),
+        Some(a) => return Err(ContentError::Positions { label: label.into(), accessor: a.index() }),
+        None => return Err(ContentError::NoPositions(label.into())),
     }
     if let Some(a) = prim.indices() {
         if a.dimensions() != Dimensions::Scalar || !matches!(a.data_type(), DataType::U8 | DataType::U16 | DataType::U32) || a.view().is_none() {
-            return Err(format!("mesh `{label}`: its indices (accessor {}) are not unsigned integers in a buffer", a.index()));
+            return Err(ContentError::Indices { label: label.into(), accessor: a.index() });
         }
     }
     let reader = prim.reader(|b| buffers.get(b.index()).map(Vec::as_slice));
     let Some(positions) = reader.read_positions() else {
-        return Err(format!("mesh `{label}` has a primitive without positions"));
+        return Err(ContentError::NoPositions(label.into()));
     };
     let pos: Vec<DVec3> = positions.map(|p| from_gltf(m.transform_point3(DVec3::from(p.map(f64::from))))).collect();
     if pos.iter().any(|p| !p.is_finite()) {
-        return Err(format!("mesh `{label}` has a position that is not a finite number"));
+        return Err(ContentError::NotFinite(label.into()));
     }
     let idx: Vec<u32> = match reader.read_indices() {
         Some(i) => i.into_u32().collect(),
         None => (0..pos.len() as u32).collect(),
     };
     if let Some(bad) = idx.iter().find(|&&i| i as usize >= pos.len()) {
-        return Err(format!("mesh `{label}`: index {bad} is past its {} vertices", pos.len()));
+        return Err(ContentError::Index { label: label.into(), index: *bad, vertices: pos.len() });
     }
     let flip = m.determinant() < 0.0;
     let tris: Vec<[DVec3; 3]> = idx
@@ -305,7 +313,7 @@ fn bounding_sphere(g: &Gather) -> (DVec3, f64) {
 
 /// The file's `KHR_lights_punctual` lights and the one the command line
 /// adds; a scene left with no light is refused.
-fn add_lights(g: &mut Gather, nodes: &[(gltf::Node, DMat4)], o: &GltfOptions, bound: (DVec3, f64)) -> Result<(), String> {
+fn add_lights(g: &mut Gather, nodes: &[(gltf::Node, DMat4)], o: &GltfOptions, bound: (DVec3, f64)) -> Result<(), ContentError> {
     for (n, m) in nodes {
         if let Some(l) = n.light() {
             add_light(g, o, &l, m, n.extras(), bound);
@@ -327,9 +335,7 @@ fn add_lights(g: &mut Gather, nodes: &[(gltf::Node, DMat4)], o: &GltfOptions, bo
         g.lights.push((order, light, None));
     }
     if g.lights.is_empty() {
-        return Err(
-            "has no light (no KHR_lights_punctual light, no emissive surface); add one with --gltf-light sun:X,Y,Z (a beam along X,Y,Z in the file's axes) or point:X,Y,Z".into(),
-        );
+        return Err(ContentError::NoLight);
     }
     Ok(())
 }
@@ -344,13 +350,13 @@ fn camera(
     (centre, radius): (DVec3, f64),
     width: usize,
     height: usize,
-) -> Result<(Camera, Option<f64>), String> {
+) -> Result<(Camera, Option<f64>), ContentError> {
     let cams: Vec<(String, gltf::Camera, DMat4)> =
         nodes.iter().filter_map(|(n, m)| n.camera().map(|c| (n.name().unwrap_or_default().to_string(), c, *m))).collect();
     let chosen = match want {
         Some(want) => Some(cams.iter().find(|(node, c, _)| c.name() == Some(want) || node == want).ok_or_else(|| {
             let names: Vec<String> = cams.iter().map(|(node, c, _)| c.name().unwrap_or(node).to_string()).collect();
-            format!("has no camera `{want}`; its cameras: {}", if names.is_empty() { "none".into() } else { names.join(", ") })
+            ContentError::NoCamera { want: want.into(), cameras: if names.is_empty() { "none".into() } else { names.join(", ") } }
         })?),
         None => cams.first(),
     };
@@ -359,13 +365,13 @@ fn camera(
             let aspect = p.aspect_ratio().map(f64::from).filter(|a| a.is_finite() && *a > 0.0);
             let yfov = f64::from(p.yfov());
             if !(yfov > 0.0 && yfov < std::f64::consts::PI) {
-                return Err(format!("its camera's yfov {yfov} is not between 0 and pi radians"));
+                return Err(ContentError::Yfov(yfov));
             }
             let pos = from_gltf(m.transform_point3(DVec3::ZERO));
             let forward = from_gltf(m.transform_vector3(DVec3::NEG_Z)).normalize();
             let up = from_gltf(m.transform_vector3(DVec3::Y)).normalize();
             if !(forward.is_finite() && up.is_finite() && forward.cross(up).length() > 1e-9) {
-                return Err("its camera's node transform is degenerate".into());
+                return Err(ContentError::Degenerate);
             }
             Ok((Camera::look_at(pos, pos + forward, up, yfov.to_degrees(), width, height), aspect))
         }
@@ -438,7 +444,7 @@ fn assemble(g: &mut Gather, path: &Path, camera: Camera, width: usize, height: u
 }
 
 /// The photon mapper's settings refract wrote into the scene's extras.
-fn settings(w: &mut World, r: &Json, added: bool) -> Result<(), String> {
+fn settings(w: &mut World, r: &Json, added: bool) -> Result<(), ContentError> {
     if let Some(b) = r.get("bounces").and_then(Json::as_u64) {
         w.bounces = b.min(64) as u32;
     }
@@ -462,7 +468,7 @@ fn settings(w: &mut World, r: &Json, added: bool) -> Result<(), String> {
             shares.push(shares.iter().sum::<f64>() / shares.len().max(1) as f64);
         }
         if shares.len() != w.lights.len() || shares.iter().any(|x| !(x.is_finite() && *x >= 0.0)) || shares.iter().sum::<f64>() <= 0.0 {
-            return Err(format!("extras.refract.photon_shares: {} shares for {} lights, or one not a non-negative number", shares.len(), w.lights.len()));
+            return Err(ContentError::Shares { shares: shares.len(), lights: w.lights.len() });
         }
         w.photon_shares = Some(shares);
     }
@@ -474,23 +480,23 @@ fn settings(w: &mut World, r: &Json, added: bool) -> Result<(), String> {
 
 /// The buffers' bytes: the GLB's binary chunk, a data URI, or a file
 /// beside the glTF.
-fn read_buffers(doc: &gltf::Gltf, path: &Path) -> Result<Vec<Vec<u8>>, String> {
+fn read_buffers(doc: &gltf::Gltf, path: &Path) -> Result<Vec<Vec<u8>>, ContentError> {
     use base64::Engine;
     let mut out = Vec::new();
     for b in doc.buffers() {
         let data = match b.source() {
-            gltf::buffer::Source::Bin => doc.blob.clone().ok_or_else(|| format!("buffer {} is the GLB's binary chunk, which the file lacks", b.index()))?,
+            gltf::buffer::Source::Bin => doc.blob.clone().ok_or(ContentError::NoBinaryChunk(b.index()))?,
             gltf::buffer::Source::Uri(uri) if uri.starts_with("data:") => {
-                let (_, text) = uri.split_once(',').ok_or_else(|| format!("buffer {}: a data URI without a comma", b.index()))?;
-                base64::engine::general_purpose::STANDARD.decode(text).map_err(|e| format!("buffer {}: its base64 data: {e}", b.index()))?
+                let (_, text) = uri.split_once(',').ok_or(ContentError::DataUri(b.index()))?;
+                base64::engine::general_purpose::STANDARD.decode(text).map_err(|why| ContentError::Base64 { buffer: b.index(), why })?
             }
             gltf::buffer::Source::Uri(uri) => {
                 let file = path.parent().unwrap_or(Path::new("")).join(percent_decode(uri));
-                std::fs::read(&file).map_err(|e| format!("buffer {}: cannot read {}: {e}", b.index(), file.display()))?
+                std::fs::read(&file).map_err(|io| ContentError::BufferFile { buffer: b.index(), file: file.clone(), io })?
             }
         };
         if data.len() < b.length() {
-            return Err(format!("buffer {} holds {} bytes but says {}", b.index(), data.len(), b.length()));
+            return Err(ContentError::BufferSize { buffer: b.index(), bytes: data.len(), says: b.length() });
         }
         out.push(data);
     }

@@ -2,8 +2,9 @@
 //! glTF 2.0 file. The scene is built from the prism mode's parameters as a
 //! render would build it, so what is exported is what renders.
 
+use super::error::ModeError;
 use super::prism::Prism;
-use super::{ModeError, Result};
+use super::Result;
 use crate::names::Named;
 use crate::scenes::{examples, SceneKind};
 use std::path::Path;

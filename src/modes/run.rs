@@ -2,7 +2,7 @@
 //! run gives back (its typed [`Record`], its [`Frame`], its report), with
 //! the mesh cache a sweep shares over its runs.
 
-use super::ModeError as Error;
+use super::error::ModeError as Error;
 use crate::image_io::ImageFormat;
 use crate::mesh::source::MeshSource;
 use crate::mesh::Mesh;
