@@ -4,14 +4,15 @@
 //!
 //! - `sphere-arealight`: a glass sphere hanging before a spherical
 //!   black-body light, slightly off centre and hidden behind it: the
-//!   sphere shows the light as an off-centre patch, violet-blue-fringed on
+//!   sphere shows the light, magnified, as an off-centre patch, violet-blue-fringed on
 //!   the edge toward the sphere's centre and orange-red on the outer one
 //!   (blue bends more, so its image of the light lies nearer the centre;
 //!   docs/physics.md §22), against a glowing checkerboard that shows the
 //!   glass itself, inverted in it with every edge fringed the same way.
 //! - `sphere-metal`: the sphere before a polished, neutral metal plate (a
-//!   grey mirror) that reflects a white strip softbox: the sphere shows the
-//!   band inverted, fringed blue inside and yellow to red outside; with no
+//!   grey mirror) that reflects a window and a white strip softbox: the
+//!   sphere shows the strip's band inverted, fringed blue inside and yellow
+//!   to red outside; with no
 //!   colour in the plate or the lights, the colour is the dispersion.
 //! - `spheres-final`: where the wavelength effects show at a glance: a
 //!   white beam through a hole in a card onto a glass sphere, which sends
@@ -60,25 +61,28 @@ fn area_light(s: &mut World, o: &SceneOptions) -> Result<()> {
         glass_sphere(s, "glass sphere", DVec3::new(3.0, 0.0, 0.0), 0.5);
     }
     // The sphere "hanging in front of a spherical area light source,
-    // which is slightly off center" (report 001): a 6500 K black
-    // body of 15 cm radius, 1.2 m behind the sphere and 20 degrees
-    // up and to the left of its axis, so that from the camera it is
-    // hidden behind the sphere (3.6-7.8 degrees off the camera's
-    // axis; the sphere covers 9.6) and shows only through it, as an
-    // off-centre patch down and to the right, fringed violet-blue
-    // on the edge toward the sphere's centre and orange-red on the
-    // outer one (docs/physics.md §22). The fringes' width grows with
-    // the patch's distance from the sphere's centre (the index
-    // changes the sphere's power, so the image of an edge a distance
-    // b from the centre moves by about b dn / (n (n - 1))): 20 degrees
-    // puts the patch at about 0.7 of the radius, still hidden.
-    let (angle, distance, radius) = (20f64.to_radians(), 1.2, 0.15);
+    // which is slightly off center" (report 001): a 6500 K black body
+    // of 10 cm radius, 0.75 m behind the sphere's centre (1.5 of its
+    // radius) and 0.2 m up and to the left of its axis, so that from the
+    // camera it is hidden behind the sphere and shows only through it, as
+    // an off-centre patch down and to the right, fringed violet-blue on
+    // the edge toward the sphere's centre and orange-red on the outer one
+    // (docs/physics.md §22). An edge at a distance d behind the centre
+    // appears where the ray through the glass reaches it; the colours'
+    // images of it lie apart by (d dD/dn) dn / (d dD/db - 1), D the
+    // deviation and b the height on the sphere: close behind the sphere
+    // (d near 1.5 radii, just beyond the ball's focus) the denominator is
+    // small and the edge's red and violet images lie about 4 % of the
+    // radius apart (400-700 nm, N-SF11), against under 3 % for a light
+    // far behind it: fringes about 8 px wide at 1:1 (docs/physics.md §22).
+    let (behind, off, radius) = (0.75f64, 0.1, 0.07);
+    let (distance, angle) = (behind.hypot(off), (off / behind).atan());
     let dir = DVec3::new(angle.cos(), angle.sin() * 0.8, angle.sin() * 0.6);
     sphere_light(s, o, DVec3::new(3.0, 0.0, 0.0) + distance * dir, radius, "blackbody:6500")?;
     // So that the glass itself is seen (a clear sphere before black
     // shows only what it refracts): a light box 1.6 m behind the
-    // sphere, a checkerboard of 30 cm squares glowing at 10 % of the
-    // lamp's radiance (a dimmer plane behind them, at 15 % of that,
+    // sphere, a checkerboard of 30 cm squares glowing at 1.6 % of the
+    // lamp's radiance, dim so the light stays the subject (a dimmer plane behind them, at 15 % of that,
     // makes the dark squares), offset half a square from the axis.
     // The sphere shows it inverted and minified, every edge of it
     // fringed like the lamp's; a photographer's backlit pattern.
@@ -86,7 +90,7 @@ fn area_light(s: &mut World, o: &SceneOptions) -> Result<()> {
     // noise outside the glass. Where rays bent near the rim miss the
     // box (3.6 m square), the ball shows a dark ring as real ones do.
     let (wall, tile, n) = (4.6, 0.3, 6i32);
-    let bright = 0.1 * tile * tile / (4.0 * std::f64::consts::PI * radius * radius);
+    let bright = 0.016 * tile * tile / (4.0 * std::f64::consts::PI * radius * radius);
     let half = n as f64 * tile;
     let light = s.lights.len();
     s.faces.push(Face::rect(
@@ -147,37 +151,51 @@ fn metal_plate(s: &mut World, o: &SceneOptions) -> Result<()> {
     if !o.no_prism {
         glass_sphere(s, "glass sphere", DVec3::new(3.0, 0.0, 0.0), 0.5);
     }
-    // A polished, neutral metal plate 3 m by 2.2 m, 2 m behind the
-    // sphere: a mirror of flat reflectance 0.9 (polished aluminium; grey,
-    // so it adds no colour), turned 20 degrees about the vertical so
-    // the camera sees the sphere's reflection beside it, a sign of a
-    // mirror.
+    // A polished, neutral metal plate 2.6 m by 1.9 m, 2 m behind the
+    // sphere and square to the camera's axis: a mirror of flat
+    // reflectance 0.9 (polished aluminium; grey, so it adds no colour).
+    // Its edges stand in the frame against a near-black wall, and its
+    // reflection of the sphere hides behind the sphere itself.
     let c = DVec3::new(5.0, 0.0, 0.0);
-    let (w, h) = (3.0, 2.2);
-    let across = super::rotate_z(DVec3::new(0.0, -w, 0.0), -20f64.to_radians());
+    let (w, h) = (2.6, 1.9);
     s.faces.push(Face::rect(
         "metal plate",
-        c - 0.5 * across + DVec3::new(0.0, 0.0, -0.5 * h),
-        across,
+        c + DVec3::new(0.0, 0.5 * w, -0.5 * h),
+        DVec3::new(0.0, -w, 0.0),
         DVec3::new(0.0, 0.0, h),
         Surface::Mirror { reflectance: 0.9 },
     ));
     // The room, all glowing surfaces (no matte surface, no photons, no
-    // sampling noise outside the glass): a dark wall behind the plate,
-    // seen round its edges (1 % of the softbox's radiance), and behind
-    // the camera, reflected in the plate, a dim wall (3 %) with a white
-    // strip softbox (6500 K black body) across it, high enough (22 to 33
-    // degrees up, from the sphere) that the glass does not show it by
-    // one reflection inside (a faint, grainy copy: Fresnel's few per
-    // cent, drawn at random) but only by refraction, as the plate shows
-    // it: a white band with sharp edges, which the sphere shows
-    // inverted, fringed blue on the edge toward its centre and yellow to
-    // red on the outer one (docs/physics.md §22).
-    glow(s, o, "back wall", [DVec3::new(7.0, 6.0, -4.0), DVec3::new(0.0, -12.0, 0.0), DVec3::new(0.0, 0.0, 8.0)], 0.01)?;
-    glow(s, o, "front wall", [DVec3::new(-3.0, -30.0, -6.0), DVec3::new(0.0, 60.0, 0.0), DVec3::new(0.0, 0.0, 12.0)], 0.03)?;
-    glow(s, o, "softbox", [DVec3::new(-2.9, -10.0, 2.2), DVec3::new(0.0, 20.0, 0.0), DVec3::new(0.0, 0.0, 1.3)], 1.0)?;
+    // sampling noise outside the glass): a near-black wall behind the
+    // plate, seen round its edges (0.4 % of the lights' radiance), and
+    // behind the camera, reflected in the plate, a dim wall (5 %), a
+    // window of six panes (6500 K black bodies) high on the left, which the plate
+    // shows in its upper left corner cut by its edge, as a mirror does,
+    // and over it a white strip softbox across the room. Both are high
+    // and to the side (more than 22 degrees off the axis, from the
+    // sphere) so that the glass does not show them by one reflection
+    // inside (a faint, grainy copy: Fresnel's few per cent, drawn at
+    // random) but only by refraction, as the plate shows them: the
+    // sphere shows the plate's light inverted, the strip as a white band
+    // fringed blue on the edge toward its centre and yellow to red on
+    // the outer one, the window as a small inverted window, each bar
+    // fringed the same way (docs/physics.md §22).
+    glow(s, o, "back wall", [DVec3::new(7.0, 6.0, -4.0), DVec3::new(0.0, -12.0, 0.0), DVec3::new(0.0, 0.0, 8.0)], 0.004)?;
+    let strip = 2.2;
+    glow(s, o, "front wall", [DVec3::new(-3.0, -30.0, -6.0), DVec3::new(0.0, 60.0, 0.0), DVec3::new(0.0, 0.0, 12.0)], 0.05)?;
+    // The window: 2.4 m by 1.8 m centred 2.3 m left and 1.25 m up, 12 cm bars.
+    let (wy, wz, ww, wh, bar, cols, rows) = (2.3, 1.25, 2.4, 1.8, 0.12, 3, 2);
+    let (pw, ph) = ((ww - bar * (cols + 1) as f64) / cols as f64, (wh - bar * (rows + 1) as f64) / rows as f64);
+    for i in 0..cols {
+        for j in 0..rows {
+            let y = wy + ww / 2.0 - bar - i as f64 * (pw + bar) - pw;
+            let z = wz - wh / 2.0 + bar + j as f64 * (ph + bar);
+            glow(s, o, "window pane", [DVec3::new(-2.9, y, z), DVec3::new(0.0, pw, 0.0), DVec3::new(0.0, 0.0, ph)], 1.0)?;
+        }
+    }
+    glow(s, o, "softbox", [DVec3::new(-2.9, -10.0, strip), DVec3::new(0.0, 20.0, 0.0), DVec3::new(0.0, 0.0, 1.3)], 1.0)?;
     // A 26 degree field: the sphere large (its fringes scale with its
-    // image, docs/physics.md §22), whole, its reflection beside it.
+    // image, docs/physics.md §22), whole, the plate's edges in view.
     s.camera = Camera::look_at(DVec3::ZERO, DVec3::new(3.0, 0.0, 0.0), DVec3::Z, 26.0, o.width, o.height);
     Ok(())
 }
