@@ -176,9 +176,11 @@ pub fn build(o: &SceneOptions) -> Result<World> {
                     dir,
                     u,
                     v: DVec3::Z,
-                    // 8 mm wide and 6 cm tall (a line laser's sheet): the
-                    // spectrum it paints is a band, not a hairline.
-                    half: DVec2::new(0.004, 0.03),
+                    // 2.4 cm wide and 6 cm tall (a line laser's sheet): the
+                    // spectrum it paints is a band, not a hairline, and
+                    // each point of it mixes a few nanometres more (at 8
+                    // mm its hues changed in steps).
+                    half: DVec2::new(0.012, 0.03),
                     disc: false,
                     polarisation: Some(Polarisation::P),
                 },
@@ -187,8 +189,16 @@ pub fn build(o: &SceneOptions) -> Result<World> {
             });
             // A thin haze (as chalk dust or smoke in a lab) shows the beam on
             // its way to the prism and the fan beyond it.
-            s.haze = 0.05;
-            // A dim lamp in the ceiling so the room shows round the fan.
+            // 0.8 per metre (a choice; at 0.05 the beam was a hundredth of
+            // the band it paints, and no exposure showed both).
+            s.haze = 0.8;
+            // A lamp in the ceiling so the room shows round the fan, 60
+            // times the laser's power (a choice): the band of spectrum the
+            // fan paints, exposed so that it rolls only a little toward
+            // white (`scenes/pm-laser-prism.toml`), is then about 25 times
+            // as bright as the walls, as a prism's spectrum is in a lit
+            // room, and not 1500 times (at 1.2, the room showed only when
+            // the band was blown out into flat blocks).
             let light = s.lights.len();
             s.faces.push(Face::rect(
                 "ceiling lamp",
@@ -201,8 +211,11 @@ pub fn build(o: &SceneOptions) -> Result<World> {
                 name: "ceiling lamp".into(),
                 emission: Emission::Area { face: s.faces.len() - 1 },
                 spectrum: Spectrum::light("d65")?,
-                power: 1.2,
+                power: 60.0,
             });
+            // The photons shared as when the lamp was 1.2 times the laser:
+            // the laser's fan keeps its share (power would give it 2 %).
+            s.photon_shares = Some(vec![1.0, 1.2]);
         }
     }
     s.probe = (probe_from, dir);
