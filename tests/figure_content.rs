@@ -1171,3 +1171,44 @@ fn the_white_lasers_spectrum_is_a_band_on_the_back_wall() {
     assert!(tall >= 8, "the spectrum on the back wall is {tall} px tall (a hairline)");
     assert!(long >= 50, "the spectrum on the back wall is {long} px long");
 }
+
+#[test]
+fn the_lasers_band_on_the_wall_is_a_smooth_spectrum_with_a_red_end() {
+    // pm-laser-prism at quick size, as shown: along the band on the back
+    // wall, from where 430 nm lands to where 660 nm does, no run of more
+    // than 3 pixels clipped at two edges of the gamut (a channel at 250 or
+    // more and another at 5 or less: the colours of flat blocks; at the
+    // old exposure, desaturated, 16 and more in a row), and at 660 nm a
+    // red (R at least 100 and at least twice G and B), not bleached toward
+    // pink or white (at that exposure under AgX).
+    let s = SceneFile::load(&repo("scenes/pm-laser-prism.toml"), true).unwrap();
+    let cfg = refract::experiment::params::prism_config(&s.params).unwrap();
+    let scene = refract::scenes::build(&cfg.scene).unwrap();
+    let at = |nm: f64| {
+        let p = refract::world::probe::probe(&scene, nm);
+        let start = p.exit_point + p.exit_dir * 1e-9;
+        let hit = scene.intersect(start, p.exit_dir, None).expect("the fan reaches a wall");
+        assert_eq!(scene.name(hit.face), "back wall");
+        scene.camera.project(start + p.exit_dir * hit.t).expect("in view")
+    };
+    let (blue, red) = (at(430.0), at(660.0));
+    let r = refract::spectral::render_world(&cfg, &scene, &refract::progress::Silent).unwrap();
+    let w = r.render.image.width;
+    let img = r.render.image.to_srgb8(r.exposure, cfg.gamut);
+    let px = |p: glam::DVec2| {
+        let i = (p.y as usize * w + p.x as usize) * 3;
+        [img[i] as i32, img[i + 1] as i32, img[i + 2] as i32]
+    };
+    let steps = (red - blue).length().ceil() as usize;
+    let (mut run, mut longest) = (0, 0);
+    for k in 0..=steps {
+        let c = px(blue + (red - blue) * (k as f64 / steps as f64));
+        let clipped = c.iter().any(|&v| v >= 250) && c.iter().any(|&v| v <= 5);
+        run = if clipped { run + 1 } else { 0 };
+        longest = longest.max(run);
+    }
+    let end = px(red);
+    eprintln!("the band: {steps} px from 430 to 660 nm, its longest clipped run {longest} px; at 660 nm {end:?}");
+    assert!(longest <= 3, "the band prints a clipped block {longest} px long");
+    assert!(end[0] >= 100 && end[0] >= 2 * end[1] && end[0] >= 2 * end[2], "660 nm is not red: {end:?}");
+}

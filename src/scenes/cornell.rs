@@ -95,18 +95,20 @@ pub fn build(o: &SceneOptions) -> Result<World> {
         }
         SceneKind::CornellMirrorTube => {
             // A square mirror tube 2.5 cm across and 45 cm long along the
-            // light's way into the prism, closed by a mirror behind a small
-            // frosted bulb (a sphere 1.6 cm across). Its mirrors make a
-            // lattice of images of the bulb, a tube's width apart; each
-            // lights the room through the tube's mouth, and neighbouring
-            // images' beams overlap in strips as wide as the mouth. With a
-            // bare point in a tube 8 cm across those strips drew a lattice
-            // of bright lines over the walls (a kaleidoscope's pattern, not
-            // the gather's). Here the bulb's penumbra at the walls (its
-            // width times their distance over the tube's length, 7 cm at
-            // 2 m) is wider than the strips, so the walls are lit smoothly;
-            // and the narrow mouth, seen from the prism, is a small source
-            // (about 5 degrees), so the arcs stay sharp and coloured.
+            // light's way into the prism, lit by a frosted lamp that fills
+            // its closed end (an opal diffuser 2.5 cm square, lit from
+            // behind). Its mirrors make a lattice of images of that end, a
+            // tube's width apart, and each wall point sees the part of the
+            // lattice framed by the mouth, a window about one image wide
+            // sliding by the tube's width per w D / L of wall (9 cm at
+            // 1.6 m). A small bulb (a sphere 1.6 cm across) left dark gaps
+            // between its images, so that window took in more or less
+            // bulb as it slid: a regular grid of blotches about 12 px
+            // apart on the walls (the kaleidoscope's, not the gather's).
+            // A diffuser filling the end tiles the lattice without gaps,
+            // so the walls are lit smoothly; and the narrow mouth, seen
+            // from the prism, is a small source (about 5 degrees), so the
+            // arcs stay sharp and coloured.
             let (len, half) = (0.45, 0.0125);
             let start = aim - dir * 0.75;
             let u = DVec3::Z.cross(dir).normalize();
@@ -121,7 +123,7 @@ pub fn build(o: &SceneOptions) -> Result<World> {
             for (i, (c, e)) in sides.into_iter().enumerate() {
                 s.faces.push(Face::rect(&format!("mirror tube {i}"), c, dir * len, e, Surface::Mirror { reflectance: 0.95 }));
             }
-            s.faces.push(Face::rect("mirror tube end", corner(-1.0, -1.0), u * (2.0 * half), w * (2.0 * half), Surface::Mirror { reflectance: 0.95 }));
+
             // The tube's body as the camera sees it: a polished metal
             // sleeve, an eight-sided cylinder 4.4 cm across round the
             // square bore, closed by a cap behind the end mirror (a
@@ -141,10 +143,12 @@ pub fn build(o: &SceneOptions) -> Result<World> {
             }
             let cap = (0..sides_n).map(|k| start - dir * 1e-4 + round(k)).collect();
             s.faces.push(Face::polygon("tube cap", cap, -dir, sleeve));
+            // The lamp: the tube's end, emitting into the bore (its normal,
+            // u x w, is the light's way).
             let light = s.lights.len();
-            s.spheres.push(crate::world::Sphere { name: "bulb".into(), centre: start + dir * 0.009, radius: 0.008, surface: Surface::Emitter { light } });
-            let emission = Emission::Sphere { sphere: s.spheres.len() - 1 };
-            s.lights.push(Light { name: "point light in a mirror tube".into(), emission, spectrum: light_spectrum(o, "d65")?, power: 1.0 });
+            s.faces.push(Face::rect("mirror tube lamp", corner(-1.0, -1.0), u * (2.0 * half), w * (2.0 * half), Surface::Emitter { light }));
+            let emission = Emission::Area { face: s.faces.len() - 1 };
+            s.lights.push(Light { name: "lamp in a mirror tube".into(), emission, spectrum: light_spectrum(o, "d65")?, power: 1.0 });
         }
         _ => {
             // The laser's aperture 16 cm from the right wall (the beam
@@ -172,9 +176,11 @@ pub fn build(o: &SceneOptions) -> Result<World> {
                     dir,
                     u,
                     v: DVec3::Z,
-                    // 8 mm wide and 6 cm tall (a line laser's sheet): the
-                    // spectrum it paints is a band, not a hairline.
-                    half: DVec2::new(0.004, 0.03),
+                    // 2.4 cm wide and 6 cm tall (a line laser's sheet): the
+                    // spectrum it paints is a band, not a hairline, and
+                    // each point of it mixes a few nanometres more (at 8
+                    // mm its hues changed in steps).
+                    half: DVec2::new(0.012, 0.03),
                     disc: false,
                     polarisation: Some(Polarisation::P),
                 },
@@ -183,8 +189,16 @@ pub fn build(o: &SceneOptions) -> Result<World> {
             });
             // A thin haze (as chalk dust or smoke in a lab) shows the beam on
             // its way to the prism and the fan beyond it.
-            s.haze = 0.05;
-            // A dim lamp in the ceiling so the room shows round the fan.
+            // 0.8 per metre (a choice; at 0.05 the beam was a hundredth of
+            // the band it paints, and no exposure showed both).
+            s.haze = 0.8;
+            // A lamp in the ceiling so the room shows round the fan, 60
+            // times the laser's power (a choice): the band of spectrum the
+            // fan paints, exposed so that it rolls only a little toward
+            // white (`scenes/pm-laser-prism.toml`), is then about 25 times
+            // as bright as the walls, as a prism's spectrum is in a lit
+            // room, and not 1500 times (at 1.2, the room showed only when
+            // the band was blown out into flat blocks).
             let light = s.lights.len();
             s.faces.push(Face::rect(
                 "ceiling lamp",
@@ -197,8 +211,11 @@ pub fn build(o: &SceneOptions) -> Result<World> {
                 name: "ceiling lamp".into(),
                 emission: Emission::Area { face: s.faces.len() - 1 },
                 spectrum: Spectrum::light("d65")?,
-                power: 1.2,
+                power: 60.0,
             });
+            // The photons shared as when the lamp was 1.2 times the laser:
+            // the laser's fan keeps its share (power would give it 2 %).
+            s.photon_shares = Some(vec![1.0, 1.2]);
         }
     }
     s.probe = (probe_from, dir);
