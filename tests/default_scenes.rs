@@ -26,9 +26,10 @@ fn check(what: &str, args: &[&str], room: bool) {
     assert!(median < 250, "{what}: white (median {median})");
     if room {
         // The mirror tube's narrow mouth sends its light forward, so the
-        // walls beside and behind it are lit by bounces alone (median 46 at
-        // its defaults): 40 there.
-        let least = if what == "cornell-mirror-tube" { 40 } else { 48 };
+        // walls beside and behind it are lit by bounces alone, and the
+        // automatic exposure is set by the tube's bright beam (median 39 at
+        // its defaults, with the lamp filling the tube's end): 34 there.
+        let least = if what == "cornell-mirror-tube" { 34 } else { 48 };
         assert!(median >= least, "{what}: the room is nearly black (median {median} of 255)");
     }
 }
