@@ -326,34 +326,45 @@ pub fn document(w: &World) -> (Json, Vec<u8>) {
 /// inline as a data URI), written through a temporary file.
 pub fn write(w: &World, path: &Path) -> Result<(), GltfError> {
     let err = |why: String| GltfError::Write { path: path.display().to_string(), why };
-    let bytes = to_bytes(w, path).map_err(err)?;
+    let bytes = to_bytes(w, path).map_err(|e| err(e.to_string()))?;
     crate::image_io::atomic_write(path, |f| std::io::Write::write_all(f, &bytes)).map_err(|e| err(e.to_string()))
 }
 
+/// Why a world could not be encoded as glTF (the caller names the file).
+#[derive(Debug, thiserror::Error)]
+pub enum EncodeError {
+    #[error("the name must end in .glb or .gltf")]
+    Extension,
+    #[error("the scene is over 4 GB, more than GLB holds")]
+    TooLarge,
+    #[error("{0}")]
+    Json(#[from] serde_json::Error),
+}
+
 /// The file's bytes, by `path`'s extension.
-pub fn to_bytes(w: &World, path: &Path) -> Result<Vec<u8>, String> {
+pub fn to_bytes(w: &World, path: &Path) -> Result<Vec<u8>, EncodeError> {
     let (mut root, bin) = document(w);
     match path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).as_deref() {
         Some("glb") => {
-            let json = serde_json::to_vec(&root).map_err(|e| e.to_string())?;
+            let json = serde_json::to_vec(&root)?;
             glb(&json, &bin)
         }
         Some("gltf") => {
             use base64::Engine;
             root["buffers"][0]["uri"] = json!(format!("data:application/octet-stream;base64,{}", base64::engine::general_purpose::STANDARD.encode(&bin)));
-            serde_json::to_vec_pretty(&root).map_err(|e| e.to_string())
+            Ok(serde_json::to_vec_pretty(&root)?)
         }
-        _ => Err("the name must end in .glb or .gltf".into()),
+        _ => Err(EncodeError::Extension),
     }
 }
 
 /// The GLB container: header, JSON chunk (padded with spaces), binary
 /// chunk (padded with zeros), each chunk 4-byte aligned.
-fn glb(json: &[u8], bin: &[u8]) -> Result<Vec<u8>, String> {
+fn glb(json: &[u8], bin: &[u8]) -> Result<Vec<u8>, EncodeError> {
     let pad = |n: usize| (4 - n % 4) % 4;
     let (jl, bl) = (json.len() + pad(json.len()), bin.len() + pad(bin.len()));
     let total = 12 + 8 + jl + if bin.is_empty() { 0 } else { 8 + bl };
-    let total = u32::try_from(total).map_err(|_| "the scene is over 4 GB, more than GLB holds".to_string())?;
+    let total = u32::try_from(total).map_err(|_| EncodeError::TooLarge)?;
     let mut out = Vec::with_capacity(total as usize);
     out.extend_from_slice(b"glTF");
     out.extend_from_slice(&2u32.to_le_bytes());
@@ -390,6 +401,6 @@ mod tests {
         assert_eq!(a.meshes().count(), b.meshes().count());
         assert_eq!(a.materials().filter(|m| m.ior().is_some()).count(), 2, "the crown and the flint");
         assert_eq!(a.lights().map_or(0, |l| l.count()), 2);
-        assert!(to_bytes(&w, Path::new("x.obj")).unwrap_err().contains(".glb or .gltf"));
+        assert!(to_bytes(&w, Path::new("x.obj")).unwrap_err().to_string().contains(".glb or .gltf"));
     }
 }
