@@ -849,26 +849,10 @@ fn status_table(e: &Experiment, p: &PlotSpec, dir: &Path, header: &[String], row
     super::plot::register();
     let (case, status, error) = (col(header, "case")?, col(header, "status")?, col(header, "error")?);
     let (nan, ff, tir) = (col(header, "nan_count")?, col(header, "fireflies")?, col(header, "tir_fraction")?);
-    let params: Vec<usize> = header.iter().enumerate().filter(|(_, h)| h.starts_with("param_")).map(|(i, _)| i).collect();
     let (w, line) = (1400u32, 26u32);
     // A failed run's error is written in full beneath its row, wrapped.
     let wrap = |t: &str| -> Vec<String> { t.chars().collect::<Vec<_>>().chunks(150).map(|c| c.iter().collect()).collect() };
-    // A run's case and parameters, broken at spaces to fit their column.
-    let labels: Vec<Vec<String>> = rows
-        .iter()
-        .map(|r| {
-            let label = std::iter::once(r[case].clone())
-                .chain(
-                    params
-                        .iter()
-                        .filter(|&&c| !r[c].is_empty())
-                        .map(|&c| format!("{}={}", header[c].trim_start_matches("param_"), span_text(std::slice::from_ref(&r[c])))),
-                )
-                .collect::<Vec<_>>()
-                .join("  ");
-            super::plot::wrap_text(&label, LABEL_CHARS)
-        })
-        .collect();
+    let labels = run_labels(header, rows, case);
     let extra: Vec<u32> = rows
         .iter()
         .zip(&labels)
@@ -898,22 +882,10 @@ fn status_table(e: &Experiment, p: &PlotSpec, dir: &Path, header: &[String], row
             let expected = meant_to_fail(r);
             let nan_px = r[nan].parse::<u64>().unwrap_or(0) > 0;
             let warn = r[ff].parse::<u64>().unwrap_or(0) > 0;
-            let colour = match (failed, expected) {
-                (true, true) if !nan_px => TABLE_GREY,
-                (true, _) | (false, true) => TABLE_RED,
-                _ if nan_px => TABLE_RED,
-                _ if warn => TABLE_AMBER,
-                _ => TABLE_GREEN,
-            };
+            let colour = row_colour(failed, expected, nan_px, warn);
             let tall = line as i32 * (1 + extra[i] as i32);
             root.draw(&Rectangle::new([(5, y - 2), (w as i32 - 5, y + tall - 4)], colour.filled())).map_err(PlotError::draw)?;
-            let result = match (failed, expected) {
-                (true, true) => "refused, as expected (below)",
-                (true, false) => "error (below)",
-                (false, true) => "rendered: expected to fail",
-                (false, false) => "ok",
-            }
-            .to_string();
+            let result = result_text(failed, expected).to_string();
             for (k, part) in labels[i].iter().enumerate() {
                 root.draw(&Text::new(part.clone(), (xs[0], y + 2 + line as i32 * k as i32), font.clone())).map_err(PlotError::draw)?;
             }
@@ -932,6 +904,48 @@ fn status_table(e: &Experiment, p: &PlotSpec, dir: &Path, header: &[String], row
         root.present().map_err(PlotError::draw)?;
     }
     Ok(write_rgb8(&dir.join(format!("{}.png", p.file)), w as usize, h as usize, &buf)?)
+}
+
+/// Each run's case and parameters as one label, broken at spaces to fit
+/// the table's first column.
+fn run_labels(header: &[String], rows: &[Vec<String>], case: usize) -> Vec<Vec<String>> {
+    let params: Vec<usize> = header.iter().enumerate().filter(|(_, h)| h.starts_with("param_")).map(|(i, _)| i).collect();
+    rows.iter()
+        .map(|r| {
+            let label = std::iter::once(r[case].clone())
+                .chain(
+                    params
+                        .iter()
+                        .filter(|&&c| !r[c].is_empty())
+                        .map(|&c| format!("{}={}", header[c].trim_start_matches("param_"), span_text(std::slice::from_ref(&r[c])))),
+                )
+                .collect::<Vec<_>>()
+                .join("  ");
+            super::plot::wrap_text(&label, LABEL_CHARS)
+        })
+        .collect()
+}
+
+/// A row's colour: grey for a refusal its case declares, red for a failure
+/// no case expects (or NaN pixels), amber for fireflies, green otherwise.
+fn row_colour(failed: bool, expected: bool, nan_px: bool, warn: bool) -> RGBColor {
+    match (failed, expected) {
+        (true, true) if !nan_px => TABLE_GREY,
+        (true, _) | (false, true) => TABLE_RED,
+        _ if nan_px => TABLE_RED,
+        _ if warn => TABLE_AMBER,
+        _ => TABLE_GREEN,
+    }
+}
+
+/// A row's result cell.
+fn result_text(failed: bool, expected: bool) -> &'static str {
+    match (failed, expected) {
+        (true, true) => "refused, as expected (below)",
+        (true, false) => "error (below)",
+        (false, true) => "rendered: expected to fail",
+        (false, false) => "ok",
+    }
 }
 
 #[cfg(test)]
