@@ -639,10 +639,6 @@ fn draw(id: &str, png: &Path, quick: bool, scenes: &Path) -> Result<String> {
     }
 }
 
-fn plot_err<E: std::fmt::Display>(e: E) -> PlotError {
-    PlotError::draw(e)
-}
-
 fn colour_compare(png: &Path, quick: bool, scenes: &Path) -> Result<String> {
     use crate::spectrum::colormap::ColorMap;
     super::plot::register();
@@ -693,9 +689,9 @@ fn colour_compare(png: &Path, quick: bool, scenes: &Path) -> Result<String> {
                 ColorMap::RedWhiteBlue => "red-white-blue",
             };
             root.draw(&Text::new(label.to_string(), (x0 as i32 + indent, y0 as i32 + label_h as i32 / 6), super::plot::font(font as f64).color(&WHITE)))
-                .map_err(plot_err)?;
+                .map_err(PlotError::draw)?;
         }
-        root.present().map_err(plot_err)?;
+        root.present().map_err(PlotError::draw)?;
     }
     write_rgb8(png, w, h, &buf)?;
     Ok(format!(

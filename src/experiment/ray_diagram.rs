@@ -26,10 +26,6 @@ const INSET_AT: ((f64, f64), (f64, f64)) = ((0.055, 0.255), (-0.095, -0.03));
 /// cyan-green, green, yellow, orange, red.
 pub const LAMBDAS: [f64; 8] = [404.7, 465.0, 485.0, 505.0, 546.1, 575.0, 600.0, 656.3];
 
-fn plot_err<E: std::fmt::Display>(e: E) -> PlotError {
-    PlotError::draw(e)
-}
-
 /// How much the inset magnifies (the same along x and y).
 pub const INSET_MAGNIFICATION: f64 = 12.0;
 
@@ -130,7 +126,7 @@ pub fn draw(png: &Path) -> Result<String> {
     let magnification;
     {
         let root = super::glyphs::Glyphs(BitMapBackend::with_buffer(&mut buf, (w, h))).into_drawing_area();
-        root.fill(&WHITE).map_err(plot_err)?;
+        root.fill(&WHITE).map_err(PlotError::draw)?;
         let mut c = ChartBuilder::on(&root)
             .caption(
                 format!("A white ray split by the Amici prism (Snell's law per wavelength); past the prism, angles drawn {FAN_EXAGGERATION}x"),
@@ -140,7 +136,7 @@ pub fn draw(png: &Path) -> Result<String> {
             .x_label_area_size(40)
             .y_label_area_size(60)
             .build_cartesian_2d(X_RANGE.0..X_RANGE.1, Y_RANGE.0..Y_RANGE.1)
-            .map_err(plot_err)?;
+            .map_err(PlotError::draw)?;
         // A light grid at the labelled ticks only.
         c.configure_mesh()
             .x_labels(8)
@@ -153,9 +149,9 @@ pub fn draw(png: &Path) -> Result<String> {
             .y_desc("y (m)")
             .label_style(("sans-serif", 16))
             .draw()
-            .map_err(plot_err)?;
+            .map_err(PlotError::draw)?;
         for seg in &outline {
-            c.draw_series(LineSeries::new(seg.to_vec(), BLACK.stroke_width(2))).map_err(plot_err)?;
+            c.draw_series(LineSeries::new(seg.to_vec(), BLACK.stroke_width(2))).map_err(PlotError::draw)?;
         }
         for (i, p) in rays.iter().enumerate() {
             let col = colour(p.nm);
@@ -164,13 +160,13 @@ pub fn draw(png: &Path) -> Result<String> {
             // show where one line would hide the rest.
             let inside: Vec<(f64, f64)> = p.path.iter().skip(1).map(|v| (v.x, v.y)).collect();
             for dash in dashes(&inside, DASH, i, rays.len()) {
-                c.draw_series(LineSeries::new(dash, col.stroke_width(3))).map_err(plot_err)?;
+                c.draw_series(LineSeries::new(dash, col.stroke_width(3))).map_err(PlotError::draw)?;
             }
             // Past the prism, FAN_EXAGGERATION times the angle so the fan shows.
             let (end, d) = (p.exit_point, p.exit_dir);
             let fan = vec![(end.x, end.y), (end.x + 0.2, end.y + 0.2 * (d.y / d.x) * FAN_EXAGGERATION)];
             c.draw_series(LineSeries::new(fan, col.stroke_width(2)))
-                .map_err(plot_err)?
+                .map_err(PlotError::draw)?
                 .label(format!("{} nm", p.nm))
                 .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], col.stroke_width(3)));
         }
@@ -179,7 +175,7 @@ pub fn draw(png: &Path) -> Result<String> {
         let white: Vec<(f64, f64)> = probe(&s, 587.6).path.iter().take(2).map(|v| (v.x, v.y)).collect();
         let grey = RGBColor(110, 110, 110);
         c.draw_series(LineSeries::new(white, grey.stroke_width(3)))
-            .map_err(plot_err)?
+            .map_err(PlotError::draw)?
             .label("white light")
             .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], grey.stroke_width(3)));
         c.configure_series_labels()
@@ -188,10 +184,10 @@ pub fn draw(png: &Path) -> Result<String> {
             .border_style(BLACK)
             .label_font(("sans-serif", 16))
             .draw()
-            .map_err(plot_err)?;
+            .map_err(PlotError::draw)?;
         // The fan's true spread, written beside it.
         let note = format!("fan drawn {FAN_EXAGGERATION}x wider: its true spread is {spread:.1} degrees");
-        c.draw_series(std::iter::once(Text::new(note, (-0.005, 0.112), ("sans-serif", 16).into_font().color(&BLACK)))).map_err(plot_err)?;
+        c.draw_series(std::iter::once(Text::new(note, (-0.005, 0.112), ("sans-serif", 16).into_font().color(&BLACK)))).map_err(PlotError::draw)?;
         // The inset: where on the page, and which part of the prism.
         let (ix, iy) = INSET_AT;
         let (p0, p1) = (c.backend_coord(&(ix.0, iy.1)), c.backend_coord(&(ix.1, iy.0)));
@@ -200,20 +196,20 @@ pub fn draw(png: &Path) -> Result<String> {
         // Inset pixels per metre over the main chart's, along x.
         magnification = (ix.1 - ix.0) / (xr.1 - xr.0);
         let region = [(xr.0, yr.0), (xr.1, yr.0), (xr.1, yr.1), (xr.0, yr.1), (xr.0, yr.0)];
-        c.draw_series(LineSeries::new(region, BLACK.stroke_width(1))).map_err(plot_err)?;
+        c.draw_series(LineSeries::new(region, BLACK.stroke_width(1))).map_err(PlotError::draw)?;
         // Thin grey lines from the box to the inset's top corners.
         let guide = RGBColor(150, 150, 150);
         for (from, to) in [((xr.0, yr.0), (ix.0, iy.1)), ((xr.1, yr.0), (ix.1, iy.1))] {
-            c.draw_series(LineSeries::new([from, to], guide.stroke_width(1))).map_err(plot_err)?;
+            c.draw_series(LineSeries::new([from, to], guide.stroke_width(1))).map_err(PlotError::draw)?;
         }
         let title = format!("inset: the exit face (box) magnified {magnification:.0}x, at true angles");
-        c.draw_series(std::iter::once(Text::new(title, (ix.0, iy.1 + 0.009), ("sans-serif", 16).into_font().color(&BLACK)))).map_err(plot_err)?;
+        c.draw_series(std::iter::once(Text::new(title, (ix.0, iy.1 + 0.009), ("sans-serif", 16).into_font().color(&BLACK)))).map_err(PlotError::draw)?;
         let area = root.clone().shrink(p0, (pw, ph));
-        area.fill(&WHITE).map_err(plot_err)?;
-        let mut inset = ChartBuilder::on(&area).build_cartesian_2d(xr.0..xr.1, yr.0..yr.1).map_err(plot_err)?;
+        area.fill(&WHITE).map_err(PlotError::draw)?;
+        let mut inset = ChartBuilder::on(&area).build_cartesian_2d(xr.0..xr.1, yr.0..yr.1).map_err(PlotError::draw)?;
         for seg in &outline {
             if let Some(seg) = clip(seg[0], seg[1], xr, yr) {
-                inset.draw_series(LineSeries::new(seg, BLACK.stroke_width(2))).map_err(plot_err)?;
+                inset.draw_series(LineSeries::new(seg, BLACK.stroke_width(2))).map_err(PlotError::draw)?;
             }
         }
         for p in &rays {
@@ -225,12 +221,12 @@ pub fn draw(png: &Path) -> Result<String> {
             pts.push((end.x + t * d.x, end.y + t * d.y));
             for ab in pts.windows(2) {
                 if let Some(seg) = clip(ab[0], ab[1], xr, yr) {
-                    inset.draw_series(LineSeries::new(seg, col.stroke_width(2))).map_err(plot_err)?;
+                    inset.draw_series(LineSeries::new(seg, col.stroke_width(2))).map_err(PlotError::draw)?;
                 }
             }
         }
-        area.draw(&Rectangle::new([(0, 0), (pw as i32 - 1, ph as i32 - 1)], BLACK.stroke_width(1))).map_err(plot_err)?;
-        root.present().map_err(plot_err)?;
+        area.draw(&Rectangle::new([(0, 0), (pw as i32 - 1, ph as i32 - 1)], BLACK.stroke_width(1))).map_err(PlotError::draw)?;
+        root.present().map_err(PlotError::draw)?;
     }
     write_rgb8(png, w as usize, h as usize, &buf)?;
     Ok(format!(

@@ -40,6 +40,11 @@ fn trace_zero(c: &InteriorConfig, what: &str) -> Option<String> {
     (c.max_trace == 0).then(|| format!("at trace count 0 the first hit is drawn opaque, so {what} changes nothing; it needs a trace count above 0"))
 }
 
+/// Why the critical-angle keys change nothing at index 1 or below.
+fn no_critical_angle(c: &InteriorConfig) -> Option<String> {
+    (c.ior <= 1.0).then(|| "below index 1 light from inside always gets out: there is no critical angle".to_string())
+}
+
 /// The report's prompts (asked in this order, after the trace count).
 pub const PROMPTS: &str = "The report's prompts";
 const PHONG: &str = "Extended Phong model";
@@ -333,7 +338,7 @@ pub static PARAMS: &[Param<InteriorConfig>] = &[
         auto: "",
         get: |c| Some(Value::Flag(c.tir_circle)),
         set: |c, v| c.tir_circle = v.flag(),
-        ignored: |c| (c.ior <= 1.0).then(|| "below index 1 light from inside always gets out: there is no critical angle".to_string()),
+        ignored: no_critical_angle,
     },
     Param {
         key: "diffuse_tir",
@@ -345,7 +350,7 @@ pub static PARAMS: &[Param<InteriorConfig>] = &[
         auto: "",
         get: |c| Some(Value::Flag(c.diffuse_tir)),
         set: |c, v| c.diffuse_tir = v.flag(),
-        ignored: |c| (c.ior <= 1.0).then(|| "below index 1 light from inside always gets out: there is no critical angle".to_string()),
+        ignored: no_critical_angle,
     },
     Param {
         key: "spp",
