@@ -4,16 +4,16 @@
 //!
 //! - `sphere-arealight`: a glass sphere hanging before a spherical
 //!   black-body light, slightly off centre and hidden behind it: the
-//!   sphere shows the light, magnified, as an off-centre patch, violet-blue-fringed on
-//!   the edge toward the sphere's centre and orange-red on the outer one
-//!   (blue bends more, so its image of the light lies nearer the centre;
-//!   docs/physics.md §22), against a glowing checkerboard that shows the
+//!   sphere shows the light, magnified, as an off-centre patch,
+//!   violet-blue-fringed on the edge toward the sphere's centre and
+//!   orange-red on the outer one (blue bends more, so its image of the
+//!   light lies nearer the centre; docs/physics.md §22), against a glowing checkerboard that shows the
 //!   glass itself, inverted in it with every edge fringed the same way.
 //! - `sphere-metal`: the sphere before a polished, neutral metal plate (a
 //!   grey mirror) that reflects a window and a white strip softbox: the
 //!   sphere shows the strip's band inverted, fringed blue inside and yellow
-//!   to red outside; with no
-//!   colour in the plate or the lights, the colour is the dispersion.
+//!   to red outside; with no colour in the plate or the lights, the colour
+//!   is the dispersion.
 //! - `spheres-final`: where the wavelength effects show at a glance: a
 //!   white beam through a hole in a card onto a glass sphere, which sends
 //!   back a rainbow ring round the hole (one reflection inside;
@@ -62,8 +62,8 @@ fn area_light(s: &mut World, o: &SceneOptions) -> Result<()> {
     }
     // The sphere "hanging in front of a spherical area light source,
     // which is slightly off center" (report 001): a 6500 K black body
-    // of 10 cm radius, 0.75 m behind the sphere's centre (1.5 of its
-    // radius) and 0.2 m up and to the left of its axis, so that from the
+    // of 7 cm radius, 0.75 m behind the sphere's centre (1.5 of its
+    // radius) and 0.1 m up and to the left of its axis, so that from the
     // camera it is hidden behind the sphere and shows only through it, as
     // an off-centre patch down and to the right, fringed violet-blue on
     // the edge toward the sphere's centre and orange-red on the outer one
@@ -181,7 +181,6 @@ fn metal_plate(s: &mut World, o: &SceneOptions) -> Result<()> {
     // the outer one, the window as a small inverted window, each bar
     // fringed the same way (docs/physics.md §22).
     glow(s, o, "back wall", [DVec3::new(7.0, 6.0, -4.0), DVec3::new(0.0, -12.0, 0.0), DVec3::new(0.0, 0.0, 8.0)], 0.004)?;
-    let strip = 2.2;
     glow(s, o, "front wall", [DVec3::new(-3.0, -30.0, -6.0), DVec3::new(0.0, 60.0, 0.0), DVec3::new(0.0, 0.0, 12.0)], 0.05)?;
     // The window: 2.4 m by 1.8 m centred 2.3 m left and 1.25 m up, 12 cm bars.
     let (wy, wz, ww, wh, bar, cols, rows) = (2.3, 1.25, 2.4, 1.8, 0.12, 3, 2);
@@ -193,6 +192,8 @@ fn metal_plate(s: &mut World, o: &SceneOptions) -> Result<()> {
             glow(s, o, "window pane", [DVec3::new(-2.9, y, z), DVec3::new(0.0, pw, 0.0), DVec3::new(0.0, 0.0, ph)], 1.0)?;
         }
     }
+    // The softbox: a strip 1.3 m tall from 2.2 m up, across the room.
+    let strip = 2.2;
     glow(s, o, "softbox", [DVec3::new(-2.9, -10.0, strip), DVec3::new(0.0, 20.0, 0.0), DVec3::new(0.0, 0.0, 1.3)], 1.0)?;
     // A 26 degree field: the sphere large (its fringes scale with its
     // image, docs/physics.md §22), whole, the plate's edges in view.
