@@ -6,7 +6,7 @@
 //! mode = "interior"                # interior | prism
 //! figures = ["lab-ior1.4"]         # figure ids the experiment backs (optional)
 //! repeats = 1                      # runs of each point (timings: their median)
-//! min_time = 0.05                  # seconds a timing must last (optional)
+//! min_time = 0.05                  # seconds a timing must last (optional; under --quick at most 0.05)
 //! [fixed]                          # parameters every run shares
 //! off = "off/cube.off"
 //! size = [201, 201]
@@ -89,7 +89,7 @@ impl Experiment {
             description: p.root.get("description").and_then(Value::as_str).unwrap_or_default().to_string(),
             figures: p.figures()?,
             repeats: p.repeats()?,
-            min_time: p.min_time()?,
+            min_time: p.min_time(quick)?,
             fixed: p.checked(mode, "fixed")?,
             sweep,
             cases,
@@ -246,6 +246,9 @@ fn judged_apart(text: &str) -> String {
     text.split_inclusive('\n').filter(|l| !expect(l)).collect()
 }
 
+/// The longest a timing lasts under --quick where `[quick]` does not say.
+const QUICK_MIN_TIME: f64 = 0.05;
+
 /// Columns of runs.csv that hold text whatever the experiment.
 const TEXT_COLUMNS: [&str; 7] = ["mode", "case", "experiment", "host", "cpu", "status", "error"];
 
@@ -357,14 +360,19 @@ impl<'a> FileParser<'a> {
         }
     }
 
-    fn min_time(&self) -> Result<f64> {
-        match self.quick.get("min_time").or(self.root.get("min_time")) {
-            None => Ok(0.0),
+    /// Seconds a timing must last. Under --quick, at most
+    /// [`QUICK_MIN_TIME`] unless `[quick]` gives its own: a quick run checks
+    /// that the sweep works and draws its charts, and a full run's long
+    /// timings would make it most of `figures --quick`'s time.
+    fn min_time(&self, quick: bool) -> Result<f64> {
+        let t = match self.quick.get("min_time").or(self.root.get("min_time")) {
+            None => 0.0,
             Some(v) => match v.as_float().or(v.as_integer().map(|i| i as f64)) {
-                Some(t) if (0.0..=60.0).contains(&t) => Ok(t),
-                _ => Err(self.err("", 0, "min_time", "must be a number of seconds from 0 to 60")),
+                Some(t) if (0.0..=60.0).contains(&t) => t,
+                _ => return Err(self.err("", 0, "min_time", "must be a number of seconds from 0 to 60")),
             },
-        }
+        };
+        Ok(if quick && !self.quick.contains_key("min_time") { t.min(QUICK_MIN_TIME) } else { t })
     }
 
     /// The sweep axes, in the file's order (toml::Table sorts by key).

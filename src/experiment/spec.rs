@@ -236,6 +236,17 @@ sweep = { trace = [0] }
     }
 
     #[test]
+    fn quick_caps_a_long_min_time_unless_quick_gives_its_own() {
+        let long = GOOD.replace("[fixed]", "min_time = 0.25\n[fixed]");
+        assert_eq!(Experiment::parse(&long, "t.toml", false).unwrap().min_time, 0.25);
+        assert_eq!(Experiment::parse(&long, "t.toml", true).unwrap().min_time, 0.05);
+        let own = long.replace("[quick]", "[quick]\nmin_time = 0.5");
+        assert_eq!(Experiment::parse(&own, "t.toml", true).unwrap().min_time, 0.5);
+        let short = GOOD.replace("[fixed]", "min_time = 0.01\n[fixed]");
+        assert_eq!(Experiment::parse(&short, "t.toml", true).unwrap().min_time, 0.01);
+    }
+
+    #[test]
     fn quick_also_cuts_a_cases_own_list_of_a_shortened_axis() {
         let text = format!("{GOOD}[[case]]\nname = \"a\"\n[[case]]\nname = \"deep\"\ntrace = [1, 3, 5]\n");
         let full = Experiment::parse(&text, "t.toml", false).unwrap();
