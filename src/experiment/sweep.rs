@@ -10,8 +10,9 @@ use super::interrupt;
 use super::lock::{FolderLock, Taken};
 use super::metrics::{self, Frame};
 use super::params::{cell, Mode};
+pub use super::row::NO_REFERENCE;
+use super::row::{Compared, RunRow, Status};
 use super::spec::Experiment;
-use super::spec::METRICS;
 use crate::image_io::{atomic_write, write_rgb8};
 use crate::modes::MeshCache;
 use std::collections::{HashMap, HashSet};
@@ -62,16 +63,9 @@ pub struct Outcome {
     pub failure: Option<String>,
 }
 
-/// The cell the metrics against the reference get when the reference run
-/// failed.
-pub const NO_REFERENCE: &str = "no reference";
-
-/// What one run measured, as named cells.
-type Measured = Vec<(&'static str, String)>;
-
 struct RunOutcome {
     frame: Option<Frame>,
-    cells: Measured,
+    row: RunRow,
 }
 
 /// Renders one run; with `min_time` above 0, renders it again inside the
@@ -102,19 +96,14 @@ fn run_one(mode: Mode, params: &[(String, Value)], meshes: &MeshCache, min_time:
         let per = n as f64;
         let cpu = cpu.zip(crate::timing::process_cpu_seconds()).map(|(a, b)| (b - a) / per);
         (run.record.build_s, run.record.trace_s, run.record.render_s) = (build / per, trace.map(|t| t / per), render / per);
-        let mut cells = run.record.cells();
-        cells.push(("renders", n.to_string()));
-        if let Some(c) = cpu {
-            cells.push(("cpu_s", crate::timing::cell(c)));
-        }
-        Ok(RunOutcome { frame: Some(run.frame()), cells })
+        Ok(RunOutcome { frame: Some(run.frame()), row: RunRow::measured(&run.record, n, cpu) })
     }));
     match result {
         Ok(Ok(o)) => o,
-        Ok(Err(e)) => RunOutcome { frame: None, cells: vec![("status", "error".into()), ("error", chain(&e)), ("failed", "1".into())] },
+        Ok(Err(e)) => RunOutcome { frame: None, row: RunRow::failed(chain(&e)) },
         Err(p) => {
             let msg = p.downcast_ref::<String>().cloned().or_else(|| p.downcast_ref::<&str>().map(|s| s.to_string())).unwrap_or_else(|| "panic".into());
-            RunOutcome { frame: None, cells: vec![("status", "error".into()), ("error", format!("internal error: {msg}")), ("failed", "1".into())] }
+            RunOutcome { frame: None, row: RunRow::failed(format!("internal error: {msg}")) }
         }
     }
 }
@@ -391,7 +380,7 @@ fn reference_frame(e: &Experiment, dir: &Path, meshes: &MeshCache) -> Result<(Op
     let o = run_one(e.mode, &p, meshes, 0.0);
     let seconds = t.elapsed().as_secs_f64();
     let Some(f) = o.frame else {
-        let err = o.cells.iter().find(|(k, _)| *k == "error").map_or_else(|| "no image".to_string(), |(_, v)| v.clone());
+        let err = if o.row.status == Status::Error { o.row.error } else { "no image".to_string() };
         return Ok((None, Some(err)));
     };
     write_rgb8(&dir.join("reference.png"), f.width, f.height, &f.display)?;
@@ -459,33 +448,26 @@ impl Sweep<'_> {
 
     /// The image metrics of a run's frame (against the reference and its
     /// predecessor), and its image if the experiment keeps them.
-    fn measure(&self, r: &RunSpec, f: &Frame, cells: &mut HashMap<&str, String>) {
-        cells.insert("nan_count", metrics::non_finite(f).to_string());
-        cells.insert("fireflies", metrics::fireflies(f).to_string());
-        cells.insert("highlight_px", metrics::highlight_pixels(f).to_string());
+    fn measure(&self, r: &RunSpec, f: &Frame, row: &mut RunRow) {
+        row.nan_count = Some(metrics::non_finite(f));
+        row.fireflies = Some(metrics::fireflies(f));
+        row.highlight_px = Some(metrics::highlight_pixels(f));
         if self.reference_error.is_some() {
-            for m in ["rmse", "psnr", "rel_rmse"] {
-                cells.insert(m, NO_REFERENCE.into());
-            }
+            (row.rmse, row.psnr, row.rel_rmse) = (Compared::NoReference, Compared::NoReference, Compared::NoReference);
         }
         if let Some(rf) = &self.reference {
             if let Some((rmse, psnr)) = metrics::rmse_psnr(f, rf) {
-                cells.insert("rmse", crate::timing::cell(rmse));
-                cells.insert("psnr", crate::timing::cell(psnr));
+                (row.rmse, row.psnr) = (Compared::Value(rmse), Compared::Value(psnr));
             }
             if let Some(rel) = metrics::relative_rmse(f, rf) {
-                cells.insert("rel_rmse", crate::timing::cell(rel));
+                row.rel_rmse = Compared::Value(rel);
             }
-            if let Some(rel) = metrics::relative_error(f, rf) {
-                cells.insert("rel_error", crate::timing::cell(rel));
-            }
+            row.rel_error = metrics::relative_error(f, rf).map(crate::timing::Real);
         }
         let prev = self
             .predecessor(r)
             .and_then(|p| self.frames.lock().unwrap().get(&p).cloned().or_else(|| load_frame(&self.dir.join("images").join(image_name(self.e, &self.all[p])))));
-        if let Some(c) = prev.and_then(|p| metrics::changed_pixels(f, &p)) {
-            cells.insert("changed_px", c.to_string());
-        }
+        row.changed_px = prev.and_then(|p| metrics::changed_pixels(f, &p));
         // One image a place: the repeats of a run draw the same picture.
         if self.e.images && r.repeat == 0 {
             if let Err(err) = write_rgb8(&self.dir.join("images").join(image_name(self.e, r)), f.width, f.height, &f.display) {
@@ -497,22 +479,17 @@ impl Sweep<'_> {
 
     /// Runs one run and appends its row to runs.csv.
     fn run_row(&self, r: &RunSpec) {
-        let o = run_one(r.mode, &r.params, &self.meshes, self.e.min_time);
-        let mut cells: HashMap<&str, String> = o.cells.into_iter().collect();
-        cells.insert("experiment", self.e.fingerprint.clone());
-        for (k, v) in machine() {
-            cells.insert(k, v);
+        let RunOutcome { frame, mut row } = run_one(r.mode, &r.params, &self.meshes, self.e.min_time);
+        row.experiment = self.e.fingerprint.clone();
+        [row.host, row.cpu, row.cores, row.load_1min] = machine();
+        if let Some(f) = &frame {
+            self.measure(r, f, &mut row);
         }
-        cells.entry("status").or_insert_with(|| "ok".into());
-        cells.entry("failed").or_insert_with(|| "0".into());
-        if let Some(f) = &o.frame {
-            self.measure(r, f, &mut cells);
-        }
-        let mut row = vec![r.id.to_string(), r.mode.name().to_string(), r.case.clone(), r.repeat.to_string()];
-        row.extend(self.names.iter().map(|n| r.params.iter().find(|(k, _)| k == n).map_or(String::new(), |(_, v)| cell(v))));
-        row.extend(METRICS.iter().map(|m| cells.get(m).cloned().unwrap_or_default()));
+        let identity = [r.id.to_string(), r.mode.name().to_string(), r.case.clone(), r.repeat.to_string()];
+        let params: Vec<String> = self.names.iter().map(|n| r.params.iter().find(|(k, _)| k == n).map_or(String::new(), |(_, v)| cell(v))).collect();
         let mut w = csv::WriterBuilder::new().has_headers(false).from_writer(Vec::new());
-        let line = w.write_record(&row).map_err(ExperimentError::from).and_then(|_| w.into_inner().map_err(|e| ExperimentError::Disk(e.into_error())));
+        let line =
+            w.serialize((identity, params, row)).map_err(ExperimentError::from).and_then(|_| w.into_inner().map_err(|e| ExperimentError::Disk(e.into_error())));
         let written = line.and_then(|bytes| {
             let mut f = self.file.lock().unwrap();
             f.write_all(&bytes).and_then(|_| f.flush()).map_err(ExperimentError::from)
@@ -573,14 +550,14 @@ impl Sweep<'_> {
 /// Where a run ran, for comparing timings from several machines: host
 /// name, CPU model, logical cores, and the 1-minute load average when the
 /// run started (Linux's /proc; empty cells elsewhere).
-fn machine() -> [(&'static str, String); 4] {
+fn machine() -> [String; 4] {
     let read = |p: &str| std::fs::read_to_string(p).unwrap_or_default();
     let host = read("/proc/sys/kernel/hostname").trim().to_string();
     let cpu =
         read("/proc/cpuinfo").lines().find(|l| l.starts_with("model name")).and_then(|l| l.split(':').nth(1)).map(|m| m.trim().to_string()).unwrap_or_default();
     let cores = std::thread::available_parallelism().map_or(String::new(), |n| n.get().to_string());
     let load = read("/proc/loadavg").split_whitespace().next().unwrap_or_default().to_string();
-    [("host", host), ("cpu", cpu), ("cores", cores), ("load_1min", load)]
+    [host, cpu, cores, load]
 }
 
 fn load_frame(path: &Path) -> Option<Frame> {
