@@ -585,131 +585,20 @@ pub fn merge(dirs: &[PathBuf], out: &Path, experiment: Option<&Experiment>, o: &
         if dirs[..k].contains(d) {
             return Err(ExperimentError::GivenTwice(d.clone()));
         }
-        // A shard still being written is not merged.
-        if let Some(holder) = FolderLock::holder(d) {
-            let why = format!(
-                "this shard is still being written (its lock is held by {holder}); merge when it has finished, or if that sweep is gone, delete {}",
-                d.join(".lock").display()
-            );
-            return Err(ExperimentError::Record { path: d.clone(), why });
-        }
-        let p = d.join("runs.csv");
-        let text = crate::data::read_input_text(&p).map_err(ExperimentError::io(format!("cannot read {}", p.display())))?;
-        // A last line without its newline was cut off mid-write: its last
-        // cell may be a shorter, wrong number (0.757080 read as 0.757).
-        if !text.is_empty() && !text.ends_with('\n') {
-            let why = format!(
-                "the last line does not end in a newline (the shard was cut off while writing it); finish the shard with `refract sweep FILE --resume --shard I/N --out {}` first",
-                d.display()
-            );
-            return Err(ExperimentError::RecordLine { path: p, line: text.matches('\n').count() as u64 + 1, why });
-        }
-        let mut r = csv::Reader::from_reader(text.as_bytes());
-        let h: Vec<String> = r.headers().map_err(|csv| ExperimentError::Header { path: p.clone(), csv })?.iter().map(str::to_string).collect();
-        if h.first().map(String::as_str) != Some("run_id") {
-            let why = format!("not a sweep's runs.csv (its first column is `{}`, not run_id)", h.first().map_or("", String::as_str));
-            return Err(ExperimentError::RecordLine { path: p, line: 1, why });
-        }
-        match &header {
-            Some(x) if *x != h => {
-                return Err(ExperimentError::Record { path: p, why: format!("its columns differ from {}", dirs[0].join("runs.csv").display()) })
-            }
-            _ => header = Some(h.clone()),
-        }
-        // Every row is a whole run: a short or unreadable one (a shard
-        // stopped mid-write) is named, not dropped.
-        for record in r.records() {
-            let x = record.map_err(|e| {
-                let at = e.position().map_or(0, |at| at.line());
-                match e.kind() {
-                    csv::ErrorKind::UnequalLengths { len, .. } => {
-                        ExperimentError::RecordLine { path: p.clone(), line: at, why: format!("not a whole run ({len} of {} cells)", h.len()) }
-                    }
-                    _ => ExperimentError::UnreadableRow { path: p.clone(), line: at, csv: e },
-                }
-            })?;
-            // (The reader refuses a row of another length than the header's.)
-            if x[0].parse::<usize>().is_err() {
-                return Err(ExperimentError::RecordLine { path: p, line: x.position().map_or(0, |at| at.line()), why: format!("`{}` is not a run id", &x[0]) });
-            }
-            rows.push((x.iter().map(str::to_string).collect(), k));
-            lines.push(x.position().map_or(0, |at| at.line()));
+        for (row, line) in read_shard(d, &dirs[0], &mut header)? {
+            rows.push((row, k));
+            lines.push(line);
         }
     }
     let header = header.ok_or(ExperimentError::NoFolders)?;
-    if let Some(col) = header.iter().position(|h| h == "experiment") {
-        let want = match experiment {
-            Some(e) => e.fingerprint.clone(),
-            None => rows.first().map(|(r, _)| r[col].clone()).unwrap_or_default(),
-        };
-        if let Some((r, k)) = rows.iter().find(|(r, _)| r[col] != want) {
-            let why = format!(
-                "run {} is from experiment {}, not {} (another experiment, or another version of its file); merge only shards of one run",
-                r[0], r[col], want
-            );
-            return Err(ExperimentError::Record { path: dirs[*k].join("runs.csv"), why });
-        }
-    }
-    let mut order: Vec<usize> = (0..rows.len()).collect();
-    order.sort_by_key(|&i| (rows[i].0[0].parse::<usize>().unwrap_or(usize::MAX), i));
-    if let Some(w) = order.windows(2).find(|w| rows[w[0]].0[0] == rows[w[1]].0[0]) {
-        let ((a, ka), (b, kb)) = (&rows[w[0]], &rows[w[1]]);
-        if ka == kb {
-            let why = format!("run {} is twice (lines {} and {}); each run is one row", a[0], lines[w[0]], lines[w[1]]);
-            return Err(ExperimentError::Record { path: dirs[*ka].join("runs.csv"), why });
-        }
-        return Err(ExperimentError::InTwoShards { id: b[0].clone(), first: dirs[*ka].clone(), second: dirs[*kb].clone() });
-    }
-    let rows: Vec<(Vec<String>, usize)> = order.into_iter().map(|i| rows[i].clone()).collect();
-    let mut missing = Vec::new();
-    if let Some(e) = experiment {
-        let have: HashSet<usize> = rows.iter().filter_map(|(r, _)| r[0].parse().ok()).collect();
-        let total = expand(e).len();
-        missing = (0..total).filter(|id| !have.contains(id)).map(|id| id.to_string()).collect();
-        if !missing.is_empty() && !o.resume {
-            return Err(ExperimentError::InNoShard { runs: missing.join(", "), missing: missing.len(), total });
-        }
-    }
+    check_one_experiment(&header, &rows, dirs, experiment)?;
+    let rows = in_run_order(rows, &lines, dirs)?;
+    let missing = missing_runs(&rows, experiment, o.resume)?;
     crate::image_io::create_folder(out)?;
     {
         let _lock = take_lock(out, o.break_lock)?;
-        // A record already in `out` is replaced only by one that holds
-        // every row of it, unchanged; else it is moved aside (--fresh).
-        if let super::record::Found::Rows { rows: old, .. } = super::record::inspect(out, &header)? {
-            let lost = old.iter().find(|(_, r)| !rows.iter().any(|(m, _)| m == r));
-            match lost {
-                None => {}
-                Some(_) if o.fresh => {
-                    let to = super::record::move_aside(out)?;
-                    eprintln!("note: moved the record in {} aside to {}", out.display(), to.display());
-                }
-                Some((line, r)) => {
-                    let why = format!(
-                        "holds run {} as the merge does not (another run, or another version of the experiment); merge into another --out, or with --fresh to move that record aside (to runs.csv.N)",
-                        r[0]
-                    );
-                    return Err(ExperimentError::RecordLine { path: out.join("runs.csv"), line: *line, why });
-                }
-            }
-        }
-        // The run images (named by their parameters) and the reference
-        // image and its record travel with the rows.
-        for d in dirs {
-            let mut names: Vec<PathBuf> = std::fs::read_dir(d.join("images")).map(|rd| rd.flatten().map(|e| e.path()).collect()).unwrap_or_default();
-            names.retain(|p| p.extension().is_some_and(|x| x == "png") && !p.file_name().is_some_and(|n| n.to_string_lossy().starts_with('.')));
-            names.sort();
-            for from in names {
-                crate::image_io::create_folder(&out.join("images"))?;
-                copy_into_place(&from, &out.join("images").join(from.file_name().unwrap_or_default()))?;
-            }
-        }
-        for name in ["reference.png", "reference.csv"] {
-            if let Some(reference) = dirs.iter().map(|d| d.join(name)).find(|p| p.is_file()) {
-                copy_into_place(&reference, &out.join(name))?;
-            }
-        }
         let rows: Vec<Vec<String>> = rows.iter().map(|(r, _)| r.clone()).collect();
-        write_rows(&out.join("runs.csv"), &header, &rows)?;
+        write_merged(dirs, out, &header, &rows, o.fresh)?;
         if let (Some(e), true) = (experiment, missing.is_empty()) {
             for (file, column) in super::charts::draw_all(e, out, &header, &rows)? {
                 eprintln!("note: plot {file} not drawn: no run has a value of {column}");
@@ -728,6 +617,150 @@ pub fn merge(dirs: &[PathBuf], out: &Path, experiment: Option<&Experiment>, o: &
         }
         _ => Ok(merged),
     }
+}
+
+/// A shard folder's rows, each with its line, once checked: not being
+/// written, not cut off, a sweep's runs.csv with the columns of the first
+/// shard's (`header`, set by the first), every row a whole run.
+fn read_shard(d: &Path, first: &Path, header: &mut Option<Vec<String>>) -> Result<Vec<(Vec<String>, u64)>> {
+    let mut rows = Vec::new();
+    // A shard still being written is not merged.
+    if let Some(holder) = FolderLock::holder(d) {
+        let why = format!(
+            "this shard is still being written (its lock is held by {holder}); merge when it has finished, or if that sweep is gone, delete {}",
+            d.join(".lock").display()
+        );
+        return Err(ExperimentError::Record { path: d.to_path_buf(), why });
+    }
+    let p = d.join("runs.csv");
+    let text = crate::data::read_input_text(&p).map_err(ExperimentError::io(format!("cannot read {}", p.display())))?;
+    // A last line without its newline was cut off mid-write: its last
+    // cell may be a shorter, wrong number (0.757080 read as 0.757).
+    if !text.is_empty() && !text.ends_with('\n') {
+        let why = format!(
+            "the last line does not end in a newline (the shard was cut off while writing it); finish the shard with `refract sweep FILE --resume --shard I/N --out {}` first",
+            d.display()
+        );
+        return Err(ExperimentError::RecordLine { path: p, line: text.matches('\n').count() as u64 + 1, why });
+    }
+    let mut r = csv::Reader::from_reader(text.as_bytes());
+    let h: Vec<String> = r.headers().map_err(|csv| ExperimentError::Header { path: p.clone(), csv })?.iter().map(str::to_string).collect();
+    if h.first().map(String::as_str) != Some("run_id") {
+        let why = format!("not a sweep's runs.csv (its first column is `{}`, not run_id)", h.first().map_or("", String::as_str));
+        return Err(ExperimentError::RecordLine { path: p, line: 1, why });
+    }
+    match header {
+        Some(x) if *x != h => return Err(ExperimentError::Record { path: p, why: format!("its columns differ from {}", first.join("runs.csv").display()) }),
+        _ => *header = Some(h.clone()),
+    }
+    // Every row is a whole run: a short or unreadable one (a shard
+    // stopped mid-write) is named, not dropped.
+    for record in r.records() {
+        let x = record.map_err(|e| {
+            let at = e.position().map_or(0, |at| at.line());
+            match e.kind() {
+                csv::ErrorKind::UnequalLengths { len, .. } => {
+                    ExperimentError::RecordLine { path: p.clone(), line: at, why: format!("not a whole run ({len} of {} cells)", h.len()) }
+                }
+                _ => ExperimentError::UnreadableRow { path: p.clone(), line: at, csv: e },
+            }
+        })?;
+        // (The reader refuses a row of another length than the header's.)
+        if x[0].parse::<usize>().is_err() {
+            return Err(ExperimentError::RecordLine { path: p, line: x.position().map_or(0, |at| at.line()), why: format!("`{}` is not a run id", &x[0]) });
+        }
+        rows.push((x.iter().map(str::to_string).collect(), x.position().map_or(0, |at| at.line())));
+    }
+    Ok(rows)
+}
+
+/// Refuses rows of another experiment (or another version of its file)
+/// than `experiment`'s, or than the first row's without one.
+fn check_one_experiment(header: &[String], rows: &[(Vec<String>, usize)], dirs: &[PathBuf], experiment: Option<&Experiment>) -> Result<()> {
+    if let Some(col) = header.iter().position(|h| h == "experiment") {
+        let want = match experiment {
+            Some(e) => e.fingerprint.clone(),
+            None => rows.first().map(|(r, _)| r[col].clone()).unwrap_or_default(),
+        };
+        if let Some((r, k)) = rows.iter().find(|(r, _)| r[col] != want) {
+            let why = format!(
+                "run {} is from experiment {}, not {} (another experiment, or another version of its file); merge only shards of one run",
+                r[0], r[col], want
+            );
+            return Err(ExperimentError::Record { path: dirs[*k].join("runs.csv"), why });
+        }
+    }
+    Ok(())
+}
+
+/// The rows in run order, refusing a run twice in one shard or in two.
+fn in_run_order(rows: Vec<(Vec<String>, usize)>, lines: &[u64], dirs: &[PathBuf]) -> Result<Vec<(Vec<String>, usize)>> {
+    let mut order: Vec<usize> = (0..rows.len()).collect();
+    order.sort_by_key(|&i| (rows[i].0[0].parse::<usize>().unwrap_or(usize::MAX), i));
+    if let Some(w) = order.windows(2).find(|w| rows[w[0]].0[0] == rows[w[1]].0[0]) {
+        let ((a, ka), (b, kb)) = (&rows[w[0]], &rows[w[1]]);
+        if ka == kb {
+            let why = format!("run {} is twice (lines {} and {}); each run is one row", a[0], lines[w[0]], lines[w[1]]);
+            return Err(ExperimentError::Record { path: dirs[*ka].join("runs.csv"), why });
+        }
+        return Err(ExperimentError::InTwoShards { id: b[0].clone(), first: dirs[*ka].clone(), second: dirs[*kb].clone() });
+    }
+    Ok(order.into_iter().map(|i| rows[i].clone()).collect())
+}
+
+/// The runs of `experiment` that no shard holds (none without one);
+/// refused unless `resume` runs them.
+fn missing_runs(rows: &[(Vec<String>, usize)], experiment: Option<&Experiment>, resume: bool) -> Result<Vec<String>> {
+    let mut missing = Vec::new();
+    if let Some(e) = experiment {
+        let have: HashSet<usize> = rows.iter().filter_map(|(r, _)| r[0].parse().ok()).collect();
+        let total = expand(e).len();
+        missing = (0..total).filter(|id| !have.contains(id)).map(|id| id.to_string()).collect();
+        if !missing.is_empty() && !resume {
+            return Err(ExperimentError::InNoShard { runs: missing.join(", "), missing: missing.len(), total });
+        }
+    }
+    Ok(missing)
+}
+
+/// Writes the merged rows into `out` with the shards' run images and
+/// reference. A record already in `out` is replaced only by one that holds
+/// every row of it, unchanged; else it is moved aside (`fresh`) or refused.
+fn write_merged(dirs: &[PathBuf], out: &Path, header: &[String], rows: &[Vec<String>], fresh: bool) -> Result<()> {
+    if let super::record::Found::Rows { rows: old, .. } = super::record::inspect(out, header)? {
+        let lost = old.iter().find(|(_, r)| !rows.iter().any(|m| m == r));
+        match lost {
+            None => {}
+            Some(_) if fresh => {
+                let to = super::record::move_aside(out)?;
+                eprintln!("note: moved the record in {} aside to {}", out.display(), to.display());
+            }
+            Some((line, r)) => {
+                let why = format!(
+                    "holds run {} as the merge does not (another run, or another version of the experiment); merge into another --out, or with --fresh to move that record aside (to runs.csv.N)",
+                    r[0]
+                );
+                return Err(ExperimentError::RecordLine { path: out.join("runs.csv"), line: *line, why });
+            }
+        }
+    }
+    // The run images (named by their parameters) and the reference
+    // image and its record travel with the rows.
+    for d in dirs {
+        let mut names: Vec<PathBuf> = std::fs::read_dir(d.join("images")).map(|rd| rd.flatten().map(|e| e.path()).collect()).unwrap_or_default();
+        names.retain(|p| p.extension().is_some_and(|x| x == "png") && !p.file_name().is_some_and(|n| n.to_string_lossy().starts_with('.')));
+        names.sort();
+        for from in names {
+            crate::image_io::create_folder(&out.join("images"))?;
+            copy_into_place(&from, &out.join("images").join(from.file_name().unwrap_or_default()))?;
+        }
+    }
+    for name in ["reference.png", "reference.csv"] {
+        if let Some(reference) = dirs.iter().map(|d| d.join(name)).find(|p| p.is_file()) {
+            copy_into_place(&reference, &out.join(name))?;
+        }
+    }
+    write_rows(&out.join("runs.csv"), header, rows)
 }
 
 /// How `merge` treats the folder it writes.
