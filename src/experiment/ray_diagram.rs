@@ -205,7 +205,7 @@ where
     }
     // The white ray, one path for every wavelength up to the prism,
     // drawn over them in grey.
-    let white: Vec<(f64, f64)> = probe(&s, 587.6).path.iter().take(2).map(|v| (v.x, v.y)).collect();
+    let white: Vec<(f64, f64)> = probe(s, 587.6).path.iter().take(2).map(|v| (v.x, v.y)).collect();
     let grey = RGBColor(110, 110, 110);
     c.draw_series(LineSeries::new(white, grey.stroke_width(3)))
         .map_err(PlotError::draw)?
