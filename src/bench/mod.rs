@@ -75,10 +75,9 @@ fn best_of<T>(n: usize, mut f: impl FnMut() -> (T, f64)) -> (T, f64) {
 /// BVH on the same rows for the ratio, and on the full frame).
 pub fn interior(quick: bool) -> Result<String> {
     let (w, h) = if quick { (160, 120) } else { (640, 480) };
-    let repeats = if quick { 1 } else { 3 };
+    let b = InteriorBench { w, h, quick, repeats: if quick { 1 } else { 3 }, n_incoherent: if quick { 20_000 } else { 400_000 } };
     let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
     let mut out = String::new();
-    let n_incoherent = if quick { 20_000 } else { 400_000 };
     writeln!(out, "interior bench: icospheres at {w}x{h}, primary rays (nearest hit only), 1 thread unless noted")?;
     writeln!(
         out,
@@ -98,6 +97,39 @@ pub fn interior(quick: bool) -> Result<String> {
     )?;
     let mut vs_embree = String::new();
     for subdiv in [3, 5, 6] {
+        b.row(subdiv, &mut out, &mut vs_embree)?;
+    }
+    writeln!(out, "ratio = linear time / bvh time on the same {} rows; columns in millions of rays per second", if quick { "few" } else { "sampled" })?;
+    writeln!(out, "incoh: {} rays from uniform points in the mesh's box in uniform directions (fixed seed), 1 thread; hits: rays that hit", b.n_incoherent)?;
+    writeln!(out)?;
+    out.push_str(&vs_embree);
+    Ok(out)
+}
+
+/// The interior bench's settings: image size, repeats (the best of them
+/// is taken) and how many incoherent rays.
+struct InteriorBench {
+    w: usize,
+    h: usize,
+    quick: bool,
+    repeats: usize,
+    n_incoherent: usize,
+}
+
+/// Best-of timings of one icosphere, single-threaded unless noted: (hits,
+/// seconds) of the full frame's primary rays, of the sampled rows through
+/// the BVH and through the linear scan, and (rays, seconds) of a render.
+struct Coherent {
+    full: (u64, f64),
+    rows: (u64, f64),
+    linear: (u64, f64),
+    render_1t: (u64, f64),
+}
+
+impl InteriorBench {
+    /// One icosphere's row of the table, and its Embree comparison.
+    fn row(&self, subdiv: u32, out: &mut String, vs_embree: &mut String) -> Result<()> {
+        let (w, h, repeats) = (self.w, self.h, self.repeats);
         let mesh = icosphere(subdiv);
         let mut cfg = crate::params::interior::defaults();
         cfg.off = crate::mesh::source::MeshSource::Icosphere(subdiv);
@@ -116,40 +148,18 @@ pub fn interior(quick: bool) -> Result<String> {
         let lin = scene.accel(AccelKind::Linear);
         // About 3e8 triangle tests for the linear scan (~1 s), rows spread evenly.
         let n_rows = ((3e8 / (w as f64 * tris as f64)) as usize).clamp(2, h);
-        let n_rows = if quick { n_rows.min(8) } else { n_rows };
+        let n_rows = if self.quick { n_rows.min(8) } else { n_rows };
         let rows: Vec<usize> = (0..n_rows).map(|i| (i * h + h / 2) / n_rows).collect();
         let all: Vec<usize> = (0..h).collect();
         // The full frame's rays, made once: timed here and given to Embree.
         let primary = camera_rays(&scene, &all);
         let one = rayon::ThreadPoolBuilder::new().num_threads(1).build()?;
-        let ((full_hits, t_full), (row_hits, t_rows), (lin_hits, t_lin), t_render1) = one.install(|| {
-            let full = best_of(repeats, || cast_rays(&bvh, &primary));
-            let rows_b = best_of(repeats, || cast(&bvh, &scene, &rows));
-            let rows_l = cast(&lin, &scene, &rows);
-            let tracer = Tracer::new(&scene, &bvh, &cfg);
-            let r1 = best_of(repeats, || {
-                let t = Instant::now();
-                let r = tracer.render(1, 0);
-                (r.rays, t.elapsed().as_secs_f64())
-            });
-            (full, rows_b, rows_l, r1)
-        });
-        if row_hits != lin_hits {
-            return Err(BenchError::RowHits { triangles: tris, bvh: row_hits, linear: lin_hits });
+        let c = one.install(|| self.coherent(&scene, &cfg, (&bvh, &lin), &primary, &rows));
+        if c.rows.0 != c.linear.0 {
+            return Err(BenchError::RowHits { triangles: tris, bvh: c.rows.0, linear: c.linear.0 });
         }
-        // Incoherent rays: origins inside the mesh's box, directions
-        // uniform; the BVH checked against the scan on the first 1000.
-        let bounds = match &bvh {
-            Accel::Bvh(b) => b.bounds(),
-            Accel::Linear(_) => unreachable!("built as a BVH"),
-        };
-        let rays = incoherent_rays(bounds, n_incoherent);
-        let ((incoh_hits, t_incoh), (check_b, check_l)) =
-            one.install(|| (best_of(repeats, || cast_rays(&bvh, &rays)), (cast_rays(&bvh, &rays[..1000]).0, cast_rays(&lin, &rays[..1000]).0)));
-        if check_b != check_l {
-            return Err(BenchError::IncoherentHits { bvh: check_b, linear: check_l });
-        }
-        if full_hits == 0 {
+        let (rays, (incoh_hits, t_incoh)) = self.incoherent(&one, &bvh, &lin)?;
+        if c.full.0 == 0 {
             return Err(BenchError::NotInView);
         }
         let tracer = Tracer::new(&scene, &bvh, &cfg);
@@ -166,25 +176,60 @@ pub fn interior(quick: bool) -> Result<String> {
             tris,
             build * 1e3,
             nodes,
-            mrays((w * h) as f64, t_full),
-            full_hits,
-            mrays(row_rays, t_rows),
-            mrays(row_rays, t_lin),
-            t_lin / t_rows,
-            mrays(t_render1.0 as f64, t_render1.1),
+            mrays((w * h) as f64, c.full.1),
+            c.full.0,
+            mrays(row_rays, c.rows.1),
+            mrays(row_rays, c.linear.1),
+            c.linear.1 / c.rows.1,
+            mrays(c.render_1t.0 as f64, c.render_1t.1),
             mrays(t_render_n.0 as f64, t_render_n.1),
             mrays(rays.len() as f64, t_incoh),
             incoh_hits,
         )?;
         // Embree on the same two ray sets, beside the BVH's timings above.
-        let sets = [(&primary[..], full_hits, t_full), (&rays[..], incoh_hits, t_incoh)];
-        one.install(|| against_embree(&scene.triangles, &bvh, build, repeats, &sets, &mut vs_embree))?;
+        let sets = [(&primary[..], c.full.0, c.full.1), (&rays[..], incoh_hits, t_incoh)];
+        one.install(|| against_embree(&scene.triangles, &bvh, build, repeats, &sets, vs_embree))?;
+        Ok(())
     }
-    writeln!(out, "ratio = linear time / bvh time on the same {} rows; columns in millions of rays per second", if quick { "few" } else { "sampled" })?;
-    writeln!(out, "incoh: {n_incoherent} rays from uniform points in the mesh's box in uniform directions (fixed seed), 1 thread; hits: rays that hit")?;
-    writeln!(out)?;
-    out.push_str(&vs_embree);
-    Ok(out)
+
+    /// The coherent timings (run inside a 1-thread pool).
+    fn coherent(
+        &self,
+        scene: &InteriorScene,
+        cfg: &crate::interior::InteriorConfig,
+        (bvh, lin): (&Accel, &Accel),
+        primary: &[Ray],
+        rows: &[usize],
+    ) -> Coherent {
+        let repeats = self.repeats;
+        let full = best_of(repeats, || cast_rays(bvh, primary));
+        let rows_b = best_of(repeats, || cast(bvh, scene, rows));
+        let rows_l = cast(lin, scene, rows);
+        let tracer = Tracer::new(scene, bvh, cfg);
+        let r1 = best_of(repeats, || {
+            let t = Instant::now();
+            let r = tracer.render(1, 0);
+            (r.rays, t.elapsed().as_secs_f64())
+        });
+        Coherent { full, rows: rows_b, linear: rows_l, render_1t: r1 }
+    }
+
+    /// Incoherent rays: origins inside the mesh's box, directions
+    /// uniform; the BVH checked against the scan on the first 1000. The
+    /// rays, and the BVH's best (hits, seconds) on them, on 1 thread.
+    fn incoherent(&self, one: &rayon::ThreadPool, bvh: &Accel, lin: &Accel) -> Result<(Vec<Ray>, (u64, f64))> {
+        let bounds = match bvh {
+            Accel::Bvh(b) => b.bounds(),
+            Accel::Linear(_) => unreachable!("built as a BVH"),
+        };
+        let rays = incoherent_rays(bounds, self.n_incoherent);
+        let (timed, (check_b, check_l)) =
+            one.install(|| (best_of(self.repeats, || cast_rays(bvh, &rays)), (cast_rays(bvh, &rays[..1000]).0, cast_rays(lin, &rays[..1000]).0)));
+        if check_b != check_l {
+            return Err(BenchError::IncoherentHits { bvh: check_b, linear: check_l });
+        }
+        Ok((rays, timed))
+    }
 }
 
 /// The BVH against Embree on the same triangles and the same rays (the
@@ -478,82 +523,127 @@ fn prism_error_vs_time(
     peer: Option<&mitsuba::Mitsuba>,
     out: &mut String,
 ) -> Result<(String, Vec<(String, Runs)>)> {
-    use crate::spectral::exact::{relative_error, ExactOptions};
     let t = Instant::now();
-    let reference = crate::spectral::exact::render(scene, &ExactOptions::default())?;
+    let reference = crate::spectral::exact::render(scene, &crate::spectral::exact::ExactOptions::default())?;
     writeln!(out, "reference: the exact image (2048 wavelengths, 8x8 subsamples at footprint edges), {:.2} s", t.elapsed().as_secs_f64())?;
-    let quick = b.quick;
     let counts: Vec<u64> =
-        if quick { vec![25_000, 100_000] } else { vec![25_000, 50_000, 100_000, 200_000, 400_000, 800_000, 1_600_000, 3_200_000, 6_400_000] };
+        if b.quick { vec![25_000, 100_000] } else { vec![25_000, 50_000, 100_000, 200_000, 400_000, 800_000, 1_600_000, 3_200_000, 6_400_000] };
+    let run = ErrorRuns { scene, reference: &reference, radius, quick: b.quick, counts };
     let mut csv = ErrorCsv::new()?;
     let mut series: Vec<(String, Runs)> = Vec::new();
-    let maps: &[MapKind] = if b.film_only { &[] } else { &[MapKind::Buffer, MapKind::Kdtree] };
-    for &map in maps {
-        for filter in [Filter::Box, Filter::Cone, Filter::Gaussian] {
-            let name = format!("{} {}", map.name(), filter.name());
+    if !b.film_only {
+        run.photon_maps(&mut csv, &mut series)?;
+    }
+    run.film(&mut csv, &mut series)?;
+    if !b.film_only {
+        run.progressive(&mut csv, &mut series)?;
+    }
+    let peer_runs = match peer {
+        Some(m) => Some(run.peer(m, glass, &mut csv)?),
+        None => None,
+    };
+    error_table(out, &series, &peer_runs, b.quick)?;
+    series.extend(peer_runs);
+    Ok((csv.finish()?, series))
+}
+
+/// The error-against-time runs of the prism bench: the scene, the exact
+/// image they are measured against, the one-pass gather radius, and the
+/// photon counts.
+struct ErrorRuns<'a> {
+    scene: &'a crate::world::World,
+    reference: &'a crate::spectral::film::XyzImage,
+    radius: f64,
+    quick: bool,
+    counts: Vec<u64>,
+}
+
+impl ErrorRuns<'_> {
+    /// Each photon map with each filter, at each photon count.
+    fn photon_maps(&self, csv: &mut ErrorCsv, series: &mut Vec<(String, Runs)>) -> Result<()> {
+        let counts = &self.counts;
+        for map in [MapKind::Buffer, MapKind::Kdtree] {
+            for filter in [Filter::Box, Filter::Cone, Filter::Gaussian] {
+                let name = format!("{} {}", map.name(), filter.name());
+                let mut runs = Vec::new();
+                for &c in counts {
+                    let r = render(self.scene, &prism_opts(c, map, filter, self.radius), &crate::progress::Silent);
+                    let time = r.trace_s + r.build_s + r.render_s;
+                    let err = crate::spectral::exact::relative_error(&r.image, self.reference);
+                    csv.row(&name, c, time, err)?;
+                    runs.push((time, err));
+                }
+                series.push((name, runs));
+            }
+        }
+        Ok(())
+    }
+
+    /// Light tracing onto the film: bare, no kernel and so no floor from
+    /// blur; and with the kernel its two halves choose (the default).
+    fn film(&self, csv: &mut ErrorCsv, series: &mut Vec<(String, Runs)>) -> Result<()> {
+        let (quick, counts) = (self.quick, &self.counts);
+        for (name, kernel) in [("film, no kernel", Some(0.0)), ("film, chosen kernel", None)] {
             let mut runs = Vec::new();
-            for &c in &counts {
-                let r = render(scene, &prism_opts(c, map, filter, radius), &crate::progress::Silent);
+            let film_counts: Vec<u64> =
+                if quick { counts.clone() } else { [6_250, 12_500].into_iter().chain(counts.iter().copied()).chain([12_800_000, 25_600_000]).collect() };
+            for &c in &film_counts {
+                let o = RenderOptions { film_kernel: kernel, ..prism_opts(c, MapKind::Film, Filter::Box, self.radius) };
+                let r = render(self.scene, &o, &crate::progress::Silent);
                 let time = r.trace_s + r.build_s + r.render_s;
-                let err = relative_error(&r.image, &reference);
-                csv.row(&name, c, time, err)?;
+                let err = crate::spectral::exact::relative_error(&r.image, self.reference);
+                csv.row(name, c, time, err)?;
                 runs.push((time, err));
+            }
+            series.push((name.to_string(), runs));
+        }
+        Ok(())
+    }
+
+    /// Progressive photon mapping: the running mean after each pass,
+    /// recorded at powers of two and every 16 passes. As `refract prism
+    /// --passes` runs it: the first radius one pixel's footprint (half the
+    /// one-pass default).
+    fn progressive(&self, csv: &mut ErrorCsv, series: &mut Vec<(String, Runs)>) -> Result<()> {
+        let quick = self.quick;
+        let passes = if quick { 4 } else { 64 };
+        let progressive: &[(MapKind, u64)] = &[(MapKind::Kdtree, 400_000), (MapKind::Buffer, 1_600_000)];
+        for &(map, per) in progressive {
+            let per = if quick { per / 8 } else { per };
+            let name = format!("progressive {} box {}k/pass", map.name(), per / 1000);
+            let mut runs = Vec::new();
+            let mut rows = Vec::new();
+            crate::spectral::progressive::render(self.scene, &prism_opts(per, map, Filter::Box, self.radius / 2.0), passes, &crate::progress::Silent, |p| {
+                if p.passes.is_power_of_two() || p.passes % 16 == 0 {
+                    let err = crate::spectral::exact::relative_error(p.image, self.reference);
+                    runs.push((p.seconds, err));
+                    rows.push((p.photons, p.seconds, err));
+                }
+            });
+            for (photons, secs, err) in rows {
+                csv.row(&name, photons, secs, err)?;
             }
             series.push((name, runs));
         }
+        Ok(())
     }
-    // Light tracing onto the film: bare, no kernel and so no floor from
-    // blur; and with the kernel its two halves choose (the default).
-    for (name, kernel) in [("film, no kernel", Some(0.0)), ("film, chosen kernel", None)] {
-        let mut runs = Vec::new();
-        let film_counts: Vec<u64> =
-            if quick { counts.clone() } else { [6_250, 12_500].into_iter().chain(counts.iter().copied()).chain([12_800_000, 25_600_000]).collect() };
-        for &c in &film_counts {
-            let o = RenderOptions { film_kernel: kernel, ..prism_opts(c, MapKind::Film, Filter::Box, radius) };
-            let r = render(scene, &o, &crate::progress::Silent);
-            let time = r.trace_s + r.build_s + r.render_s;
-            let err = relative_error(&r.image, &reference);
-            csv.row(name, c, time, err)?;
-            runs.push((time, err));
+
+    /// The peer, in the same run, against the same reference.
+    fn peer(&self, m: &mitsuba::Mitsuba, glass: &crate::optics::glass::Glass, csv: &mut ErrorCsv) -> Result<(String, Runs)> {
+        let (scene, quick) = (self.scene, self.quick);
+        let spps: &[u32] = if quick { &[1, 2] } else { &[1, 2, 4, 8, 16] };
+        let (variant, runs) = m.error_vs_time(scene, glass, spps, self.reference)?;
+        let name = format!("Mitsuba {} {variant}", m.version);
+        for r in &runs {
+            csv.row(&name, r.spp as u64 * (scene.camera.width * scene.camera.height * mitsuba::BANDS) as u64, r.seconds, r.error)?;
         }
-        series.push((name.to_string(), runs));
+        Ok((name, runs.iter().map(|r| (r.seconds, r.error)).collect::<Runs>()))
     }
-    // Progressive: the running mean after each pass, recorded at powers of
-    // two and every 64 passes.
-    // As `refract prism --passes` runs it: the first radius one pixel's
-    // footprint (half the one-pass default).
-    let passes = if quick { 4 } else { 64 };
-    let progressive: &[(MapKind, u64)] = if b.film_only { &[] } else { &[(MapKind::Kdtree, 400_000), (MapKind::Buffer, 1_600_000)] };
-    for &(map, per) in progressive {
-        let per = if quick { per / 8 } else { per };
-        let name = format!("progressive {} box {}k/pass", map.name(), per / 1000);
-        let mut runs = Vec::new();
-        let mut rows = Vec::new();
-        crate::spectral::progressive::render(scene, &prism_opts(per, map, Filter::Box, radius / 2.0), passes, &crate::progress::Silent, |p| {
-            if p.passes.is_power_of_two() || p.passes % 16 == 0 {
-                let err = relative_error(p.image, &reference);
-                runs.push((p.seconds, err));
-                rows.push((p.photons, p.seconds, err));
-            }
-        });
-        for (photons, secs, err) in rows {
-            csv.row(&name, photons, secs, err)?;
-        }
-        series.push((name, runs));
-    }
-    // The peer, in the same run, against the same reference.
-    let peer_runs = match peer {
-        Some(m) => {
-            let spps: &[u32] = if quick { &[1, 2] } else { &[1, 2, 4, 8, 16] };
-            let (variant, runs) = m.error_vs_time(scene, glass, spps, &reference)?;
-            let name = format!("Mitsuba {} {variant}", m.version);
-            for r in &runs {
-                csv.row(&name, r.spp as u64 * (scene.camera.width * scene.camera.height * mitsuba::BANDS) as u64, r.seconds, r.error)?;
-            }
-            Some((name, runs.iter().map(|r| (r.seconds, r.error)).collect::<Runs>()))
-        }
-        None => None,
-    };
+}
+
+/// The table of each method's time to each target error (and its ratio
+/// to the peer's), its floor, and what the columns mean.
+fn error_table(out: &mut String, series: &[(String, Runs)], peer_runs: &Option<(String, Runs)>, quick: bool) -> Result<()> {
     let fmt = |t: Option<f64>| t.map_or("-".to_string(), |t| format!("{t:.3}"));
     write!(out, "{:>34}", "method")?;
     for e in TARGETS {
@@ -563,12 +653,12 @@ fn prism_error_vs_time(
         }
     }
     writeln!(out, " {:>12}", "floor")?;
-    for (name, runs) in series.iter().chain(&peer_runs) {
+    for (name, runs) in series.iter().chain(peer_runs) {
         write!(out, "{name:>34}")?;
         for e in TARGETS {
             let t = time_to_error(runs, e);
             write!(out, " {:>8}", fmt(t))?;
-            if let Some((_, mi)) = &peer_runs {
+            if let Some((_, mi)) = peer_runs {
                 let ratio = match (time_to_error(mi, e), t) {
                     (Some(m), Some(t)) => format!("{:.1}", m / t),
                     _ => "-".into(),
@@ -578,7 +668,7 @@ fn prism_error_vs_time(
         }
         writeln!(out, " {:>12}", floor(runs).map_or("still falls".to_string(), |f| format!("{f:.4}")))?;
     }
-    match &peer_runs {
+    match peer_runs {
         Some((name, _)) => writeln!(
             out,
             "t(e): seconds to reach relative error e (log-log interpolation); xMi: {name}'s time to e over the method's, both measured in this run (Mitsuba: its particle tracer, its render calls alone, {} samples per pixel, each in {} wavelength bands of its own rendered one at a time, the glass a Cauchy fit through n_C and n_F)",
@@ -588,8 +678,7 @@ fn prism_error_vs_time(
         None => writeln!(out, "t(e): seconds to reach relative error e (log-log interpolation); no peer ran, so no ratio (--peer mitsuba runs one in the same bench)")?,
     }
     writeln!(out, "floor: the error where a method stops improving (its last doubling of time gains under 5 %), or 'still falls'")?;
-    series.extend(peer_runs);
-    Ok((csv.finish()?, series))
+    Ok(())
 }
 
 /// `prism-error-vs-time.csv` being written: columns method, photons,

@@ -236,74 +236,12 @@ fn line_chart_with(p: &PlotSpec, header: &[String], rows: &[Vec<String>], quick:
     let (log_x, log_y) = (p.log_x && !categorical, p.log_y);
     let cols = Columns { x: xi, y: yi, series: &si, renders, timing };
     let (groups, not_positive) = group_points(p, header, &ok_rows, &cols, &categories, (log_x, log_y));
-    let mut notes: Vec<(String, RGBColor)> = Vec::new();
-    let mut short = 0usize;
-    let mut below_reference = 0usize;
     let free = free_parameters(p, axes, header, &ok_rows);
-    // Each series' drawn points (their runs), and the points left out.
-    let mut kept: Vec<(String, Vec<Vec<usize>>)> = Vec::new();
-    let mut dropped: Vec<(String, Vec<usize>)> = Vec::new();
     let floor = reference_noise.filter(|n| *n > 0.0).map(|n| 10.0 * n);
-    let mut verdicts: Vec<(String, RGBColor)> = Vec::new();
-    let mut series: Vec<Series> = Vec::new();
-    for (k, (name, mut pts)) in groups.into_iter().enumerate() {
-        let (too_short, below) = leave_out(&mut pts, quick, floor.filter(|_| is_error(&p.y)));
-        short += too_short.len();
-        below_reference += below;
-        dropped.extend(too_short.into_iter().map(|runs| (name.clone(), runs)));
-        kept.push((name.clone(), pts.iter().map(|pt| pt.runs.clone()).collect()));
-        let mut out = Series::new(if name.is_empty() { axis_title(&p.y) } else { name }, Vec::new(), PALETTE[k % PALETTE.len()]);
-        let sorted = summarise(&pts, is_timing(&p.x));
-        out.points = sorted.iter().map(|s| (s.0, s.1)).collect();
-        out.spread_x = sorted.iter().map(|s| s.2).collect();
-        out.spread_y = sorted.iter().map(|s| s.3).collect();
-        if p.fit {
-            verdicts.extend(fit_series(p, &mut out, (log_x, log_y), quick));
-        }
-        series.push(out);
-    }
-    if is_timing(&p.x) || is_timing(&p.y) {
-        notes.extend(load_note(p, header, &ok_rows));
-    }
-    if quick && (is_timing(&p.x) || is_timing(&p.y)) {
-        notes.push(("quick run: its runs are too short for their times to be measurements; no claim is judged".into(), RGBColor(190, 0, 0)));
-    }
-    notes.splice(0..0, point_notes(&free, &kept, &ok_rows, header, &p.x, &p.y, quick));
-    if !verdicts.is_empty() {
-        verdicts.push((format!("the test: {}", claim_rule(p.claim_slope, log_x && log_y)), RGBColor(60, 60, 60)));
-    }
-    notes.extend(verdicts);
-    if !p.note.is_empty() {
-        notes.push((p.note.clone(), RGBColor(60, 60, 60)));
-    }
-    if not_positive > 0 {
-        notes.push((format!("{} with a value of 0 or less not drawn on the log axis", count(not_positive, "run")), RGBColor(60, 60, 60)));
-    }
-    if short > 0 {
-        let (whose, verb) = if short == 1 { ("its", "was") } else { ("their", "were") };
-        let which = which_points(&free, &dropped, &kept, &ok_rows, header, &p.x);
-        let text = format!(
-            "{} not plotted{which}: {whose} renders together, repeats inside one timing included, {verb} timed over less than {} ms",
-            count(short, "point"),
-            SHORTEST_TIMING_S * 1e3
-        );
-        notes.push((text, RGBColor(60, 60, 60)));
-    }
-    if let (Some(n), true) = (reference_noise, is_error(&p.y)) {
-        let also = if below_reference > 0 { format!("; {} under ten times that left out", count(below_reference, "point")) } else { String::new() };
-        let text = if n > 0.0 {
-            format!("the reference's own noise (two seeds): {}{also}", sig(n))
-        } else {
-            "the reference draws nothing at random: its own noise is 0".into()
-        };
-        notes.push((text, RGBColor(60, 60, 60)));
-    }
-    if !p.claim.is_empty() && is_timing(&p.y) && p.x != "rays" && !is_timing(&p.x) {
-        notes.extend(rays_note(p, header, &ok_rows, &kept));
-    }
-    if p.y == "changed_px" {
-        notes.extend(series.first().and_then(|s| uneven_steps_note(&p.x, &s.points)));
-    }
+    let mut drawn = draw_series(p, groups, quick, floor.filter(|_| is_error(&p.y)), (log_x, log_y));
+    let plotted = Plotted { p, header, ok_rows: &ok_rows, free: &free, quick, log: (log_x, log_y), reference_noise };
+    let notes = plotted.notes(&mut drawn, not_positive);
+    let series = drawn.series;
     Ok(LineChart {
         y_from_zero: !p.claim.is_empty() && !log_y,
         title: p.title.clone(),
@@ -319,6 +257,121 @@ fn line_chart_with(p: &PlotSpec, header: &[String], rows: &[Vec<String>], quick:
         // the level no curve can fall below.
         levels: reference_noise.filter(|n| *n > 0.0 && is_error(&p.y)).map(|n| vec![(n, "reference noise".to_string())]).unwrap_or_default(),
     })
+}
+
+/// A chart's series as drawn, with the points left out.
+struct Drawn {
+    series: Vec<Series>,
+    /// Each series' drawn points (their runs), and the points left out.
+    kept: Vec<(String, Vec<Vec<usize>>)>,
+    dropped: Vec<(String, Vec<usize>)>,
+    /// Points timed too briefly, and points under ten times the
+    /// reference's noise.
+    short: usize,
+    below_reference: usize,
+    /// What the fitted lines say of the plot's claim.
+    verdicts: Vec<(String, RGBColor)>,
+}
+
+/// Each group of points as a series, summarised (median and spread at
+/// each x) and fitted if asked, leaving out points timed too briefly and
+/// errors under `floor`.
+fn draw_series(p: &PlotSpec, groups: Vec<(String, Vec<Point>)>, quick: bool, floor: Option<f64>, (log_x, log_y): (bool, bool)) -> Drawn {
+    let mut d = Drawn { series: Vec::new(), kept: Vec::new(), dropped: Vec::new(), short: 0, below_reference: 0, verdicts: Vec::new() };
+    for (k, (name, mut pts)) in groups.into_iter().enumerate() {
+        let (too_short, below) = leave_out(&mut pts, quick, floor);
+        d.short += too_short.len();
+        d.below_reference += below;
+        d.dropped.extend(too_short.into_iter().map(|runs| (name.clone(), runs)));
+        d.kept.push((name.clone(), pts.iter().map(|pt| pt.runs.clone()).collect()));
+        let mut out = Series::new(if name.is_empty() { axis_title(&p.y) } else { name }, Vec::new(), PALETTE[k % PALETTE.len()]);
+        let sorted = summarise(&pts, is_timing(&p.x));
+        out.points = sorted.iter().map(|s| (s.0, s.1)).collect();
+        out.spread_x = sorted.iter().map(|s| s.2).collect();
+        out.spread_y = sorted.iter().map(|s| s.3).collect();
+        if p.fit {
+            d.verdicts.extend(fit_series(p, &mut out, (log_x, log_y), quick));
+        }
+        d.series.push(out);
+    }
+    d
+}
+
+/// What a chart's notes are made from: the plot, its record's successful
+/// rows, the parameters left free along a curve.
+struct Plotted<'a> {
+    p: &'a PlotSpec,
+    header: &'a [String],
+    ok_rows: &'a [&'a Vec<String>],
+    free: &'a [(String, usize)],
+    quick: bool,
+    log: (bool, bool),
+    reference_noise: Option<f64>,
+}
+
+impl Plotted<'_> {
+    /// The notes under a chart, in order: what the points are, the
+    /// machine's load, the claim's verdicts and test, the plot's own
+    /// note, and what was left out and why.
+    fn notes(&self, d: &mut Drawn, not_positive: usize) -> Vec<(String, RGBColor)> {
+        let (p, header, ok_rows, quick) = (self.p, self.header, self.ok_rows, self.quick);
+        let mut notes: Vec<(String, RGBColor)> = Vec::new();
+        if is_timing(&p.x) || is_timing(&p.y) {
+            notes.extend(load_note(p, header, ok_rows));
+        }
+        if quick && (is_timing(&p.x) || is_timing(&p.y)) {
+            notes.push(("quick run: its runs are too short for their times to be measurements; no claim is judged".into(), RGBColor(190, 0, 0)));
+        }
+        notes.splice(0..0, point_notes(self.free, &d.kept, ok_rows, header, &p.x, &p.y, quick));
+        if !d.verdicts.is_empty() {
+            d.verdicts.push((format!("the test: {}", claim_rule(p.claim_slope, self.log.0 && self.log.1)), RGBColor(60, 60, 60)));
+        }
+        notes.append(&mut d.verdicts);
+        if !p.note.is_empty() {
+            notes.push((p.note.clone(), RGBColor(60, 60, 60)));
+        }
+        if not_positive > 0 {
+            notes.push((format!("{} with a value of 0 or less not drawn on the log axis", count(not_positive, "run")), RGBColor(60, 60, 60)));
+        }
+        notes.extend(self.short_note(d));
+        notes.extend(self.reference_note(d.below_reference));
+        if !p.claim.is_empty() && is_timing(&p.y) && p.x != "rays" && !is_timing(&p.x) {
+            notes.extend(rays_note(p, header, ok_rows, &d.kept));
+        }
+        if p.y == "changed_px" {
+            notes.extend(d.series.first().and_then(|s| uneven_steps_note(&p.x, &s.points)));
+        }
+        notes
+    }
+
+    /// The points left out for being timed too briefly, and which.
+    fn short_note(&self, d: &Drawn) -> Option<(String, RGBColor)> {
+        let short = d.short;
+        if short == 0 {
+            return None;
+        }
+        let (whose, verb) = if short == 1 { ("its", "was") } else { ("their", "were") };
+        let which = which_points(self.free, &d.dropped, &d.kept, self.ok_rows, self.header, &self.p.x);
+        let text = format!(
+            "{} not plotted{which}: {whose} renders together, repeats inside one timing included, {verb} timed over less than {} ms",
+            count(short, "point"),
+            SHORTEST_TIMING_S * 1e3
+        );
+        Some((text, RGBColor(60, 60, 60)))
+    }
+
+    /// The reference's own noise, where an error is plotted, and the
+    /// points under ten times it left out.
+    fn reference_note(&self, below_reference: usize) -> Option<(String, RGBColor)> {
+        let n = self.reference_noise.filter(|_| is_error(&self.p.y))?;
+        let also = if below_reference > 0 { format!("; {} under ten times that left out", count(below_reference, "point")) } else { String::new() };
+        let text = if n > 0.0 {
+            format!("the reference's own noise (two seeds): {}{also}", sig(n))
+        } else {
+            "the reference draws nothing at random: its own noise is 0".into()
+        };
+        Some((text, RGBColor(60, 60, 60)))
+    }
 }
 
 /// The values of a column of text (a glass, a map, a scene), in the

@@ -141,3 +141,47 @@ pub fn chain(e: &dyn std::error::Error) -> String {
 }
 
 pub(crate) type Result<T, E = ExperimentError> = std::result::Result<T, E>;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// An error that says `what` and has `cause` below it.
+    #[derive(Debug)]
+    struct Layer {
+        what: &'static str,
+        cause: Option<Box<Layer>>,
+    }
+
+    impl std::fmt::Display for Layer {
+        fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+            f.write_str(self.what)
+        }
+    }
+
+    impl std::error::Error for Layer {
+        fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+            self.cause.as_deref().map(|c| c as &(dyn std::error::Error + 'static))
+        }
+    }
+
+    #[test]
+    fn chain_is_the_error_then_each_cause_in_order() {
+        let bottom = Layer { what: "c", cause: None };
+        let middle = Layer { what: "b", cause: Some(Box::new(bottom)) };
+        let top = Layer { what: "a", cause: Some(Box::new(middle)) };
+        assert_eq!(chain(&top), "a: b: c");
+    }
+
+    #[test]
+    fn chain_of_an_error_without_causes_is_its_text() {
+        assert_eq!(chain(&Layer { what: "alone", cause: None }), "alone");
+    }
+
+    #[test]
+    fn a_quick_mistake_prints_its_causes_once() {
+        let inner = ExperimentError::Key { file: "e.toml".into(), line: 3, key: "photons".into(), why: "not a number".into() };
+        let quick = ExperimentError::Quick(Box::new(inner));
+        assert_eq!(chain(&quick), "e.toml:3: `photons`: not a number (in the file's [quick] version)");
+    }
+}

@@ -183,27 +183,8 @@ pub fn run(o: &FigureOptions) -> Result<Outcome> {
     let md_path = o.scenes.join("FIGURES.md");
     let md = std::fs::read_to_string(&md_path).map_err(ExperimentError::io(format!("cannot read {}", md_path.display())))?;
     let ids = figure_ids(&md);
-    let is_extra = |id: &str| EXTRAS.iter().any(|e| e.0 == id);
-    for id in &o.only {
-        if !ids.contains(id) && !is_extra(id) {
-            return Err(ExperimentError::flag("--only", format!("unknown figure `{id}`; valid: {}", ids.join(", "))));
-        }
-    }
-    let wanted = |id: &str| o.only.is_empty() || o.only.iter().any(|o| o == id);
-    let mut todo: Vec<String> = ids.iter().filter(|id| wanted(id)).cloned().collect();
-    for (extra, companion) in EXTRAS {
-        if wanted(extra) || todo.iter().any(|t| t == companion) {
-            todo.push(extra.to_string());
-        }
-    }
-    crate::image_io::create_folder(&o.out).map_err(|error| ExperimentError::Out(Box::new(error)))?;
-    let dir = o.out.join("figures");
-    crate::image_io::create_folder(&dir)?;
-    // What a figures run killed while writing left behind (the sweeps'
-    // folders are tidied by the sweeps).
-    for d in [o.out.clone(), dir.clone(), o.out.join("display"), o.out.join("spectral"), o.out.join("timings")] {
-        crate::image_io::remove_stale_temps(&d);
-    }
+    let todo = figures_to_do(o, &ids)?;
+    let dir = prepare_folders(&o.out)?;
     let mut records = read_records(&o.out);
     // Figures the record has no caption of take FIGURES.md's description.
     for id in &ids {
@@ -217,29 +198,57 @@ pub fn run(o: &FigureOptions) -> Result<Outcome> {
         write_index(&o.out, &ids, &records, o.quick)?;
         return Ok(Outcome { dir, index: o.out.join("index.html"), failed: Vec::new() });
     }
-    // One bar for the figures, each figure's stages in turn on it; a line
-    // per figure as it is written (on a terminal or not).
+    let failed = draw_figures(o, &todo, &dir, &mut records)?;
+    if o.only.is_empty() {
+        run_sweeps_and_reports(o)?;
+    }
+    write_index(&o.out, &ids, &records, o.quick)?;
+    Ok(Outcome { dir, index: o.out.join("index.html"), failed })
+}
+
+/// The figures to draw: those `--only` names (each checked), or all, and
+/// the extras that go with them.
+fn figures_to_do(o: &FigureOptions, ids: &[String]) -> Result<Vec<String>> {
+    let is_extra = |id: &str| EXTRAS.iter().any(|e| e.0 == id);
+    for id in &o.only {
+        if !ids.contains(id) && !is_extra(id) {
+            return Err(ExperimentError::flag("--only", format!("unknown figure `{id}`; valid: {}", ids.join(", "))));
+        }
+    }
+    let wanted = |id: &str| o.only.is_empty() || o.only.iter().any(|o| o == id);
+    let mut todo: Vec<String> = ids.iter().filter(|id| wanted(id)).cloned().collect();
+    for (extra, companion) in EXTRAS {
+        if wanted(extra) || todo.iter().any(|t| t == companion) {
+            todo.push(extra.to_string());
+        }
+    }
+    Ok(todo)
+}
+
+/// Makes the results folder and its figures/ (returned), and removes what
+/// a figures run killed while writing left behind (the sweeps' folders are
+/// tidied by the sweeps).
+fn prepare_folders(out: &Path) -> Result<PathBuf> {
+    crate::image_io::create_folder(out).map_err(|error| ExperimentError::Out(Box::new(error)))?;
+    let dir = out.join("figures");
+    crate::image_io::create_folder(&dir)?;
+    for d in [out.to_path_buf(), dir.clone(), out.join("display"), out.join("spectral"), out.join("timings")] {
+        crate::image_io::remove_stale_temps(&d);
+    }
+    Ok(dir)
+}
+
+/// Draws or renders each figure of `todo` into `dir`, recording each as it
+/// is written; returns the figures that failed, with why. One bar for the
+/// figures, each figure's stages in turn on it; a line per figure as it is
+/// written (on a terminal or not).
+fn draw_figures(o: &FigureOptions, todo: &[String], dir: &Path, records: &mut BTreeMap<String, Record>) -> Result<Vec<(String, String)>> {
     let bar = crate::terminal::Bars::new();
     let mut failed = Vec::new();
     for (i, id) in todo.iter().enumerate() {
         bar.set_context(format!("figure {}/{} {id}", i + 1, todo.len()));
         let mut summary = String::new();
-        let png = dir.join(format!("{id}.png"));
-        let result: Result<Record> = match DRAWN.iter().find(|d| d.0 == id) {
-            Some(&(_, report, caption)) => draw(id, &png, o.quick, &o.scenes).map(|params| Record {
-                report: report.into(),
-                caption: caption.into(),
-                params,
-                seconds: String::new(),
-                status: "ok".into(),
-            }),
-            None => SceneFile::load(&o.scenes.join(format!("{id}.toml")), o.quick).and_then(|s| {
-                let (secs, line) = s.render_summarised(&png, &bar)?;
-                summary = line;
-                Ok(Record { report: s.report.clone(), caption: s.caption.clone(), params: s.describe(), seconds: format!("{secs:.2}"), status: "ok".into() })
-            }),
-        };
-        let rec = result.unwrap_or_else(|e| {
+        let rec = figure_record(o, id, &dir.join(format!("{id}.png")), &bar, &mut summary).unwrap_or_else(|e| {
             failed.push((id.clone(), chain(&e)));
             Record { status: format!("error: {}", chain(&e)), ..Default::default() }
         });
@@ -249,28 +258,49 @@ pub fn run(o: &FigureOptions) -> Result<Outcome> {
             (status, _) => format!("figure {}/{} {id}: {status}", i + 1, todo.len()),
         });
         records.insert(id.clone(), rec);
-        write_records(&o.out, &records)?;
+        write_records(&o.out, records)?;
     }
     bar.done();
-    if o.only.is_empty() {
-        // Resumed: a complete sweep is a record and is kept (its runs.csv
-        // rewritten byte for byte, its plots redrawn), so running the
-        // figures again changes no committed file; missing runs are run.
-        // A record of another version of the experiment file (or of
-        // refract: other columns) is moved aside, not lost.
-        let again = format!("refract figures{} --out {}", if o.quick { " --quick" } else { "" }, o.out.display());
-        let opts = super::sweep::SweepOptions { jobs: 1, on_record: super::sweep::OnRecord::ResumeOrFresh, again, ..Default::default() };
-        for (name, _) in SWEEPS {
-            let e = super::spec::Experiment::load(&PathBuf::from("experiments").join(format!("{name}.toml")), o.quick)?;
-            super::sweep::run(&e, &super::sweep::SweepOptions { out: Some(o.out.join(name)), ..opts.clone() })?;
-        }
-        super::spectral::write_report(&o.out.join("spectral"), crate::optics::glass::by_name("N-BK7")?)?;
-        let display = o.out.join("display");
-        crate::image_io::create_folder(&display)?;
-        super::display::write(&display.join("transforms.png"), &o.scenes)?;
+    Ok(failed)
+}
+
+/// One figure drawn in code or rendered from its scene file to `png`, and
+/// its record; `summary`, the render's line.
+fn figure_record(o: &FigureOptions, id: &str, png: &Path, bar: &crate::terminal::Bars, summary: &mut String) -> Result<Record> {
+    match DRAWN.iter().find(|d| d.0 == id) {
+        Some(&(_, report, caption)) => draw(id, png, o.quick, &o.scenes).map(|params| Record {
+            report: report.into(),
+            caption: caption.into(),
+            params,
+            seconds: String::new(),
+            status: "ok".into(),
+        }),
+        None => SceneFile::load(&o.scenes.join(format!("{id}.toml")), o.quick).and_then(|s| {
+            let (secs, line) = s.render_summarised(png, bar)?;
+            *summary = line;
+            Ok(Record { report: s.report.clone(), caption: s.caption.clone(), params: s.describe(), seconds: format!("{secs:.2}"), status: "ok".into() })
+        }),
     }
-    write_index(&o.out, &ids, &records, o.quick)?;
-    Ok(Outcome { dir, index: o.out.join("index.html"), failed })
+}
+
+/// The shipped sweeps, the spectral accuracy report and the display
+/// transforms. Resumed: a complete sweep is a record and is kept (its
+/// runs.csv rewritten byte for byte, its plots redrawn), so running the
+/// figures again changes no committed file; missing runs are run. A record
+/// of another version of the experiment file (or of refract: other
+/// columns) is moved aside, not lost.
+fn run_sweeps_and_reports(o: &FigureOptions) -> Result<()> {
+    let again = format!("refract figures{} --out {}", if o.quick { " --quick" } else { "" }, o.out.display());
+    let opts = super::sweep::SweepOptions { jobs: 1, on_record: super::sweep::OnRecord::ResumeOrFresh, again, ..Default::default() };
+    for (name, _) in SWEEPS {
+        let e = super::spec::Experiment::load(&PathBuf::from("experiments").join(format!("{name}.toml")), o.quick)?;
+        super::sweep::run(&e, &super::sweep::SweepOptions { out: Some(o.out.join(name)), ..opts.clone() })?;
+    }
+    super::spectral::write_report(&o.out.join("spectral"), crate::optics::glass::by_name("N-BK7")?)?;
+    let display = o.out.join("display");
+    crate::image_io::create_folder(&display)?;
+    super::display::write(&display.join("transforms.png"), &o.scenes)?;
+    Ok(())
 }
 
 fn esc(s: &str) -> String {
@@ -453,7 +483,66 @@ img{display:block;border:1px solid #ccc;background:#000}\
 figcaption{font-size:90%}code{font-size:85%;color:#555}.missing{color:#a00}.dim,.time{color:#666}\
 .banner{background:#fe9;padding:.6em 1em;border:1px solid #cb6}nav li{margin:.2em 0}";
 
+/// The reports, in the gallery's order, with their headings.
+const REPORTS: [(&str, &str); 5] = [
+    ("000", "Report 000 (CSS552): dispersion through an Amici prism, photon map"),
+    ("004", "Report 004: internal illumination of a translucent object"),
+    ("001", "Report 001 (CS348b): prismatic effects in a spectral ray tracer"),
+    ("003", "Report 003: dispersion with photon mapping (Cornell boxes)"),
+    ("gltf", "glTF examples: scenes/gltf/, written by refract export and read back"),
+];
+
+/// The report a figure belongs to, by its id's prefix.
+fn report_of(id: &str) -> &'static str {
+    if id.starts_with("css552") {
+        "000"
+    } else if id.starts_with("lab") {
+        "004"
+    } else if id.starts_with("cs348b") {
+        "001"
+    } else if id.starts_with("gltf") {
+        "gltf"
+    } else {
+        "003"
+    }
+}
+
+/// A shipped sweep's charts drawn in `out` (path from `out`, caption).
+fn charts_of(out: &Path, name: &str, e: &Option<super::spec::Experiment>) -> Vec<(String, String)> {
+    e.iter()
+        .flat_map(|e| e.plots.iter())
+        .filter(|p| out.join(name).join(format!("{}.png", p.file)).is_file())
+        .map(|p| (format!("{name}/{}.png", p.file), chart_caption(p)))
+        .collect()
+}
+
+/// The spectral accuracy charts drawn in `out`.
+fn spectral_charts(out: &Path) -> Vec<&'static (&'static str, &'static str)> {
+    SPECTRAL_CHARTS.iter().filter(|(f, _)| out.join("spectral").join(f).is_file()).collect()
+}
+
+/// The shipped sweeps with their experiment files, read if they can be.
+type Sweeps = [(&'static str, Option<super::spec::Experiment>)];
+
+/// The gallery, `out`/index.html: a heading, the contents, each report's
+/// figures, the sweeps' charts, the benchmark, the display transforms and
+/// the spectral accuracy charts.
 fn write_index(out: &Path, ids: &[String], records: &BTreeMap<String, Record>, quick: bool) -> Result<()> {
+    let experiments: Vec<(&str, Option<super::spec::Experiment>)> =
+        SWEEPS.iter().map(|(name, _)| (*name, super::spec::Experiment::load(&PathBuf::from("experiments").join(format!("{name}.toml")), quick).ok())).collect();
+    let mut h = index_head(quick);
+    index_contents(&mut h, out, ids, &experiments)?;
+    index_figures(&mut h, out, ids, records)?;
+    index_sweeps(&mut h, out, &experiments)?;
+    index_bench(&mut h, out)?;
+    index_display(&mut h, out)?;
+    index_spectral(&mut h, out)?;
+    index_end(&mut h)?;
+    Ok(crate::image_io::write_text(&out.join("index.html"), &h)?)
+}
+
+/// The page's head, title, banner (quick or full) and what it shows.
+fn index_head(quick: bool) -> String {
     let mut h = format!("<!doctype html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>refract: the reports' figures</title>\n<style>{STYLE}</style></head><body>\n<h1>refract: every figure of the four reports</h1>\n");
     if quick {
         h.push_str("<p class=\"banner\"><b>Quick set</b> (<code>figures --quick</code>): smaller images and fewer samples, for a fast look; its timings are not measurements. The full-quality set is <code>results/index.html</code>.</p>\n");
@@ -461,37 +550,14 @@ fn write_index(out: &Path, ids: &[String], records: &BTreeMap<String, Record>, q
         h.push_str("<p class=\"banner\"><b>Full-quality set</b>, regenerated by <code>cargo run --release -- figures</code>.</p>\n");
     }
     h.push_str("<p>Each figure at its own size (click for the file): the report's caption and the parameters that made it (scene files in <code>scenes/</code>, the list in <code>scenes/FIGURES.md</code>). Figures a reader should compare stand in one row, with what to look for. A figure's render time is shown where this machine measured it (<code>timings/figures.csv</code>, not committed: it depends on the machine); the sweeps' times are in their <code>runs.csv</code>.</p>\n");
-    let reports = [
-        ("000", "Report 000 (CSS552): dispersion through an Amici prism, photon map"),
-        ("004", "Report 004: internal illumination of a translucent object"),
-        ("001", "Report 001 (CS348b): prismatic effects in a spectral ray tracer"),
-        ("003", "Report 003: dispersion with photon mapping (Cornell boxes)"),
-        ("gltf", "glTF examples: scenes/gltf/, written by refract export and read back"),
-    ];
-    let report_of = |id: &str| -> &str {
-        if id.starts_with("css552") {
-            "000"
-        } else if id.starts_with("lab") {
-            "004"
-        } else if id.starts_with("cs348b") {
-            "001"
-        } else if id.starts_with("gltf") {
-            "gltf"
-        } else {
-            "003"
-        }
-    };
-    let experiments: Vec<(&str, Option<super::spec::Experiment>)> =
-        SWEEPS.iter().map(|(name, _)| (*name, super::spec::Experiment::load(&PathBuf::from("experiments").join(format!("{name}.toml")), quick).ok())).collect();
-    let charts_of = |name: &str, e: &Option<super::spec::Experiment>| -> Vec<(String, String)> {
-        e.iter()
-            .flat_map(|e| e.plots.iter())
-            .filter(|p| out.join(name).join(format!("{}.png", p.file)).is_file())
-            .map(|p| (format!("{name}/{}.png", p.file), chart_caption(p)))
-            .collect()
-    };
+    h
+}
+
+/// The contents: each report's figures, the sweeps' charts and images,
+/// and the sections that follow.
+fn index_contents(h: &mut String, out: &Path, ids: &[String], experiments: &Sweeps) -> Result<()> {
     h.push_str("<nav><h2>Contents</h2><ul>\n");
-    for (rep, title) in reports {
+    for (rep, title) in REPORTS {
         writeln!(
             h,
             "<li><a href=\"#report-{rep}\">{}</a>: {}</li>",
@@ -500,9 +566,11 @@ fn write_index(out: &Path, ids: &[String], records: &BTreeMap<String, Record>, q
         )?;
     }
     h.push_str("<li><a href=\"#plots\">Plots from the shipped sweeps</a><ul>\n");
-    for (name, e) in &experiments {
-        let charts: Vec<String> =
-            charts_of(name, e).iter().map(|(rel, _)| format!("<a href=\"#{}\">{}</a>", anchor_of(rel), esc(rel.rsplit('/').next().unwrap_or(rel)))).collect();
+    for (name, e) in experiments {
+        let charts: Vec<String> = charts_of(out, name, e)
+            .iter()
+            .map(|(rel, _)| format!("<a href=\"#{}\">{}</a>", anchor_of(rel), esc(rel.rsplit('/').next().unwrap_or(rel))))
+            .collect();
         let mut extra = Vec::new();
         if out.join(name).join("reference.png").is_file() {
             extra.push(format!("<a href=\"#{name}-reference\">reference image</a>"));
@@ -519,14 +587,18 @@ fn write_index(out: &Path, ids: &[String], records: &BTreeMap<String, Record>, q
     if out.join("display/transforms.png").exists() {
         h.push_str("<li><a href=\"#display\">Display transforms</a></li>\n");
     }
-    let spectral_charts: Vec<&(&str, &str)> = SPECTRAL_CHARTS.iter().filter(|(f, _)| out.join("spectral").join(f).is_file()).collect();
     writeln!(
         h,
         "<li><a href=\"#spectral\">Spectral accuracy</a>: {}</li></ul></nav>",
-        spectral_charts.iter().map(|(f, _)| format!("<a href=\"#spectral-{}\">{f}</a>", f.trim_end_matches(".png"))).collect::<Vec<_>>().join(", ")
+        spectral_charts(out).iter().map(|(f, _)| format!("<a href=\"#spectral-{}\">{f}</a>", f.trim_end_matches(".png"))).collect::<Vec<_>>().join(", ")
     )?;
+    Ok(())
+}
+
+/// Each report's figures, a comparison's members in one row.
+fn index_figures(h: &mut String, out: &Path, ids: &[String], records: &BTreeMap<String, Record>) -> Result<()> {
     let none = Record::default();
-    for (rep, title) in reports {
+    for (rep, title) in REPORTS {
         writeln!(h, "<h2 id=\"report-{rep}\">{}</h2>", esc(title))?;
         let mut shown: Vec<&str> = Vec::new();
         let mut groups_done: Vec<usize> = Vec::new();
@@ -541,39 +613,49 @@ fn write_index(out: &Path, ids: &[String], records: &BTreeMap<String, Record>, q
                 groups_done.push(g);
                 writeln!(h, "<div class=\"group\"><p class=\"look\">Compare: {}</p><div class=\"row\">", esc(look))?;
                 for m in members.iter().filter(|m| ids.iter().any(|i| i == *m) || EXTRAS.iter().any(|e| e.0 == **m)) {
-                    figure_html(&mut h, out, m, records.get(*m).unwrap_or(&none), !shown.contains(m))?;
+                    figure_html(h, out, m, records.get(*m).unwrap_or(&none), !shown.contains(m))?;
                     shown.push(m);
                 }
                 h.push_str("</div></div>\n");
             }
             if !shown.contains(&id.as_str()) {
-                figure_html(&mut h, out, id, records.get(id).unwrap_or(&none), true)?;
+                figure_html(h, out, id, records.get(id).unwrap_or(&none), true)?;
                 shown.push(id);
             }
         }
     }
+    Ok(())
+}
+
+/// Each shipped sweep's charts, reference and contact sheet.
+fn index_sweeps(h: &mut String, out: &Path, experiments: &Sweeps) -> Result<()> {
     writeln!(h, "<h2 id=\"plots\">Plots from the shipped sweeps (<code>experiments/</code>)</h2>")?;
     h.push_str("<p>Each chart at its own size (click for the file, and its SVG beside it). Timing points are the median of the experiment's repeats, with the least and greatest as error bars; where the report claims a straight line, the chart draws the fitted one and says whether the claim holds.</p>\n");
-    for ((name, what), (_, e)) in SWEEPS.iter().zip(&experiments) {
+    for ((name, what), (_, e)) in SWEEPS.iter().zip(experiments) {
         writeln!(h, "<h3 id=\"sweep-{name}\">{name}: {}</h3>", esc(what))?;
-        let charts = charts_of(name, e);
+        let charts = charts_of(out, name, e);
         if charts.is_empty() {
             writeln!(h, "<p class=\"missing\">not run yet: <code>refract sweep experiments/{name}.toml</code></p>")?;
             continue;
         }
         writeln!(h, "<p>Data: <a href=\"{name}/runs.csv\"><code>{name}/runs.csv</code></a>, one row a run; the experiment: <a href=\"../experiments/{name}.toml\"><code>experiments/{name}.toml</code></a>.</p><div class=\"charts\">")?;
         for (rel, caption) in &charts {
-            picture_html(&mut h, out, rel, &anchor_of(rel), caption)?;
+            picture_html(h, out, rel, &anchor_of(rel), caption)?;
         }
-        reference_html(&mut h, out, name, e.as_ref())?;
+        reference_html(h, out, name, e.as_ref())?;
         h.push_str("</div>\n");
-        contact_sheet(&mut h, out, name)?;
+        contact_sheet(h, out, name)?;
     }
+    Ok(())
+}
+
+/// The prism benchmark beside an outside renderer, if it was drawn.
+fn index_bench(h: &mut String, out: &Path) -> Result<()> {
     if out.join("bench/prism-error-vs-time.png").is_file() {
         writeln!(h, "<h2 id=\"bench\">Benchmark: the prism's error against time, beside an outside renderer</h2>")?;
         writeln!(h, "<p>From <code>cargo run --release -- bench prism --peer mitsuba</code> (data: <a href=\"bench/prism-error-vs-time.csv\">prism-error-vs-time.csv</a>; how its times were taken, which the chart says: <a href=\"bench/prism-error-vs-time.about.csv\">prism-error-vs-time.about.csv</a>; the machine: <a href=\"bench/README.md\">bench/README.md</a>; redrawn from these by <code>refract bench prism --redraw</code>). The same error as the prism-photons and eye-split charts above: least-squares scaled RMSE of XYZ over the reference's RMS, here against the exact image.</p>")?;
         picture_html(
-            &mut h,
+            h,
             out,
             "bench/prism-error-vs-time.png",
             "bench-prism-error-vs-time",
@@ -583,7 +665,7 @@ fn write_index(out: &Path, ids: &[String], records: &BTreeMap<String, Record>, q
         if out.join(dated).is_file() {
             writeln!(h, "<p>A separate record of 2026-11-25 (<code>bench prism --film-only --peer mitsuba</code>, the third of three runs at another machine load, so its times differ from the chart above; the README's ratios are the three runs' medians; data: <a href=\"bench/mitsuba-2026-11-25/prism-error-vs-time.csv\">its CSV</a>; see <a href=\"bench/README.md\">bench/README.md</a>):</p>")?;
             picture_html(
-                &mut h,
+                h,
                 out,
                 dated,
                 "bench-mitsuba-2026-11-25",
@@ -591,30 +673,47 @@ fn write_index(out: &Path, ids: &[String], records: &BTreeMap<String, Record>, q
             )?;
         }
     }
+    Ok(())
+}
+
+/// The display transforms, if they were drawn.
+fn index_display(h: &mut String, out: &Path) -> Result<()> {
     if out.join("display/transforms.png").exists() {
         writeln!(h, "<h2 id=\"display\">Display transforms for spectral light</h2>")?;
         writeln!(h, "<p>{}, each rendered once at its quick size and shown five ways: each channel clipped to [0, 1]; desaturated toward the grey of its own luminance (hue kept, the brightest parts no brighter than white paper); the filmic AgX curve, where bright saturated light rolls smoothly toward white as on film; AgX with a print look (more contrast and saturation), which sinks faint light toward black as contrasty film does (docs/physics.md §23); and a camera, whose sensor clips in its own colour space (an over-exposed green line turns yellow-green, then white) and whose print has a black point at a tenth of white (§25). The photograph-like figures use one of these, each named in its scene file.</p>", super::display::FIGURES.join(", "))?;
-        picture_html(&mut h, out, "display/transforms.png", "display-transforms", "the same renders through five display transforms")?;
+        picture_html(h, out, "display/transforms.png", "display-transforms", "the same renders through five display transforms")?;
     }
-    if !spectral_charts.is_empty() {
-        writeln!(h, "<h2 id=\"spectral\">Spectral accuracy: IOR models and colour maps (<code>refract spectrum accuracy</code>)</h2><div class=\"charts\">")?;
-        let csvs: Vec<String> = ["ior_models.csv", "ior_models_summary.csv", "colour_maps.csv", "colour_maps_summary.csv"]
-            .iter()
-            .filter(|f| out.join("spectral").join(f).is_file())
-            .map(|f| format!("<a href=\"spectral/{f}\"><code>spectral/{f}</code></a>"))
-            .collect();
-        if !csvs.is_empty() {
-            writeln!(h, "<p>Data: {}.</p>", csvs.join(", "))?;
-        }
-        for (f, caption) in spectral_charts {
-            picture_html(&mut h, out, &format!("spectral/{f}"), &format!("spectral-{}", f.trim_end_matches(".png")), caption)?;
-        }
-        h.push_str("</div>\n");
+    Ok(())
+}
+
+/// The spectral accuracy charts and their data, if drawn.
+fn index_spectral(h: &mut String, out: &Path) -> Result<()> {
+    let charts = spectral_charts(out);
+    if charts.is_empty() {
+        return Ok(());
     }
+    writeln!(h, "<h2 id=\"spectral\">Spectral accuracy: IOR models and colour maps (<code>refract spectrum accuracy</code>)</h2><div class=\"charts\">")?;
+    let csvs: Vec<String> = ["ior_models.csv", "ior_models_summary.csv", "colour_maps.csv", "colour_maps_summary.csv"]
+        .iter()
+        .filter(|f| out.join("spectral").join(f).is_file())
+        .map(|f| format!("<a href=\"spectral/{f}\"><code>spectral/{f}</code></a>"))
+        .collect();
+    if !csvs.is_empty() {
+        writeln!(h, "<p>Data: {}.</p>", csvs.join(", "))?;
+    }
+    for (f, caption) in charts {
+        picture_html(h, out, &format!("spectral/{f}"), &format!("spectral-{}", f.trim_end_matches(".png")), caption)?;
+    }
+    h.push_str("</div>\n");
+    Ok(())
+}
+
+/// The script that shows this machine's render times, and the end.
+fn index_end(h: &mut String) -> Result<()> {
     // Render times, where this machine measured them (an ignored file).
     h.push_str("<script src=\"timings/figures.js\"></script>\n<script>if(window.refractTimes){for(const s of document.querySelectorAll('span.time')){const t=window.refractTimes[s.dataset.id];if(t)s.textContent='('+t+' s here)';}}</script>\n");
     writeln!(h, "</body></html>")?;
-    Ok(crate::image_io::write_text(&out.join("index.html"), &h)?)
+    Ok(())
 }
 
 /// The page anchor of a chart (`lab-trace/time-vs-trace.png` ->

@@ -18,6 +18,7 @@ pub mod plot;
 pub mod ray_diagram;
 pub mod reader;
 pub mod record;
+pub mod row;
 pub mod scene_file;
 pub mod spec;
 pub mod spectral;

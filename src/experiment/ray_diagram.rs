@@ -113,6 +113,9 @@ fn colour(nm: f64) -> RGBColor {
     RGBColor(enc(rgb.x), enc(rgb.y), enc(rgb.z))
 }
 
+/// The main chart: data coordinates in metres.
+type Chart<'a, DB> = ChartContext<'a, DB, Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>>;
+
 /// Draws Picture 2 into `png`; returns its parameter text.
 pub fn draw(png: &Path) -> Result<String> {
     super::plot::register();
@@ -127,111 +130,144 @@ pub fn draw(png: &Path) -> Result<String> {
     {
         let root = super::glyphs::Glyphs(BitMapBackend::with_buffer(&mut buf, (w, h))).into_drawing_area();
         root.fill(&WHITE).map_err(PlotError::draw)?;
-        let mut c = ChartBuilder::on(&root)
-            .caption(
-                format!("A white ray split by the Amici prism (Snell's law per wavelength); past the prism, angles drawn {FAN_EXAGGERATION}x"),
-                ("sans-serif", 19),
-            )
-            .margin(12)
-            .x_label_area_size(40)
-            .y_label_area_size(60)
-            .build_cartesian_2d(X_RANGE.0..X_RANGE.1, Y_RANGE.0..Y_RANGE.1)
-            .map_err(PlotError::draw)?;
-        // A light grid at the labelled ticks only.
-        c.configure_mesh()
-            .x_labels(8)
-            .y_labels(5)
-            .x_label_formatter(&axis_tick)
-            .y_label_formatter(&axis_tick)
-            .bold_line_style(RGBColor(226, 226, 226))
-            .light_line_style(TRANSPARENT)
-            .x_desc("x (m)")
-            .y_desc("y (m)")
-            .label_style(("sans-serif", 16))
-            .draw()
-            .map_err(PlotError::draw)?;
-        for seg in &outline {
-            c.draw_series(LineSeries::new(seg.to_vec(), BLACK.stroke_width(2))).map_err(PlotError::draw)?;
-        }
-        for (i, p) in rays.iter().enumerate() {
-            let col = colour(p.nm);
-            // Inside the prism the paths lie within a millimetre of each
-            // other: each wavelength draws its own dashes in turn, so all
-            // show where one line would hide the rest.
-            let inside: Vec<(f64, f64)> = p.path.iter().skip(1).map(|v| (v.x, v.y)).collect();
-            for dash in dashes(&inside, DASH, i, rays.len()) {
-                c.draw_series(LineSeries::new(dash, col.stroke_width(3))).map_err(PlotError::draw)?;
-            }
-            // Past the prism, FAN_EXAGGERATION times the angle so the fan shows.
-            let (end, d) = (p.exit_point, p.exit_dir);
-            let fan = vec![(end.x, end.y), (end.x + 0.2, end.y + 0.2 * (d.y / d.x) * FAN_EXAGGERATION)];
-            c.draw_series(LineSeries::new(fan, col.stroke_width(2)))
-                .map_err(PlotError::draw)?
-                .label(format!("{} nm", p.nm))
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], col.stroke_width(3)));
-        }
-        // The white ray, one path for every wavelength up to the prism,
-        // drawn over them in grey.
-        let white: Vec<(f64, f64)> = probe(&s, 587.6).path.iter().take(2).map(|v| (v.x, v.y)).collect();
-        let grey = RGBColor(110, 110, 110);
-        c.draw_series(LineSeries::new(white, grey.stroke_width(3)))
-            .map_err(PlotError::draw)?
-            .label("white light")
-            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], grey.stroke_width(3)));
-        c.configure_series_labels()
-            .position(SeriesLabelPosition::UpperLeft)
-            .background_style(WHITE.mix(0.9))
-            .border_style(BLACK)
-            .label_font(("sans-serif", 16))
-            .draw()
-            .map_err(PlotError::draw)?;
+        let mut c = main_chart(&root)?;
+        draw_main(&mut c, &s, &outline, &rays)?;
         // The fan's true spread, written beside it.
         let note = format!("fan drawn {FAN_EXAGGERATION}x wider: its true spread is {spread:.1} degrees");
         c.draw_series(std::iter::once(Text::new(note, (-0.005, 0.112), ("sans-serif", 16).into_font().color(&BLACK)))).map_err(PlotError::draw)?;
-        // The inset: where on the page, and which part of the prism.
-        let (ix, iy) = INSET_AT;
-        let (p0, p1) = (c.backend_coord(&(ix.0, iy.1)), c.backend_coord(&(ix.1, iy.0)));
-        let (pw, ph) = ((p1.0 - p0.0) as u32, (p1.1 - p0.1) as u32);
-        let (xr, yr) = inset_region(&rays, (ix.1 - ix.0) / INSET_MAGNIFICATION, pw as f64 / ph as f64);
-        // Inset pixels per metre over the main chart's, along x.
-        magnification = (ix.1 - ix.0) / (xr.1 - xr.0);
-        let region = [(xr.0, yr.0), (xr.1, yr.0), (xr.1, yr.1), (xr.0, yr.1), (xr.0, yr.0)];
-        c.draw_series(LineSeries::new(region, BLACK.stroke_width(1))).map_err(PlotError::draw)?;
-        // Thin grey lines from the box to the inset's top corners.
-        let guide = RGBColor(150, 150, 150);
-        for (from, to) in [((xr.0, yr.0), (ix.0, iy.1)), ((xr.1, yr.0), (ix.1, iy.1))] {
-            c.draw_series(LineSeries::new([from, to], guide.stroke_width(1))).map_err(PlotError::draw)?;
-        }
-        let title = format!("inset: the exit face (box) magnified {magnification:.0}x, at true angles");
-        c.draw_series(std::iter::once(Text::new(title, (ix.0, iy.1 + 0.009), ("sans-serif", 16).into_font().color(&BLACK)))).map_err(PlotError::draw)?;
-        let area = root.clone().shrink(p0, (pw, ph));
-        area.fill(&WHITE).map_err(PlotError::draw)?;
-        let mut inset = ChartBuilder::on(&area).build_cartesian_2d(xr.0..xr.1, yr.0..yr.1).map_err(PlotError::draw)?;
-        for seg in &outline {
-            if let Some(seg) = clip(seg[0], seg[1], xr, yr) {
-                inset.draw_series(LineSeries::new(seg, BLACK.stroke_width(2))).map_err(PlotError::draw)?;
-            }
-        }
-        for p in &rays {
-            let col = colour(p.nm);
-            // True angles here, the ray carried on past the exit face.
-            let mut pts: Vec<(f64, f64)> = p.path.iter().map(|v| (v.x, v.y)).collect();
-            let (end, d) = (p.exit_point, p.exit_dir);
-            let t = (xr.1 - end.x) / d.x.max(1e-9);
-            pts.push((end.x + t * d.x, end.y + t * d.y));
-            for ab in pts.windows(2) {
-                if let Some(seg) = clip(ab[0], ab[1], xr, yr) {
-                    inset.draw_series(LineSeries::new(seg, col.stroke_width(2))).map_err(PlotError::draw)?;
-                }
-            }
-        }
-        area.draw(&Rectangle::new([(0, 0), (pw as i32 - 1, ph as i32 - 1)], BLACK.stroke_width(1))).map_err(PlotError::draw)?;
+        magnification = draw_inset(&root, &mut c, &outline, &rays)?;
         root.present().map_err(PlotError::draw)?;
     }
     write_rgb8(png, w as usize, h as usize, &buf)?;
     Ok(format!(
         "N-BK7 | N-SF11 | N-BK7, flint apex 90 deg, Sellmeier; deviation past the prism drawn {FAN_EXAGGERATION}x (true spread {spread:.2} deg); inset magnified {magnification:.1}x at true angles"
     ))
+}
+
+/// The main chart on `root`, with its caption and its axes' grid.
+fn main_chart<'a, DB>(root: &'a DrawingArea<DB, plotters::coord::Shift>) -> Result<Chart<'a, DB>>
+where
+    DB: DrawingBackend + 'a,
+    DB::ErrorType: 'static,
+{
+    let mut c = ChartBuilder::on(root)
+        .caption(
+            format!("A white ray split by the Amici prism (Snell's law per wavelength); past the prism, angles drawn {FAN_EXAGGERATION}x"),
+            ("sans-serif", 19),
+        )
+        .margin(12)
+        .x_label_area_size(40)
+        .y_label_area_size(60)
+        .build_cartesian_2d(X_RANGE.0..X_RANGE.1, Y_RANGE.0..Y_RANGE.1)
+        .map_err(PlotError::draw)?;
+    // A light grid at the labelled ticks only.
+    c.configure_mesh()
+        .x_labels(8)
+        .y_labels(5)
+        .x_label_formatter(&axis_tick)
+        .y_label_formatter(&axis_tick)
+        .bold_line_style(RGBColor(226, 226, 226))
+        .light_line_style(TRANSPARENT)
+        .x_desc("x (m)")
+        .y_desc("y (m)")
+        .label_style(("sans-serif", 16))
+        .draw()
+        .map_err(PlotError::draw)?;
+    Ok(c)
+}
+
+/// The prism's outline, each wavelength's path through it and its fan
+/// past it (angles exaggerated), the white ray up to it, and the legend.
+fn draw_main<'a, DB>(c: &mut Chart<'a, DB>, s: &crate::world::World, outline: &[[(f64, f64); 2]], rays: &[ProbeRay]) -> Result<()>
+where
+    DB: DrawingBackend + 'a,
+    DB::ErrorType: 'static,
+{
+    for seg in outline {
+        c.draw_series(LineSeries::new(seg.to_vec(), BLACK.stroke_width(2))).map_err(PlotError::draw)?;
+    }
+    for (i, p) in rays.iter().enumerate() {
+        let col = colour(p.nm);
+        // Inside the prism the paths lie within a millimetre of each
+        // other: each wavelength draws its own dashes in turn, so all
+        // show where one line would hide the rest.
+        let inside: Vec<(f64, f64)> = p.path.iter().skip(1).map(|v| (v.x, v.y)).collect();
+        for dash in dashes(&inside, DASH, i, rays.len()) {
+            c.draw_series(LineSeries::new(dash, col.stroke_width(3))).map_err(PlotError::draw)?;
+        }
+        // Past the prism, FAN_EXAGGERATION times the angle so the fan shows.
+        let (end, d) = (p.exit_point, p.exit_dir);
+        let fan = vec![(end.x, end.y), (end.x + 0.2, end.y + 0.2 * (d.y / d.x) * FAN_EXAGGERATION)];
+        c.draw_series(LineSeries::new(fan, col.stroke_width(2)))
+            .map_err(PlotError::draw)?
+            .label(format!("{} nm", p.nm))
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], col.stroke_width(3)));
+    }
+    // The white ray, one path for every wavelength up to the prism,
+    // drawn over them in grey.
+    let white: Vec<(f64, f64)> = probe(s, 587.6).path.iter().take(2).map(|v| (v.x, v.y)).collect();
+    let grey = RGBColor(110, 110, 110);
+    c.draw_series(LineSeries::new(white, grey.stroke_width(3)))
+        .map_err(PlotError::draw)?
+        .label("white light")
+        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], grey.stroke_width(3)));
+    c.configure_series_labels()
+        .position(SeriesLabelPosition::UpperLeft)
+        .background_style(WHITE.mix(0.9))
+        .border_style(BLACK)
+        .label_font(("sans-serif", 16))
+        .draw()
+        .map_err(PlotError::draw)?;
+    Ok(())
+}
+
+/// The inset at `INSET_AT`: the exit face magnified at true angles, the
+/// box on the main chart it magnifies and guides to it; returns the
+/// magnification along x.
+fn draw_inset<'a, DB>(root: &DrawingArea<DB, plotters::coord::Shift>, c: &mut Chart<'a, DB>, outline: &[[(f64, f64); 2]], rays: &[ProbeRay]) -> Result<f64>
+where
+    DB: DrawingBackend + 'a,
+    DB::ErrorType: 'static,
+{
+    // The inset: where on the page, and which part of the prism.
+    let (ix, iy) = INSET_AT;
+    let (p0, p1) = (c.backend_coord(&(ix.0, iy.1)), c.backend_coord(&(ix.1, iy.0)));
+    let (pw, ph) = ((p1.0 - p0.0) as u32, (p1.1 - p0.1) as u32);
+    let (xr, yr) = inset_region(rays, (ix.1 - ix.0) / INSET_MAGNIFICATION, pw as f64 / ph as f64);
+    // Inset pixels per metre over the main chart's, along x.
+    let magnification = (ix.1 - ix.0) / (xr.1 - xr.0);
+    let region = [(xr.0, yr.0), (xr.1, yr.0), (xr.1, yr.1), (xr.0, yr.1), (xr.0, yr.0)];
+    c.draw_series(LineSeries::new(region, BLACK.stroke_width(1))).map_err(PlotError::draw)?;
+    // Thin grey lines from the box to the inset's top corners.
+    let guide = RGBColor(150, 150, 150);
+    for (from, to) in [((xr.0, yr.0), (ix.0, iy.1)), ((xr.1, yr.0), (ix.1, iy.1))] {
+        c.draw_series(LineSeries::new([from, to], guide.stroke_width(1))).map_err(PlotError::draw)?;
+    }
+    let title = format!("inset: the exit face (box) magnified {magnification:.0}x, at true angles");
+    c.draw_series(std::iter::once(Text::new(title, (ix.0, iy.1 + 0.009), ("sans-serif", 16).into_font().color(&BLACK)))).map_err(PlotError::draw)?;
+    let area = root.clone().shrink(p0, (pw, ph));
+    area.fill(&WHITE).map_err(PlotError::draw)?;
+    let mut inset = ChartBuilder::on(&area).build_cartesian_2d(xr.0..xr.1, yr.0..yr.1).map_err(PlotError::draw)?;
+    for seg in outline {
+        if let Some(seg) = clip(seg[0], seg[1], xr, yr) {
+            inset.draw_series(LineSeries::new(seg, BLACK.stroke_width(2))).map_err(PlotError::draw)?;
+        }
+    }
+    for p in rays {
+        let col = colour(p.nm);
+        // True angles here, the ray carried on past the exit face.
+        let mut pts: Vec<(f64, f64)> = p.path.iter().map(|v| (v.x, v.y)).collect();
+        let (end, d) = (p.exit_point, p.exit_dir);
+        let t = (xr.1 - end.x) / d.x.max(1e-9);
+        pts.push((end.x + t * d.x, end.y + t * d.y));
+        for ab in pts.windows(2) {
+            if let Some(seg) = clip(ab[0], ab[1], xr, yr) {
+                inset.draw_series(LineSeries::new(seg, col.stroke_width(2))).map_err(PlotError::draw)?;
+            }
+        }
+    }
+    area.draw(&Rectangle::new([(0, 0), (pw as i32 - 1, ph as i32 - 1)], BLACK.stroke_width(1))).map_err(PlotError::draw)?;
+    Ok(magnification)
 }
 
 /// Prism faces in the z < 0 cap plane as segments (top view).

@@ -65,23 +65,9 @@ impl Experiment {
         let (name, mode) = p.name_and_mode()?;
         let sweep = p.sweep(mode)?;
         let mut cases = p.cases(mode, &sweep)?;
-        // Under --quick, a case's own list for an axis [quick] shortens is
-        // cut to its first values, as many as the quick list has.
-        if let Some(Value::Table(q)) = p.quick.get("sweep") {
-            for case in &mut cases {
-                for (k, v) in &mut case.params {
-                    if let (Some(Value::Array(short)), Value::Array(own)) = (q.get(k.as_str()), v) {
-                        own.truncate(short.len().max(1));
-                    }
-                }
-            }
-        }
+        p.shorten_case_axes(&mut cases);
         let outputs = p.table("outputs")?;
-        let images = match outputs.get("images") {
-            None => false,
-            Some(Value::Boolean(b)) => *b,
-            Some(_) => return Err(p.err("outputs", 0, "images", "must be true or false")),
-        };
+        let images = p.images(&outputs)?;
         let fingerprint = format!("{name}@{:016x}{}", fnv1a(judged_apart(text).as_bytes()), if quick { "-quick" } else { "" });
         let e = Experiment {
             name,
@@ -103,132 +89,13 @@ impl Experiment {
             quick,
             fingerprint,
         };
-        // Each name once: two cases of one name, two plots of one file
-        // (the second would overwrite the first), or one parameter under
-        // two of its names (`light` and `light_pos`: which would win?).
-        for (i, c) in e.cases.iter().enumerate() {
-            if let Some(j) = e.cases[..i].iter().position(|d| d.name == c.name) {
-                return Err(p.err("case", i, "name", format!("`{}` is also case {}'s name; each case needs its own", c.name, j + 1)));
-            }
-        }
-        for (i, plot) in e.plots.iter().enumerate() {
-            if let Some(j) = e.plots[..i].iter().position(|q| q.file == plot.file) {
-                return Err(p.err("outputs.plot", i, "file", format!("`{}` is also plot {}'s file; each plot needs its own", plot.file, j + 1)));
-            }
-        }
-        let mut named: Vec<(&str, &str, &str, usize)> = Vec::new();
-        let sections = e
-            .fixed
-            .iter()
-            .map(|(k, _)| (e.mode, k, "fixed", 0))
-            .chain(e.sweep.iter().map(|(k, _)| (e.mode, k, "sweep", 0)))
-            .chain(e.reference.iter().flatten().map(|(k, _)| (e.mode, k, "reference", 0)))
-            .chain(e.cases.iter().enumerate().flat_map(|(i, c)| c.params.iter().map(move |(k, _)| (c.mode, k, "case", i))));
-        for (mode, k, section, nth) in sections {
-            let Some(canon) = mode.canonical(k) else { continue };
-            match named.iter().find(|(c, other, _, _)| *c == canon && *other != k.as_str()) {
-                Some((_, other, s2, _)) => {
-                    return Err(p.err(section, nth, k, format!("names the same parameter as `{other}` (in [{s2}]); use one name")));
-                }
-                None => named.push((canon, k, section, nth)),
-            }
-        }
-        // A plot's columns are known before any run: a misspelt one is
-        // refused now, not after the sweep.
-        let columns = e.columns();
-        for (i, plot) in e.plots.iter().enumerate() {
-            let named = [("x", &plot.x), ("y", &plot.y)].into_iter().filter(|(_, c)| !c.is_empty()).chain(plot.series.iter().map(|c| ("series", c)));
-            for (key, c) in named {
-                if !columns.contains(c) {
-                    return Err(p.err("outputs.plot", i, key, format!("`{c}` is not a column of runs.csv; columns: {}", columns.join(", "))));
-                }
-            }
-        }
-        let runs = e.run_count();
-        if runs > MAX_RUNS as u128 {
-            return Err(p.err(
-                "",
-                0,
-                "sweep",
-                format!("the experiment has {runs} runs (cases x sweep values x repeats); at most {MAX_RUNS}: split it into several files or narrow an axis"),
-            ));
-        }
-        // A key no run would use varies nothing the sweep measures: refused
-        // now, on its line. A key only some runs use is fine, since grids
-        // cross keys that apply to some of their cases only (`split` under
-        // the hero wavelength in eye-split.toml).
+        p.check_names_once(&e)?;
+        p.check_plot_columns(&e)?;
+        p.check_run_count(&e)?;
         let grid = super::grid::expand(&e);
-        // A fixed key that restates its default is let be (see
-        // `params::first_ignored_change`); an axis never is.
-        let restated = |key: &str| e.fixed.iter().any(|(k, v)| k == key && e.mode.restates_default(k, v)) && !e.sweep.iter().any(|(k, _)| k == key);
-        for key in e.param_names().into_iter().filter(|k| !restated(k)) {
-            let mut why = None;
-            let used = grid.iter().filter(|r| r.params.iter().any(|(k, _)| *k == key)).any(|r| match r.mode.ignored(&r.params, &key) {
-                Some(w) => {
-                    why.get_or_insert(w);
-                    false
-                }
-                None => true,
-            });
-            if let (false, Some(why)) = (used, why) {
-                let (section, nth) = if e.fixed.iter().any(|(k, _)| *k == key) {
-                    ("fixed", 0)
-                } else if e.sweep.iter().any(|(k, _)| *k == key) {
-                    ("sweep", 0)
-                } else {
-                    ("case", e.cases.iter().position(|c| c.params.iter().any(|(k, _)| *k == key)).unwrap_or(0))
-                };
-                return Err(p.err(section, nth, &key, format!("no run of the experiment uses it: {why}")));
-            }
-        }
-        // Axes that cannot be drawn are refused now, before any run.
-        for (i, plot) in e.plots.iter().enumerate().filter(|(_, pl)| pl.kind == PlotKind::Line) {
-            let text_of = |c: &str| -> Option<String> {
-                let vals: Vec<String> = match c.strip_prefix("param_") {
-                    Some(key) => {
-                        let mut v: Vec<String> = Vec::new();
-                        for r in &grid {
-                            if let Some((_, x)) = r.params.iter().find(|(k, _)| k == key) {
-                                if !matches!(x, Value::Integer(_) | Value::Float(_)) {
-                                    let cell = super::params::cell(x);
-                                    if !v.contains(&cell) {
-                                        v.push(cell);
-                                    }
-                                }
-                            }
-                        }
-                        v
-                    }
-                    None if TEXT_COLUMNS.contains(&c) => vec![format!("{c} is text")],
-                    None => Vec::new(),
-                };
-                (!vals.is_empty()).then(|| vals.iter().take(4).cloned().collect::<Vec<_>>().join(", "))
-            };
-            if let Some(v) = text_of(&plot.y) {
-                return Err(p.err("outputs.plot", i, "y", format!("`{}` holds text ({v}); a chart's y must be a number", plot.y)));
-            }
-            if let Some(v) = text_of(&plot.x) {
-                for (key, on) in [("log_x", plot.log_x), ("fit", plot.fit)] {
-                    if on {
-                        return Err(p.err(
-                            "outputs.plot",
-                            i,
-                            key,
-                            format!(
-                                "`{}` holds text ({v}): it is drawn as categories, which have no {}",
-                                plot.x,
-                                if key == "fit" { "line to fit" } else { "logarithm" }
-                            ),
-                        ));
-                    }
-                }
-            }
-        }
-        if let (Some(over), Some(given)) = (&e.reference, e.reference_params()) {
-            if let Ok(Some((key, why))) = e.mode.first_ignored(&given, over.iter().map(|(k, _)| k.as_str())) {
-                return Err(p.err("reference", 0, &key, format!("the reference run would ignore it: {why}")));
-            }
-        }
+        p.check_keys_used(&e, &grid)?;
+        p.check_plot_axes(&e, &grid)?;
+        p.check_reference(&e)?;
         // The [quick] version is checked too, with or without --quick: a
         // mistake there is found now, not when someone first runs it.
         if !quick && p.root.contains_key("quick") {
@@ -486,6 +353,180 @@ impl<'a> FileParser<'a> {
             file,
             kind,
         })
+    }
+
+    /// Under --quick, a case's own list for an axis [quick] shortens is
+    /// cut to its first values, as many as the quick list has.
+    fn shorten_case_axes(&self, cases: &mut [Case]) {
+        if let Some(Value::Table(q)) = self.quick.get("sweep") {
+            for case in cases {
+                for (k, v) in &mut case.params {
+                    if let (Some(Value::Array(short)), Value::Array(own)) = (q.get(k.as_str()), v) {
+                        own.truncate(short.len().max(1));
+                    }
+                }
+            }
+        }
+    }
+
+    /// `[outputs] images`: whether the runs' images are kept.
+    fn images(&self, outputs: &Table) -> Result<bool> {
+        match outputs.get("images") {
+            None => Ok(false),
+            Some(Value::Boolean(b)) => Ok(*b),
+            Some(_) => Err(self.err("outputs", 0, "images", "must be true or false")),
+        }
+    }
+
+    /// Each name once: two cases of one name, two plots of one file
+    /// (the second would overwrite the first), or one parameter under
+    /// two of its names (`light` and `light_pos`: which would win?).
+    fn check_names_once(&self, e: &Experiment) -> Result<()> {
+        for (i, c) in e.cases.iter().enumerate() {
+            if let Some(j) = e.cases[..i].iter().position(|d| d.name == c.name) {
+                return Err(self.err("case", i, "name", format!("`{}` is also case {}'s name; each case needs its own", c.name, j + 1)));
+            }
+        }
+        for (i, plot) in e.plots.iter().enumerate() {
+            if let Some(j) = e.plots[..i].iter().position(|q| q.file == plot.file) {
+                return Err(self.err("outputs.plot", i, "file", format!("`{}` is also plot {}'s file; each plot needs its own", plot.file, j + 1)));
+            }
+        }
+        let mut named: Vec<(&str, &str, &str, usize)> = Vec::new();
+        let sections = e
+            .fixed
+            .iter()
+            .map(|(k, _)| (e.mode, k, "fixed", 0))
+            .chain(e.sweep.iter().map(|(k, _)| (e.mode, k, "sweep", 0)))
+            .chain(e.reference.iter().flatten().map(|(k, _)| (e.mode, k, "reference", 0)))
+            .chain(e.cases.iter().enumerate().flat_map(|(i, c)| c.params.iter().map(move |(k, _)| (c.mode, k, "case", i))));
+        for (mode, k, section, nth) in sections {
+            let Some(canon) = mode.canonical(k) else { continue };
+            match named.iter().find(|(c, other, _, _)| *c == canon && *other != k.as_str()) {
+                Some((_, other, s2, _)) => {
+                    return Err(self.err(section, nth, k, format!("names the same parameter as `{other}` (in [{s2}]); use one name")));
+                }
+                None => named.push((canon, k, section, nth)),
+            }
+        }
+        Ok(())
+    }
+
+    /// A plot's columns are known before any run: a misspelt one is
+    /// refused now, not after the sweep.
+    fn check_plot_columns(&self, e: &Experiment) -> Result<()> {
+        let columns = e.columns();
+        for (i, plot) in e.plots.iter().enumerate() {
+            let named = [("x", &plot.x), ("y", &plot.y)].into_iter().filter(|(_, c)| !c.is_empty()).chain(plot.series.iter().map(|c| ("series", c)));
+            for (key, c) in named {
+                if !columns.contains(c) {
+                    return Err(self.err("outputs.plot", i, key, format!("`{c}` is not a column of runs.csv; columns: {}", columns.join(", "))));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// At most [`MAX_RUNS`] runs.
+    fn check_run_count(&self, e: &Experiment) -> Result<()> {
+        let runs = e.run_count();
+        if runs > MAX_RUNS as u128 {
+            return Err(self.err(
+                "",
+                0,
+                "sweep",
+                format!("the experiment has {runs} runs (cases x sweep values x repeats); at most {MAX_RUNS}: split it into several files or narrow an axis"),
+            ));
+        }
+        Ok(())
+    }
+
+    /// A key no run would use varies nothing the sweep measures: refused
+    /// now, on its line. A key only some runs use is fine, since grids
+    /// cross keys that apply to some of their cases only (`split` under
+    /// the hero wavelength in eye-split.toml).
+    /// A fixed key that restates its default is let be (see
+    /// `params::first_ignored_change`); an axis never is.
+    fn check_keys_used(&self, e: &Experiment, grid: &[super::grid::RunSpec]) -> Result<()> {
+        let restated = |key: &str| e.fixed.iter().any(|(k, v)| k == key && e.mode.restates_default(k, v)) && !e.sweep.iter().any(|(k, _)| k == key);
+        for key in e.param_names().into_iter().filter(|k| !restated(k)) {
+            let mut why = None;
+            let used = grid.iter().filter(|r| r.params.iter().any(|(k, _)| *k == key)).any(|r| match r.mode.ignored(&r.params, &key) {
+                Some(w) => {
+                    why.get_or_insert(w);
+                    false
+                }
+                None => true,
+            });
+            if let (false, Some(why)) = (used, why) {
+                let (section, nth) = if e.fixed.iter().any(|(k, _)| *k == key) {
+                    ("fixed", 0)
+                } else if e.sweep.iter().any(|(k, _)| *k == key) {
+                    ("sweep", 0)
+                } else {
+                    ("case", e.cases.iter().position(|c| c.params.iter().any(|(k, _)| *k == key)).unwrap_or(0))
+                };
+                return Err(self.err(section, nth, &key, format!("no run of the experiment uses it: {why}")));
+            }
+        }
+        Ok(())
+    }
+
+    /// Axes that cannot be drawn are refused now, before any run.
+    fn check_plot_axes(&self, e: &Experiment, grid: &[super::grid::RunSpec]) -> Result<()> {
+        for (i, plot) in e.plots.iter().enumerate().filter(|(_, pl)| pl.kind == PlotKind::Line) {
+            let text_of = |c: &str| -> Option<String> {
+                let vals: Vec<String> = match c.strip_prefix("param_") {
+                    Some(key) => {
+                        let mut v: Vec<String> = Vec::new();
+                        for r in grid {
+                            if let Some((_, x)) = r.params.iter().find(|(k, _)| k == key) {
+                                if !matches!(x, Value::Integer(_) | Value::Float(_)) {
+                                    let cell = super::params::cell(x);
+                                    if !v.contains(&cell) {
+                                        v.push(cell);
+                                    }
+                                }
+                            }
+                        }
+                        v
+                    }
+                    None if TEXT_COLUMNS.contains(&c) => vec![format!("{c} is text")],
+                    None => Vec::new(),
+                };
+                (!vals.is_empty()).then(|| vals.iter().take(4).cloned().collect::<Vec<_>>().join(", "))
+            };
+            if let Some(v) = text_of(&plot.y) {
+                return Err(self.err("outputs.plot", i, "y", format!("`{}` holds text ({v}); a chart's y must be a number", plot.y)));
+            }
+            if let Some(v) = text_of(&plot.x) {
+                for (key, on) in [("log_x", plot.log_x), ("fit", plot.fit)] {
+                    if on {
+                        return Err(self.err(
+                            "outputs.plot",
+                            i,
+                            key,
+                            format!(
+                                "`{}` holds text ({v}): it is drawn as categories, which have no {}",
+                                plot.x,
+                                if key == "fit" { "line to fit" } else { "logarithm" }
+                            ),
+                        ));
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// A reference key the reference run would ignore.
+    fn check_reference(&self, e: &Experiment) -> Result<()> {
+        if let (Some(over), Some(given)) = (&e.reference, e.reference_params()) {
+            if let Ok(Some((key, why))) = e.mode.first_ignored(&given, over.iter().map(|(k, _)| k.as_str())) {
+                return Err(self.err("reference", 0, &key, format!("the reference run would ignore it: {why}")));
+            }
+        }
+        Ok(())
     }
 }
 

@@ -98,43 +98,6 @@ pub fn fnv1a(bytes: &[u8]) -> u64 {
     bytes.iter().fold(0xcbf2_9ce4_8422_2325u64, |h, &b| (h ^ b as u64).wrapping_mul(0x0000_0100_0000_01b3))
 }
 
-/// The measured columns of runs.csv, after the run's identity and its
-/// parameters (`Experiment::columns`).
-pub const METRICS: [&str; 32] = [
-    "experiment",
-    "host",
-    "cpu",
-    "cores",
-    "load_1min",
-    "status",
-    "error",
-    "failed",
-    "triangles",
-    "width",
-    "height",
-    "load_s",
-    "build_s",
-    "trace_s",
-    "render_s",
-    "total_s",
-    "renders",
-    "cpu_s",
-    "rays",
-    "rays_per_s",
-    "photons",
-    "stored",
-    "photons_per_s",
-    "nan_count",
-    "fireflies",
-    "tir_fraction",
-    "highlight_px",
-    "changed_px",
-    "rmse",
-    "psnr",
-    "rel_rmse",
-    "rel_error",
-];
-
 impl Experiment {
     /// The folder a sweep (or a plan) writes unless told: `results/NAME`,
     /// or `results/quick/NAME` for the quick version, so that a quick run
@@ -163,7 +126,7 @@ impl Experiment {
     pub fn columns(&self) -> Vec<String> {
         let mut h = vec!["run_id".to_string(), "mode".into(), "case".into(), "repeat".into()];
         h.extend(self.param_names().iter().map(|n| format!("param_{n}")));
-        h.extend(METRICS.iter().map(|m| m.to_string()));
+        h.extend(super::row::RunRow::columns());
         h
     }
 

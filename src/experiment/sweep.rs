@@ -10,8 +10,9 @@ use super::interrupt;
 use super::lock::{FolderLock, Taken};
 use super::metrics::{self, Frame};
 use super::params::{cell, Mode};
+pub use super::row::NO_REFERENCE;
+use super::row::{Compared, RunRow, Status};
 use super::spec::Experiment;
-use super::spec::METRICS;
 use crate::image_io::{atomic_write, write_rgb8};
 use crate::modes::MeshCache;
 use std::collections::{HashMap, HashSet};
@@ -62,16 +63,9 @@ pub struct Outcome {
     pub failure: Option<String>,
 }
 
-/// The cell the metrics against the reference get when the reference run
-/// failed.
-pub const NO_REFERENCE: &str = "no reference";
-
-/// What one run measured, as named cells.
-type Measured = Vec<(&'static str, String)>;
-
 struct RunOutcome {
     frame: Option<Frame>,
-    cells: Measured,
+    row: RunRow,
 }
 
 /// Renders one run; with `min_time` above 0, renders it again inside the
@@ -102,19 +96,14 @@ fn run_one(mode: Mode, params: &[(String, Value)], meshes: &MeshCache, min_time:
         let per = n as f64;
         let cpu = cpu.zip(crate::timing::process_cpu_seconds()).map(|(a, b)| (b - a) / per);
         (run.record.build_s, run.record.trace_s, run.record.render_s) = (build / per, trace.map(|t| t / per), render / per);
-        let mut cells = run.record.cells();
-        cells.push(("renders", n.to_string()));
-        if let Some(c) = cpu {
-            cells.push(("cpu_s", crate::timing::cell(c)));
-        }
-        Ok(RunOutcome { frame: Some(run.frame()), cells })
+        Ok(RunOutcome { frame: Some(run.frame()), row: RunRow::measured(&run.record, n, cpu) })
     }));
     match result {
         Ok(Ok(o)) => o,
-        Ok(Err(e)) => RunOutcome { frame: None, cells: vec![("status", "error".into()), ("error", chain(&e)), ("failed", "1".into())] },
+        Ok(Err(e)) => RunOutcome { frame: None, row: RunRow::failed(chain(&e)) },
         Err(p) => {
             let msg = p.downcast_ref::<String>().cloned().or_else(|| p.downcast_ref::<&str>().map(|s| s.to_string())).unwrap_or_else(|| "panic".into());
-            RunOutcome { frame: None, cells: vec![("status", "error".into()), ("error", format!("internal error: {msg}")), ("failed", "1".into())] }
+            RunOutcome { frame: None, row: RunRow::failed(format!("internal error: {msg}")) }
         }
     }
 }
@@ -391,7 +380,7 @@ fn reference_frame(e: &Experiment, dir: &Path, meshes: &MeshCache) -> Result<(Op
     let o = run_one(e.mode, &p, meshes, 0.0);
     let seconds = t.elapsed().as_secs_f64();
     let Some(f) = o.frame else {
-        let err = o.cells.iter().find(|(k, _)| *k == "error").map_or_else(|| "no image".to_string(), |(_, v)| v.clone());
+        let err = if o.row.status == Status::Error { o.row.error } else { "no image".to_string() };
         return Ok((None, Some(err)));
     };
     write_rgb8(&dir.join("reference.png"), f.width, f.height, &f.display)?;
@@ -459,33 +448,26 @@ impl Sweep<'_> {
 
     /// The image metrics of a run's frame (against the reference and its
     /// predecessor), and its image if the experiment keeps them.
-    fn measure(&self, r: &RunSpec, f: &Frame, cells: &mut HashMap<&str, String>) {
-        cells.insert("nan_count", metrics::non_finite(f).to_string());
-        cells.insert("fireflies", metrics::fireflies(f).to_string());
-        cells.insert("highlight_px", metrics::highlight_pixels(f).to_string());
+    fn measure(&self, r: &RunSpec, f: &Frame, row: &mut RunRow) {
+        row.nan_count = Some(metrics::non_finite(f));
+        row.fireflies = Some(metrics::fireflies(f));
+        row.highlight_px = Some(metrics::highlight_pixels(f));
         if self.reference_error.is_some() {
-            for m in ["rmse", "psnr", "rel_rmse"] {
-                cells.insert(m, NO_REFERENCE.into());
-            }
+            (row.rmse, row.psnr, row.rel_rmse) = (Compared::NoReference, Compared::NoReference, Compared::NoReference);
         }
         if let Some(rf) = &self.reference {
             if let Some((rmse, psnr)) = metrics::rmse_psnr(f, rf) {
-                cells.insert("rmse", crate::timing::cell(rmse));
-                cells.insert("psnr", crate::timing::cell(psnr));
+                (row.rmse, row.psnr) = (Compared::Value(rmse), Compared::Value(psnr));
             }
             if let Some(rel) = metrics::relative_rmse(f, rf) {
-                cells.insert("rel_rmse", crate::timing::cell(rel));
+                row.rel_rmse = Compared::Value(rel);
             }
-            if let Some(rel) = metrics::relative_error(f, rf) {
-                cells.insert("rel_error", crate::timing::cell(rel));
-            }
+            row.rel_error = metrics::relative_error(f, rf).map(crate::timing::Real);
         }
         let prev = self
             .predecessor(r)
             .and_then(|p| self.frames.lock().unwrap().get(&p).cloned().or_else(|| load_frame(&self.dir.join("images").join(image_name(self.e, &self.all[p])))));
-        if let Some(c) = prev.and_then(|p| metrics::changed_pixels(f, &p)) {
-            cells.insert("changed_px", c.to_string());
-        }
+        row.changed_px = prev.and_then(|p| metrics::changed_pixels(f, &p));
         // One image a place: the repeats of a run draw the same picture.
         if self.e.images && r.repeat == 0 {
             if let Err(err) = write_rgb8(&self.dir.join("images").join(image_name(self.e, r)), f.width, f.height, &f.display) {
@@ -497,22 +479,17 @@ impl Sweep<'_> {
 
     /// Runs one run and appends its row to runs.csv.
     fn run_row(&self, r: &RunSpec) {
-        let o = run_one(r.mode, &r.params, &self.meshes, self.e.min_time);
-        let mut cells: HashMap<&str, String> = o.cells.into_iter().collect();
-        cells.insert("experiment", self.e.fingerprint.clone());
-        for (k, v) in machine() {
-            cells.insert(k, v);
+        let RunOutcome { frame, mut row } = run_one(r.mode, &r.params, &self.meshes, self.e.min_time);
+        row.experiment = self.e.fingerprint.clone();
+        [row.host, row.cpu, row.cores, row.load_1min] = machine();
+        if let Some(f) = &frame {
+            self.measure(r, f, &mut row);
         }
-        cells.entry("status").or_insert_with(|| "ok".into());
-        cells.entry("failed").or_insert_with(|| "0".into());
-        if let Some(f) = &o.frame {
-            self.measure(r, f, &mut cells);
-        }
-        let mut row = vec![r.id.to_string(), r.mode.name().to_string(), r.case.clone(), r.repeat.to_string()];
-        row.extend(self.names.iter().map(|n| r.params.iter().find(|(k, _)| k == n).map_or(String::new(), |(_, v)| cell(v))));
-        row.extend(METRICS.iter().map(|m| cells.get(m).cloned().unwrap_or_default()));
+        let identity = [r.id.to_string(), r.mode.name().to_string(), r.case.clone(), r.repeat.to_string()];
+        let params: Vec<String> = self.names.iter().map(|n| r.params.iter().find(|(k, _)| k == n).map_or(String::new(), |(_, v)| cell(v))).collect();
         let mut w = csv::WriterBuilder::new().has_headers(false).from_writer(Vec::new());
-        let line = w.write_record(&row).map_err(ExperimentError::from).and_then(|_| w.into_inner().map_err(|e| ExperimentError::Disk(e.into_error())));
+        let line =
+            w.serialize((identity, params, row)).map_err(ExperimentError::from).and_then(|_| w.into_inner().map_err(|e| ExperimentError::Disk(e.into_error())));
         let written = line.and_then(|bytes| {
             let mut f = self.file.lock().unwrap();
             f.write_all(&bytes).and_then(|_| f.flush()).map_err(ExperimentError::from)
@@ -573,14 +550,14 @@ impl Sweep<'_> {
 /// Where a run ran, for comparing timings from several machines: host
 /// name, CPU model, logical cores, and the 1-minute load average when the
 /// run started (Linux's /proc; empty cells elsewhere).
-fn machine() -> [(&'static str, String); 4] {
+fn machine() -> [String; 4] {
     let read = |p: &str| std::fs::read_to_string(p).unwrap_or_default();
     let host = read("/proc/sys/kernel/hostname").trim().to_string();
     let cpu =
         read("/proc/cpuinfo").lines().find(|l| l.starts_with("model name")).and_then(|l| l.split(':').nth(1)).map(|m| m.trim().to_string()).unwrap_or_default();
     let cores = std::thread::available_parallelism().map_or(String::new(), |n| n.get().to_string());
     let load = read("/proc/loadavg").split_whitespace().next().unwrap_or_default().to_string();
-    [("host", host), ("cpu", cpu), ("cores", cores), ("load_1min", load)]
+    [host, cpu, cores, load]
 }
 
 fn load_frame(path: &Path) -> Option<Frame> {
@@ -608,131 +585,20 @@ pub fn merge(dirs: &[PathBuf], out: &Path, experiment: Option<&Experiment>, o: &
         if dirs[..k].contains(d) {
             return Err(ExperimentError::GivenTwice(d.clone()));
         }
-        // A shard still being written is not merged.
-        if let Some(holder) = FolderLock::holder(d) {
-            let why = format!(
-                "this shard is still being written (its lock is held by {holder}); merge when it has finished, or if that sweep is gone, delete {}",
-                d.join(".lock").display()
-            );
-            return Err(ExperimentError::Record { path: d.clone(), why });
-        }
-        let p = d.join("runs.csv");
-        let text = crate::data::read_input_text(&p).map_err(ExperimentError::io(format!("cannot read {}", p.display())))?;
-        // A last line without its newline was cut off mid-write: its last
-        // cell may be a shorter, wrong number (0.757080 read as 0.757).
-        if !text.is_empty() && !text.ends_with('\n') {
-            let why = format!(
-                "the last line does not end in a newline (the shard was cut off while writing it); finish the shard with `refract sweep FILE --resume --shard I/N --out {}` first",
-                d.display()
-            );
-            return Err(ExperimentError::RecordLine { path: p, line: text.matches('\n').count() as u64 + 1, why });
-        }
-        let mut r = csv::Reader::from_reader(text.as_bytes());
-        let h: Vec<String> = r.headers().map_err(|csv| ExperimentError::Header { path: p.clone(), csv })?.iter().map(str::to_string).collect();
-        if h.first().map(String::as_str) != Some("run_id") {
-            let why = format!("not a sweep's runs.csv (its first column is `{}`, not run_id)", h.first().map_or("", String::as_str));
-            return Err(ExperimentError::RecordLine { path: p, line: 1, why });
-        }
-        match &header {
-            Some(x) if *x != h => {
-                return Err(ExperimentError::Record { path: p, why: format!("its columns differ from {}", dirs[0].join("runs.csv").display()) })
-            }
-            _ => header = Some(h.clone()),
-        }
-        // Every row is a whole run: a short or unreadable one (a shard
-        // stopped mid-write) is named, not dropped.
-        for record in r.records() {
-            let x = record.map_err(|e| {
-                let at = e.position().map_or(0, |at| at.line());
-                match e.kind() {
-                    csv::ErrorKind::UnequalLengths { len, .. } => {
-                        ExperimentError::RecordLine { path: p.clone(), line: at, why: format!("not a whole run ({len} of {} cells)", h.len()) }
-                    }
-                    _ => ExperimentError::UnreadableRow { path: p.clone(), line: at, csv: e },
-                }
-            })?;
-            // (The reader refuses a row of another length than the header's.)
-            if x[0].parse::<usize>().is_err() {
-                return Err(ExperimentError::RecordLine { path: p, line: x.position().map_or(0, |at| at.line()), why: format!("`{}` is not a run id", &x[0]) });
-            }
-            rows.push((x.iter().map(str::to_string).collect(), k));
-            lines.push(x.position().map_or(0, |at| at.line()));
+        for (row, line) in read_shard(d, &dirs[0], &mut header)? {
+            rows.push((row, k));
+            lines.push(line);
         }
     }
     let header = header.ok_or(ExperimentError::NoFolders)?;
-    if let Some(col) = header.iter().position(|h| h == "experiment") {
-        let want = match experiment {
-            Some(e) => e.fingerprint.clone(),
-            None => rows.first().map(|(r, _)| r[col].clone()).unwrap_or_default(),
-        };
-        if let Some((r, k)) = rows.iter().find(|(r, _)| r[col] != want) {
-            let why = format!(
-                "run {} is from experiment {}, not {} (another experiment, or another version of its file); merge only shards of one run",
-                r[0], r[col], want
-            );
-            return Err(ExperimentError::Record { path: dirs[*k].join("runs.csv"), why });
-        }
-    }
-    let mut order: Vec<usize> = (0..rows.len()).collect();
-    order.sort_by_key(|&i| (rows[i].0[0].parse::<usize>().unwrap_or(usize::MAX), i));
-    if let Some(w) = order.windows(2).find(|w| rows[w[0]].0[0] == rows[w[1]].0[0]) {
-        let ((a, ka), (b, kb)) = (&rows[w[0]], &rows[w[1]]);
-        if ka == kb {
-            let why = format!("run {} is twice (lines {} and {}); each run is one row", a[0], lines[w[0]], lines[w[1]]);
-            return Err(ExperimentError::Record { path: dirs[*ka].join("runs.csv"), why });
-        }
-        return Err(ExperimentError::InTwoShards { id: b[0].clone(), first: dirs[*ka].clone(), second: dirs[*kb].clone() });
-    }
-    let rows: Vec<(Vec<String>, usize)> = order.into_iter().map(|i| rows[i].clone()).collect();
-    let mut missing = Vec::new();
-    if let Some(e) = experiment {
-        let have: HashSet<usize> = rows.iter().filter_map(|(r, _)| r[0].parse().ok()).collect();
-        let total = expand(e).len();
-        missing = (0..total).filter(|id| !have.contains(id)).map(|id| id.to_string()).collect();
-        if !missing.is_empty() && !o.resume {
-            return Err(ExperimentError::InNoShard { runs: missing.join(", "), missing: missing.len(), total });
-        }
-    }
+    check_one_experiment(&header, &rows, dirs, experiment)?;
+    let rows = in_run_order(rows, &lines, dirs)?;
+    let missing = missing_runs(&rows, experiment, o.resume)?;
     crate::image_io::create_folder(out)?;
     {
         let _lock = take_lock(out, o.break_lock)?;
-        // A record already in `out` is replaced only by one that holds
-        // every row of it, unchanged; else it is moved aside (--fresh).
-        if let super::record::Found::Rows { rows: old, .. } = super::record::inspect(out, &header)? {
-            let lost = old.iter().find(|(_, r)| !rows.iter().any(|(m, _)| m == r));
-            match lost {
-                None => {}
-                Some(_) if o.fresh => {
-                    let to = super::record::move_aside(out)?;
-                    eprintln!("note: moved the record in {} aside to {}", out.display(), to.display());
-                }
-                Some((line, r)) => {
-                    let why = format!(
-                        "holds run {} as the merge does not (another run, or another version of the experiment); merge into another --out, or with --fresh to move that record aside (to runs.csv.N)",
-                        r[0]
-                    );
-                    return Err(ExperimentError::RecordLine { path: out.join("runs.csv"), line: *line, why });
-                }
-            }
-        }
-        // The run images (named by their parameters) and the reference
-        // image and its record travel with the rows.
-        for d in dirs {
-            let mut names: Vec<PathBuf> = std::fs::read_dir(d.join("images")).map(|rd| rd.flatten().map(|e| e.path()).collect()).unwrap_or_default();
-            names.retain(|p| p.extension().is_some_and(|x| x == "png") && !p.file_name().is_some_and(|n| n.to_string_lossy().starts_with('.')));
-            names.sort();
-            for from in names {
-                crate::image_io::create_folder(&out.join("images"))?;
-                copy_into_place(&from, &out.join("images").join(from.file_name().unwrap_or_default()))?;
-            }
-        }
-        for name in ["reference.png", "reference.csv"] {
-            if let Some(reference) = dirs.iter().map(|d| d.join(name)).find(|p| p.is_file()) {
-                copy_into_place(&reference, &out.join(name))?;
-            }
-        }
         let rows: Vec<Vec<String>> = rows.iter().map(|(r, _)| r.clone()).collect();
-        write_rows(&out.join("runs.csv"), &header, &rows)?;
+        write_merged(dirs, out, &header, &rows, o.fresh)?;
         if let (Some(e), true) = (experiment, missing.is_empty()) {
             for (file, column) in super::charts::draw_all(e, out, &header, &rows)? {
                 eprintln!("note: plot {file} not drawn: no run has a value of {column}");
@@ -751,6 +617,150 @@ pub fn merge(dirs: &[PathBuf], out: &Path, experiment: Option<&Experiment>, o: &
         }
         _ => Ok(merged),
     }
+}
+
+/// A shard folder's rows, each with its line, once checked: not being
+/// written, not cut off, a sweep's runs.csv with the columns of the first
+/// shard's (`header`, set by the first), every row a whole run.
+fn read_shard(d: &Path, first: &Path, header: &mut Option<Vec<String>>) -> Result<Vec<(Vec<String>, u64)>> {
+    let mut rows = Vec::new();
+    // A shard still being written is not merged.
+    if let Some(holder) = FolderLock::holder(d) {
+        let why = format!(
+            "this shard is still being written (its lock is held by {holder}); merge when it has finished, or if that sweep is gone, delete {}",
+            d.join(".lock").display()
+        );
+        return Err(ExperimentError::Record { path: d.to_path_buf(), why });
+    }
+    let p = d.join("runs.csv");
+    let text = crate::data::read_input_text(&p).map_err(ExperimentError::io(format!("cannot read {}", p.display())))?;
+    // A last line without its newline was cut off mid-write: its last
+    // cell may be a shorter, wrong number (0.757080 read as 0.757).
+    if !text.is_empty() && !text.ends_with('\n') {
+        let why = format!(
+            "the last line does not end in a newline (the shard was cut off while writing it); finish the shard with `refract sweep FILE --resume --shard I/N --out {}` first",
+            d.display()
+        );
+        return Err(ExperimentError::RecordLine { path: p, line: text.matches('\n').count() as u64 + 1, why });
+    }
+    let mut r = csv::Reader::from_reader(text.as_bytes());
+    let h: Vec<String> = r.headers().map_err(|csv| ExperimentError::Header { path: p.clone(), csv })?.iter().map(str::to_string).collect();
+    if h.first().map(String::as_str) != Some("run_id") {
+        let why = format!("not a sweep's runs.csv (its first column is `{}`, not run_id)", h.first().map_or("", String::as_str));
+        return Err(ExperimentError::RecordLine { path: p, line: 1, why });
+    }
+    match header {
+        Some(x) if *x != h => return Err(ExperimentError::Record { path: p, why: format!("its columns differ from {}", first.join("runs.csv").display()) }),
+        _ => *header = Some(h.clone()),
+    }
+    // Every row is a whole run: a short or unreadable one (a shard
+    // stopped mid-write) is named, not dropped.
+    for record in r.records() {
+        let x = record.map_err(|e| {
+            let at = e.position().map_or(0, |at| at.line());
+            match e.kind() {
+                csv::ErrorKind::UnequalLengths { len, .. } => {
+                    ExperimentError::RecordLine { path: p.clone(), line: at, why: format!("not a whole run ({len} of {} cells)", h.len()) }
+                }
+                _ => ExperimentError::UnreadableRow { path: p.clone(), line: at, csv: e },
+            }
+        })?;
+        // (The reader refuses a row of another length than the header's.)
+        if x[0].parse::<usize>().is_err() {
+            return Err(ExperimentError::RecordLine { path: p, line: x.position().map_or(0, |at| at.line()), why: format!("`{}` is not a run id", &x[0]) });
+        }
+        rows.push((x.iter().map(str::to_string).collect(), x.position().map_or(0, |at| at.line())));
+    }
+    Ok(rows)
+}
+
+/// Refuses rows of another experiment (or another version of its file)
+/// than `experiment`'s, or than the first row's without one.
+fn check_one_experiment(header: &[String], rows: &[(Vec<String>, usize)], dirs: &[PathBuf], experiment: Option<&Experiment>) -> Result<()> {
+    if let Some(col) = header.iter().position(|h| h == "experiment") {
+        let want = match experiment {
+            Some(e) => e.fingerprint.clone(),
+            None => rows.first().map(|(r, _)| r[col].clone()).unwrap_or_default(),
+        };
+        if let Some((r, k)) = rows.iter().find(|(r, _)| r[col] != want) {
+            let why = format!(
+                "run {} is from experiment {}, not {} (another experiment, or another version of its file); merge only shards of one run",
+                r[0], r[col], want
+            );
+            return Err(ExperimentError::Record { path: dirs[*k].join("runs.csv"), why });
+        }
+    }
+    Ok(())
+}
+
+/// The rows in run order, refusing a run twice in one shard or in two.
+fn in_run_order(rows: Vec<(Vec<String>, usize)>, lines: &[u64], dirs: &[PathBuf]) -> Result<Vec<(Vec<String>, usize)>> {
+    let mut order: Vec<usize> = (0..rows.len()).collect();
+    order.sort_by_key(|&i| (rows[i].0[0].parse::<usize>().unwrap_or(usize::MAX), i));
+    if let Some(w) = order.windows(2).find(|w| rows[w[0]].0[0] == rows[w[1]].0[0]) {
+        let ((a, ka), (b, kb)) = (&rows[w[0]], &rows[w[1]]);
+        if ka == kb {
+            let why = format!("run {} is twice (lines {} and {}); each run is one row", a[0], lines[w[0]], lines[w[1]]);
+            return Err(ExperimentError::Record { path: dirs[*ka].join("runs.csv"), why });
+        }
+        return Err(ExperimentError::InTwoShards { id: b[0].clone(), first: dirs[*ka].clone(), second: dirs[*kb].clone() });
+    }
+    Ok(order.into_iter().map(|i| rows[i].clone()).collect())
+}
+
+/// The runs of `experiment` that no shard holds (none without one);
+/// refused unless `resume` runs them.
+fn missing_runs(rows: &[(Vec<String>, usize)], experiment: Option<&Experiment>, resume: bool) -> Result<Vec<String>> {
+    let mut missing = Vec::new();
+    if let Some(e) = experiment {
+        let have: HashSet<usize> = rows.iter().filter_map(|(r, _)| r[0].parse().ok()).collect();
+        let total = expand(e).len();
+        missing = (0..total).filter(|id| !have.contains(id)).map(|id| id.to_string()).collect();
+        if !missing.is_empty() && !resume {
+            return Err(ExperimentError::InNoShard { runs: missing.join(", "), missing: missing.len(), total });
+        }
+    }
+    Ok(missing)
+}
+
+/// Writes the merged rows into `out` with the shards' run images and
+/// reference. A record already in `out` is replaced only by one that holds
+/// every row of it, unchanged; else it is moved aside (`fresh`) or refused.
+fn write_merged(dirs: &[PathBuf], out: &Path, header: &[String], rows: &[Vec<String>], fresh: bool) -> Result<()> {
+    if let super::record::Found::Rows { rows: old, .. } = super::record::inspect(out, header)? {
+        let lost = old.iter().find(|(_, r)| !rows.iter().any(|m| m == r));
+        match lost {
+            None => {}
+            Some(_) if fresh => {
+                let to = super::record::move_aside(out)?;
+                eprintln!("note: moved the record in {} aside to {}", out.display(), to.display());
+            }
+            Some((line, r)) => {
+                let why = format!(
+                    "holds run {} as the merge does not (another run, or another version of the experiment); merge into another --out, or with --fresh to move that record aside (to runs.csv.N)",
+                    r[0]
+                );
+                return Err(ExperimentError::RecordLine { path: out.join("runs.csv"), line: *line, why });
+            }
+        }
+    }
+    // The run images (named by their parameters) and the reference
+    // image and its record travel with the rows.
+    for d in dirs {
+        let mut names: Vec<PathBuf> = std::fs::read_dir(d.join("images")).map(|rd| rd.flatten().map(|e| e.path()).collect()).unwrap_or_default();
+        names.retain(|p| p.extension().is_some_and(|x| x == "png") && !p.file_name().is_some_and(|n| n.to_string_lossy().starts_with('.')));
+        names.sort();
+        for from in names {
+            crate::image_io::create_folder(&out.join("images"))?;
+            copy_into_place(&from, &out.join("images").join(from.file_name().unwrap_or_default()))?;
+        }
+    }
+    for name in ["reference.png", "reference.csv"] {
+        if let Some(reference) = dirs.iter().map(|d| d.join(name)).find(|p| p.is_file()) {
+            copy_into_place(&reference, &out.join(name))?;
+        }
+    }
+    write_rows(&out.join("runs.csv"), header, rows)
 }
 
 /// How `merge` treats the folder it writes.

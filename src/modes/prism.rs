@@ -108,8 +108,7 @@ pub fn quick(cfg: &mut SpectralConfig, given: impl Fn(&str) -> bool) {
 /// tells the user (`say`) of its warnings and of
 /// what it wrote.
 pub fn run_to_files(cfg: &SpectralConfig, timing_csv: Option<&Path>, progress: &dyn Progress, say: &mut dyn FnMut(String)) -> Result<(), ModeError> {
-    cfg.validate()?;
-    params::check_threads(cfg.threads).map_err(ModeError::Threads)?;
+    Prism::validate(cfg)?;
     // The default folder, results/, is made; any other must exist.
     if let Some(parent) = cfg.out.parent().filter(|p| !p.as_os_str().is_empty() && cfg.out.starts_with("results")) {
         crate::image_io::create_folder(parent)?;

@@ -104,35 +104,6 @@ impl Record {
             None => self.build_s + self.render_s,
         }
     }
-
-    /// The record as named cells of runs.csv, in the order of its columns.
-    pub fn cells(&self) -> Vec<(&'static str, String)> {
-        let c = crate::timing::cell;
-        let mut cells = Vec::new();
-        if let Some(t) = self.triangles {
-            cells.push(("triangles", t.to_string()));
-        }
-        cells.push(("width", self.width.to_string()));
-        cells.push(("height", self.height.to_string()));
-        if let Some(l) = self.load_s {
-            cells.push(("load_s", c(l)));
-        }
-        cells.push(("build_s", c(self.build_s)));
-        if let Some(t) = self.trace_s {
-            cells.push(("trace_s", c(t)));
-        }
-        cells.push(("render_s", c(self.render_s)));
-        cells.push(("total_s", c(self.total_s())));
-        cells.push(("rays", self.rays.to_string()));
-        cells.push(("rays_per_s", c(self.rays as f64 / self.render_s.max(1e-12))));
-        if let (Some(p), Some(s)) = (self.photons, self.stored) {
-            cells.push(("photons", p.to_string()));
-            cells.push(("stored", s.to_string()));
-            cells.push(("photons_per_s", c(p as f64 / self.trace_s.unwrap_or(0.0).max(1e-12))));
-        }
-        cells.push(("tir_fraction", c(self.tir_fraction)));
-        cells
-    }
 }
 
 /// A finished run: its record, what the user should know, and the mode's
