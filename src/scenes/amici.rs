@@ -272,6 +272,18 @@ fn add_bench(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism) -> Result<
     super::matte(scene, "lamp side", DVec3::new(bx - bd, by0, z), DVec3::new(bd, 0.0, 0.0), DVec3::new(0.0, 0.0, bh), housing);
     super::matte(scene, "lamp side", DVec3::new(bx - bd, by1, z), DVec3::new(0.0, 0.0, bh), DVec3::new(bd, 0.0, 0.0), housing);
     super::matte(scene, "lamp top", DVec3::new(bx - bd, by0, z + bh), DVec3::new(bd, 0.0, 0.0), DVec3::new(0.0, bw, 0.0), housing);
+    // The optical rail (an X95 profile, black anodised) the lamp housing,
+    // the prism table and the screen stand on, from the housing's front to
+    // the table's end, so the table reads as a bench. Its sides stand in
+    // the planes of the post's and the housing's, with the post's albedo
+    // where they overlap; its top is under the slit's lower edge, so no
+    // photon of the beam or the fan crosses a new plane before the screen.
+    // Outward normals: top +z, front -y, back +y; its ends are hidden.
+    let rail_top = z + BENCH_RAIL_HEIGHT;
+    let rail = post;
+    super::matte(scene, "rail top", DVec3::new(bx, -py, rail_top), DVec3::new(x1 - bx, 0.0, 0.0), DVec3::new(0.0, 2.0 * py, 0.0), rail);
+    super::matte(scene, "rail side", DVec3::new(bx, -py, z), DVec3::new(x1 - bx, 0.0, 0.0), DVec3::new(0.0, 0.0, BENCH_RAIL_HEIGHT), rail);
+    super::matte(scene, "rail side", DVec3::new(bx, py, z), DVec3::new(0.0, 0.0, BENCH_RAIL_HEIGHT), DVec3::new(x1 - bx, 0.0, 0.0), rail);
     // The room's walls behind the screen and across the bench, dark grey:
     // what the prism's faces reflect and what is seen through them, so the
     // glass shows the room as a photograph's would, not black sky.
@@ -365,14 +377,24 @@ fn add_bench(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism) -> Result<
         super::matte(scene, "camera lens side", f, DVec3::new(ll, 0.0, 0.0), DVec3::new(0.0, 0.0, lb), lens);
         super::matte(scene, "camera lens side", f + DVec3::new(0.0, lb, 0.0), DVec3::new(0.0, 0.0, lb), DVec3::new(ll, 0.0, 0.0), lens);
         super::matte(scene, "camera lens front", f + DVec3::new(ll, 0.0, 0.0), DVec3::new(0.0, lb, 0.0), DVec3::new(0.0, 0.0, lb), lens);
-        super::matte(
-            scene,
-            "tripod",
-            DVec3::new(bench_cam.x - 0.006, bench_cam.y, z),
-            DVec3::new(0.012, 0.0, 0.0),
-            DVec3::new(0.0, 0.0, bench_cam.z - h / 2.0 - z),
-            body,
-        );
+        // Its viewfinder hump: 3 x 3 x 2 cm on the body's top, over the lens.
+        let (hl, hw, hh) = (0.03, 0.03, 0.02);
+        let t = c + DVec3::new((l - hl) / 2.0, (w - hw) / 2.0, h);
+        super::matte(scene, "camera hump top", t + DVec3::new(0.0, 0.0, hh), DVec3::new(hl, 0.0, 0.0), DVec3::new(0.0, hw, 0.0), body);
+        super::matte(scene, "camera hump side", t, DVec3::new(hl, 0.0, 0.0), DVec3::new(0.0, 0.0, hh), body);
+        super::matte(scene, "camera hump back", t, DVec3::new(0.0, 0.0, hh), DVec3::new(0.0, hw, 0.0), body);
+        // A tripod: three dark legs, 1.2 cm wide, from under the body to
+        // feet 14 cm out on the table, one to the far side and two toward
+        // the viewer, each facing the overview camera (-y).
+        let head = bench_cam - DVec3::new(0.0, 0.0, h / 2.0);
+        for angle in TRIPOD_LEG_ANGLES {
+            let (sin, cos) = angle.to_radians().sin_cos();
+            let foot = DVec3::new(bench_cam.x + TRIPOD_SPREAD * cos, bench_cam.y + TRIPOD_SPREAD * sin, z);
+            let (across, along) = (DVec3::new(0.012, 0.0, 0.0), head - foot);
+            let corner = foot - across / 2.0;
+            let (eu, ev) = if across.cross(along).y < 0.0 { (across, along) } else { (along, across) };
+            super::matte(scene, "tripod leg", corner, eu, ev, lens);
+        }
     }
     let vfov = 2.0 * ((hfov.to_radians() / 2.0).tan() / aspect).atan();
     scene.camera = Camera::look_at(cam, target, DVec3::Z, vfov.to_degrees(), o.width, o.height);
@@ -384,6 +406,14 @@ fn add_bench(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism) -> Result<
 /// by a twentieth of its length; 4 cm tall, within the prism's 5 cm, so
 /// the strip is a band across the screen, not a line).
 const BENCH_SLIT: (f64, f64) = (0.01, 0.04);
+/// The optical rail's height above the table, m: its top 2.5 cm up, under
+/// the slit's lower edge (2 cm under the beam's axis, which runs 7 cm above
+/// the table).
+const BENCH_RAIL_HEIGHT: f64 = 0.025;
+/// The overview's tripod: its legs' directions round the camera (degrees
+/// from +x, seen from above) and how far out their feet stand, m.
+const TRIPOD_LEG_ANGLES: [f64; 3] = [90.0, 210.0, 330.0];
+const TRIPOD_SPREAD: f64 = 0.14;
 /// How far the lamp's slit stands before the prism's entry face, m.
 const BENCH_LAMP_GAP: f64 = 0.15;
 /// Faces an eye path through the bench's prism splits at (`World::
@@ -518,6 +548,61 @@ mod tests {
             assert!((a1 - want).abs() < 1e-4, "{flint} {apex}: {a1} vs {want}");
         }
         assert!(solve_crown_apex(1.5, 3.0, f64::to_radians(120.0)).is_none());
+    }
+
+    /// The bench (amici-bench) seen from `view`, and the height of its table.
+    fn bench(view: View) -> (World, f64) {
+        let mut o = SceneOptions::new(SceneKind::AmiciBench);
+        o.view = view;
+        let w = build(&o).unwrap();
+        let table = w.faces.iter().find(|f| f.name == "table").unwrap().verts[0].z;
+        (w, table)
+    }
+
+    /// The extent of the faces named `name`: lowest and highest corner.
+    fn extent(w: &World, name: &str) -> (DVec3, DVec3) {
+        let verts = w.faces.iter().filter(|f| f.name == name).flat_map(|f| f.verts.clone());
+        verts.fold((DVec3::splat(f64::MAX), DVec3::splat(f64::MIN)), |(lo, hi), v| (lo.min(v), hi.max(v)))
+    }
+
+    #[test]
+    fn the_bench_rail_runs_from_the_lamp_to_the_screen_under_the_beam() {
+        let (w, table) = bench(View::Scene);
+        let (lo, hi) = extent(&w, "rail top");
+        let Emission::Beam { centre, half, v, .. } = w.lights[0].emission else { panic!("the slit beam first") };
+        let slit_bottom = centre.z - half.y * v.z.abs();
+        assert!(
+            table < lo.z && hi.z < slit_bottom,
+            "the rail's top at {:.3} m, between the table ({table:.3}) and the slit's lower edge ({slit_bottom:.3})",
+            hi.z
+        );
+        let (lamp, _) = extent(&w, "lamp side");
+        let (screen, _) = extent(&w, "screen");
+        assert!(
+            lo.x <= lamp.x + 0.13 && hi.x >= screen.x,
+            "the rail spans x {:.2}..{:.2}, the lamp to the screen ({:.2}..{:.2})",
+            lo.x,
+            hi.x,
+            lamp.x,
+            screen.x
+        );
+        assert!(lo.y.abs() < 0.06 && hi.y.abs() < 0.06, "the rail lies under the beam");
+    }
+
+    #[test]
+    fn the_overview_camera_stands_on_three_legs() {
+        let (w, table) = bench(View::Overview);
+        let legs: Vec<&crate::world::Face> = w.faces.iter().filter(|f| f.name == "tripod leg").collect();
+        assert_eq!(legs.len(), 3);
+        let (body, _) = extent(&w, "camera side");
+        let mut feet = Vec::new();
+        for leg in legs {
+            let (lo, hi) = leg.verts.iter().fold((f64::MAX, f64::MIN), |(lo, hi), v| (lo.min(v.z), hi.max(v.z)));
+            assert!((lo - table).abs() < 1e-9 && (hi - body.z).abs() < 1e-9, "a leg from the table ({table}) to under the body ({}): {lo}..{hi}", body.z);
+            assert!(leg.normal.y < 0.0, "each leg faces the overview camera");
+            feet.push(leg.verts.iter().map(|v| DVec2::new(v.x, v.y)).sum::<DVec2>());
+        }
+        assert!(feet.iter().all(|a| feet.iter().filter(|b| (**b - *a).length() > 0.1).count() == 2), "the feet stand apart");
     }
 
     #[test]
