@@ -28,7 +28,7 @@ const DRAWN: [(&str, &str, &str); 2] = [
     (
         "pm-spectra-compare",
         "003",
-        "The same scene with different wavelength-to-colour maps (CIE, buckets, interpolated gradient, HSL-based, custom red-white-blue)",
+        "The same scene with different wavelength-to-colour maps (CIE, buckets, interpolated gradient, HSL-based, custom red-white-blue); the interpolated gradient and the HSL hue look alike, as both sweep the hue circle evenly from violet to red",
     ),
 ];
 
@@ -758,15 +758,14 @@ fn colour_compare(png: &Path, quick: bool, scenes: &Path) -> Result<String> {
     for (k, map) in maps.iter().enumerate() {
         cfg.colours = *map;
         let mut scene = build(&cfg.scene)?;
-        // The crop: the prism filling the tile's upper left, the incoming
-        // beam's last part, and the fan running out of the tile at its
-        // lower right (the figure's own camera, 16 degrees instead of 19:
-        // a wider crop showed the fan end in mid-air where its light comes
-        // down onto the backdrop; at 16 degrees the prism and fan filled
-        // a tenth of the tile: 11.5 degrees, the prism whole and the fan
-        // from its exit face, where the maps' colours part).
-        let centre = glam::DVec3::new(0.22, -0.07, 0.0);
-        scene.camera = crate::world::Camera::look_at(centre + glam::DVec3::Z * 2.8, centre, glam::DVec3::Y, 11.5, tw, th);
+        // The crop: the prism whole near the tile's top, the incoming
+        // beam's last part, and the whole fan, from the exit face to the
+        // tile's right edge, which it leaves across its full width (at
+        // 11.5 degrees, centred right of the prism, the tile's corner cut
+        // every fan; a wider crop shows the fan end in mid-air where its
+        // light comes down onto the backdrop).
+        let centre = glam::DVec3::new(-0.01, -0.1, 0.0);
+        scene.camera = crate::world::Camera::look_at(centre + glam::DVec3::Z * 2.8, centre, glam::DVec3::Y, 13.5, tw, th);
         let r = crate::spectral::render_world(&cfg, &scene, &crate::progress::Silent)?;
         let tile = r.render.image.to_srgb8(r.exposure, cfg.gamut);
         let (x0, y0) = ((k % cols) * tw, (k / cols) * (th + label_h) + label_h);

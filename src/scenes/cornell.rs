@@ -252,10 +252,11 @@ pub fn dark_side(o: &SceneOptions) -> Result<World> {
     if !o.no_prism {
         s.add_extruded("prism", &[(cross, 1)], 0.0, tall);
         // The cover's white outline: the prism's top edges, ground and
-        // glowing (three thin emitting strips on the top face, 8 mm wide),
-        // lit from within as a chamfer catches scattered light.
+        // glowing (three thin emitting strips on the top face, 4 mm wide:
+        // at 8 mm they read as a white wireframe), lit from within as a
+        // chamfer catches scattered light.
         let centroid = (cross[0] + cross[1] + cross[2]) / 3.0;
-        let width = 0.008;
+        let width = 0.004;
         for k in 0..3 {
             let (a, b) = (cross[k], cross[(k + 1) % 3]);
             let inward = (centroid - (a + b) / 2.0).normalize() * width;
@@ -269,7 +270,7 @@ pub fn dark_side(o: &SceneOptions) -> Result<World> {
                 name: format!("outline {k}"),
                 emission: Emission::Area { face: s.faces.len() - 1 },
                 spectrum: Spectrum::light("d65")?,
-                power: 0.08 * eu.length(),
+                power: 0.04 * eu.length(),
             });
         }
     }
@@ -318,9 +319,11 @@ pub fn dark_side(o: &SceneOptions) -> Result<World> {
     shares[beam] = 1.0;
     s.photon_shares = Some(shares);
     s.probe = (aim - dir * 0.5, dir);
-    // Framed as the cover: the prism up and left of centre, the beam in
-    // from the left edge, the whole fan down to the right until its light
-    // has come down onto the backdrop.
-    s.camera = Camera::look_at(DVec3::new(0.17, -0.1, 2.8), DVec3::new(0.17, -0.1, 0.0), DVec3::Y, 19.0, o.width, o.height);
+    // Framed as the cover: the prism large, in the middle of the picture
+    // and in its upper half, the beam in from the left edge, and the whole
+    // fan leaving across the right edge, its violet side clear of the
+    // bottom (framed on the prism's right, the fan left by the corner).
+    let centre = DVec3::new(0.03, -0.15, 0.0);
+    s.camera = Camera::look_at(centre + DVec3::Z * 2.8, centre, DVec3::Y, 16.8, o.width, o.height);
     Ok(s)
 }
