@@ -324,8 +324,9 @@ mod tests {
         let total: f64 = strips.iter().map(|(a, b)| b - a).sum();
         assert!((total - 2.0).abs() < 1e-9, "the strips cover the plate: {total} m");
         assert!(strips.iter().all(|(a, b)| b > a), "every strip has width");
-        let over_line = strips.iter().filter(|(a, b)| a.abs().max(b.abs()) <= 0.01).count();
-        assert!(over_line >= 20, "the line is drawn by at least 20 strips: {over_line}");
+        let over_line: Vec<_> = strips.iter().filter(|(a, b)| a.abs().max(b.abs()) <= 0.008).collect();
+        assert!(over_line.len() >= 14, "the line and its soft edges are drawn by at least 14 strips: {}", over_line.len());
+        assert!(over_line.iter().all(|(a, b)| b - a < 0.0011), "1 mm strips over the line");
         assert!(strips.len() < 150, "few faces: {}", strips.len());
     }
 
