@@ -1083,32 +1083,6 @@ fn the_metal_plate_reads_as_lit_metal() {
 }
 
 #[test]
-fn the_area_light_rolls_off_instead_of_clipping_flat() {
-    // cs348b-sphere-arealight: the light's patch (every channel above 185,
-    // in the frame's lower right quarter) is not a flat clipped blob: under
-    // 5 % of its pixels are pure white (0 measured on 2026-11-25 with the
-    // filmic display at twice the exposure; 99 % with the camera's clip at
-    // 8 times), and it is not dimmed to grey: at least a quarter of it
-    // above 235 in every channel.
-    let (w, h, img) = sphere_arealight(4, true, true);
-    let (mut n, mut flat, mut bright) = (0, 0, 0);
-    for y in h / 2..h {
-        for x in w / 2..w {
-            let p = &img[(y * w + x) * 3..(y * w + x) * 3 + 3];
-            if p.iter().all(|&c| c > 185) {
-                n += 1;
-                flat += p.iter().all(|&c| c == 255) as usize;
-                bright += p.iter().all(|&c| c > 235) as usize;
-            }
-        }
-    }
-    eprintln!("area light patch: {n} px, {flat} pure white, {bright} above 235");
-    assert!(n > 500, "the sphere shows the light as a patch: {n} px");
-    assert!((flat as f64) < 0.05 * n as f64, "the light is clipped flat: {flat} of {n} px pure white");
-    assert!((bright as f64) >= 0.25 * n as f64, "the light is bright: {bright} of {n} px above 235");
-}
-
-#[test]
 fn the_whole_glass_sphere_is_in_the_area_light_frame() {
     // cs348b-sphere-arealight: the sphere is seen whole, in front of the
     // light: its silhouette (the cone from the camera tangent to it) lies
