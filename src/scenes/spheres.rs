@@ -9,11 +9,11 @@
 //!   orange-red on the outer one (blue bends more, so its image of the
 //!   light lies nearer the centre; docs/physics.md §22), against a glowing checkerboard that shows the
 //!   glass itself, inverted in it with every edge fringed the same way.
-//! - `sphere-metal`: the sphere before a polished, neutral metal plate (a
-//!   grey mirror) that reflects a window and a white strip softbox: the
-//!   sphere shows the strip's band inverted, fringed blue inside and yellow
-//!   to red outside; with no colour in the plate or the lights, the colour
-//!   is the dispersion.
+//! - `sphere-metal`: the sphere 16 cm before a lit, brushed metal plate
+//!   (a strip light's line and a broad sheen on it), just short of the
+//!   ball's focus: the sphere magnifies the line into a bright lens ringed
+//!   by a broad band fading from yellow to red; with no colour in the
+//!   plate or the lights, the colour is the dispersion.
 //! - `spheres-final`: where the wavelength effects show at a glance: a
 //!   white beam through a hole in a card onto a glass sphere, which sends
 //!   back a rainbow ring round the hole (one reflection inside;
@@ -145,60 +145,72 @@ fn glow(s: &mut World, o: &SceneOptions, name: &str, [corner, eu, ev]: [DVec3; 3
     Ok(())
 }
 
-/// Report 001's sphere before a polished metal plate that reflects a
-/// white softbox.
+/// Report 001's sphere before a lit, brushed metal plate.
 fn metal_plate(s: &mut World, o: &SceneOptions) -> Result<()> {
     if !o.no_prism {
         glass_sphere(s, "glass sphere", DVec3::new(3.0, 0.0, 0.0), 0.5);
     }
-    // A polished, neutral metal plate 2.6 m by 1.9 m, 2 m behind the
-    // sphere and square to the camera's axis: a mirror of flat
-    // reflectance 0.9 (polished aluminium; grey, so it adds no colour).
-    // Its edges stand in the frame against a near-black wall, and its
-    // reflection of the sphere hides behind the sphere itself.
-    let c = DVec3::new(5.0, 0.0, 0.0);
-    let (w, h) = (2.6, 1.9);
-    s.faces.push(Face::rect(
-        "metal plate",
-        c + DVec3::new(0.0, 0.5 * w, -0.5 * h),
-        DVec3::new(0.0, -w, 0.0),
-        DVec3::new(0.0, 0.0, h),
-        Surface::Mirror { reflectance: 0.9 },
-    ));
-    // The room, all glowing surfaces (no matte surface, no photons, no
-    // sampling noise outside the glass): a near-black wall behind the
-    // plate, seen round its edges (0.4 % of the lights' radiance), and
-    // behind the camera, reflected in the plate, a dim wall (5 %), a
-    // window of six panes (6500 K black bodies) high on the left, which the plate
-    // shows in its upper left corner cut by its edge, as a mirror does,
-    // and over it a white strip softbox across the room. Both are high
-    // and to the side (more than 22 degrees off the axis, from the
-    // sphere) so that the glass does not show them by one reflection
-    // inside (a faint, grainy copy: Fresnel's few per cent, drawn at
-    // random) but only by refraction, as the plate shows them: the
-    // sphere shows the plate's light inverted, the strip as a white band
-    // fringed blue on the edge toward its centre and yellow to red on
-    // the outer one, the window as a small inverted window, each bar
-    // fringed the same way (docs/physics.md §22).
-    glow(s, o, "back wall", [DVec3::new(7.0, 6.0, -4.0), DVec3::new(0.0, -12.0, 0.0), DVec3::new(0.0, 0.0, 8.0)], 0.004)?;
-    glow(s, o, "front wall", [DVec3::new(-3.0, -30.0, -6.0), DVec3::new(0.0, 60.0, 0.0), DVec3::new(0.0, 0.0, 12.0)], 0.05)?;
-    // The window: 2.4 m by 1.8 m centred 2.3 m left and 1.25 m up, 12 cm bars.
-    let (wy, wz, ww, wh, bar, cols, rows) = (2.3, 1.25, 2.4, 1.8, 0.12, 3, 2);
-    let (pw, ph) = ((ww - bar * (cols + 1) as f64) / cols as f64, (wh - bar * (rows + 1) as f64) / rows as f64);
-    for i in 0..cols {
-        for j in 0..rows {
-            let y = wy + ww / 2.0 - bar - i as f64 * (pw + bar) - pw;
-            let z = wz - wh / 2.0 + bar + j as f64 * (ph + bar);
-            glow(s, o, "window pane", [DVec3::new(-2.9, y, z), DVec3::new(0.0, pw, 0.0), DVec3::new(0.0, 0.0, ph)], 1.0)?;
-        }
+    // The plate, 2 m by 1.5 m, stands 0.66 m behind the sphere's centre
+    // (16 cm behind the glass), square to the camera. Seen from the
+    // camera 3 m away, the ball (N-SF11, radius R) brings the camera's
+    // rays to a focus at v behind its centre, 1/v = 1/f - 1/(3 m) with
+    // f = nR / 2(n - 1) (the ball lens; docs/physics.md §22): 0.675 m at
+    // 436 nm, 0.689 at 589, 0.708 at 656 nm (the paraxial foci); rays
+    // through the outer zones focus nearer (spherical aberration). A ray
+    // through a zone meets the plate at (1 - d / v_zone) of its height: near
+    // the centre the plate is short of every colour's focus, blue's the
+    // nearest, so blue's image of the line is the largest (at 0.66 m,
+    // 1 - d / v is 2.2 % at 436 nm against 6.8 % at 656: a bluish centre);
+    // the outer zones focus in front of the plate, blue's nearest again,
+    // and there blue's image is the smallest: round the bright lens the
+    // colours drop out from blue on, leaving a broad band that fades from
+    // yellow through orange to red. Nearer the focus the pattern breaks
+    // into rings; farther (0.75 m) the band narrows to a fringe.
+    // The plate's look is light it sends (the renderer's metal is a
+    // perfect mirror, which 16 cm behind the ball would show a second
+    // sphere): brushed aluminium under a strip light, whose reflection
+    // the brushing spreads across the grain into a vertical line with a
+    // broad, soft sheen either side (plate_sheen). All lights are glowing
+    // surfaces, 6500 K black bodies (no photons, no matte surface): no
+    // sampling noise outside the glass, and every colour in the image is
+    // the glass's dispersion.
+    let (w, h) = (2.0, 1.5);
+    let x = 3.66;
+    for (y0, y1) in sheen_strips(0.5 * w) {
+        let radiance = plate_sheen(0.5 * (y0 + y1));
+        glow(s, o, "metal plate", [DVec3::new(x, y1, -0.5 * h), DVec3::new(0.0, y0 - y1, 0.0), DVec3::new(0.0, 0.0, h)], radiance)?;
     }
-    // The softbox: a strip 1.3 m tall from 2.2 m up, across the room.
-    let strip = 2.2;
-    glow(s, o, "softbox", [DVec3::new(-2.9, -10.0, strip), DVec3::new(0.0, 20.0, 0.0), DVec3::new(0.0, 0.0, 1.3)], 1.0)?;
-    // A 26 degree field: the sphere large (its fringes scale with its
-    // image, docs/physics.md §22), whole, the plate's edges in view.
+    // A near-black wall round the plate (1 % of the line's radiance) and a
+    // dim room behind the camera (2 %), which the glass reflects faintly.
+    glow(s, o, "back wall", [DVec3::new(7.0, 6.0, -4.0), DVec3::new(0.0, -12.0, 0.0), DVec3::new(0.0, 0.0, 8.0)], 0.01)?;
+    glow(s, o, "front wall", [DVec3::new(-3.0, -30.0, -6.0), DVec3::new(0.0, 60.0, 0.0), DVec3::new(0.0, 0.0, 12.0)], 0.02)?;
+    // A 26 degree field: the sphere large, whole, the plate's edges in view.
     s.camera = Camera::look_at(DVec3::ZERO, DVec3::new(3.0, 0.0, 0.0), DVec3::Z, 26.0, o.width, o.height);
     Ok(())
+}
+
+/// The brushed plate's radiance at `y` metres across it (relative to the
+/// line's): a dim base (3 %), a broad sheen (10 %, 0.35 m standard
+/// deviation) and the strip light's line, 8 mm wide with 3 mm soft edges.
+pub fn plate_sheen(y: f64) -> f64 {
+    let line = 1.0 / (1.0 + ((y.abs() - 0.004) / 0.003).exp());
+    0.03 + 0.1 * (-0.5 * (y / 0.35).powi(2)).exp() + line
+}
+
+/// Vertical strips (left and right edges, metres) that tile the plate
+/// from -half to half: 1 mm wide over the line, widening away from it.
+pub fn sheen_strips(half: f64) -> Vec<(f64, f64)> {
+    let (mut edges, mut y, mut step) = (vec![0.0], 0.0, 0.001);
+    while y < half {
+        y = (y + step).min(half);
+        edges.push(y);
+        if y > 0.02 {
+            step = (step * 1.25).min(0.04);
+        }
+    }
+    let mut strips: Vec<(f64, f64)> = edges.windows(2).map(|e| (e[0], e[1])).collect();
+    strips.extend(edges.windows(2).map(|e| (-e[1], -e[0])));
+    strips
 }
 
 /// Report 001's final scene: a beam through a hole in a card onto a glass
@@ -300,4 +312,28 @@ fn card_lamps(s: &mut World, o: &SceneOptions) -> Result<()> {
     ));
     s.lights.push(Light { name: "beam source".into(), emission: Emission::Area { face: s.faces.len() - 1 }, spectrum: light_spectrum(o, "d65")?, power: 0.5 });
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_sheen_strips_tile_the_plate_finely_over_the_line() {
+        let strips = sheen_strips(1.0);
+        let total: f64 = strips.iter().map(|(a, b)| b - a).sum();
+        assert!((total - 2.0).abs() < 1e-9, "the strips cover the plate: {total} m");
+        assert!(strips.iter().all(|(a, b)| b > a), "every strip has width");
+        let over_line: Vec<_> = strips.iter().filter(|(a, b)| a.abs().max(b.abs()) <= 0.008).collect();
+        assert!(over_line.len() >= 14, "the line and its soft edges are drawn by at least 14 strips: {}", over_line.len());
+        assert!(over_line.iter().all(|(a, b)| b - a < 0.0011), "1 mm strips over the line");
+        assert!(strips.len() < 150, "few faces: {}", strips.len());
+    }
+
+    #[test]
+    fn the_plate_is_brightest_on_its_line_and_never_black() {
+        assert!(plate_sheen(0.0) > 0.9 && plate_sheen(0.02) < 0.2, "a sharp line");
+        assert!(plate_sheen(0.3) > 2.0 * plate_sheen(1.0), "a broad sheen falling off");
+        assert!(plate_sheen(1.0) >= 0.03, "the base");
+    }
 }
