@@ -89,7 +89,11 @@ fn attenuation_darkens_the_faces_away_from_the_light() {
     let far_table = &table[table.len() - table.len() / 10..];
     let lit = |g: &[f64]| far_table.iter().map(|&(_, i)| (g[i] - ambient).max(0.0)).sum::<f64>();
     let (with, without) = (lit(&b), lit(&a));
-    eprintln!("far table: {:.1} with attenuation, {:.1} without (grey over the ambient, summed / px)", with / far_table.len() as f64, without / far_table.len() as f64);
+    eprintln!(
+        "far table: {:.1} with attenuation, {:.1} without (grey over the ambient, summed / px)",
+        with / far_table.len() as f64,
+        without / far_table.len() as f64
+    );
     assert!(with < 0.5 * without, "the far table keeps {:.2} of its light", with / without);
 }
 

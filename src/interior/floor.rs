@@ -58,9 +58,14 @@ fn inside_triangle(p: Vec3, [a, b, c]: [Vec3; 3], n: Vec3) -> bool {
 /// light inside the mesh whose faces are `faces` (vertices, unit outward
 /// normal): the sum over the faces the light gets out through of
 /// T_fresnel(exit) x cos(arrival) x 1/(1 + c L^2), L the length of the bent
-/// path from the light to `q` (docs/physics.md §10b). Exact for a convex
-/// mesh; it ignores the spreading of the refracted beam.
+/// path from the light to `q` (docs/physics.md §10b). Exact for a light
+/// inside a convex mesh (0 for a light outside it); it ignores the
+/// spreading of the refracted beam.
 pub fn lit_through_faces(q: Vec3, up: Vec3, light: Vec3, faces: &[([Vec3; 3], Vec3)], ior: f32, atten: f32) -> f32 {
+    // A light outside the (convex) mesh: nothing is computed through it.
+    if faces.iter().any(|(t, n)| n.dot(t[0] - light) <= 0.0) {
+        return 0.0;
+    }
     let mut sum = 0.0;
     for &(tri, n) in faces {
         let Some((p, cos_in)) = exit_point(light, q, n, tri[0], ior) else { continue };
