@@ -166,7 +166,7 @@ mod tests {
     #[test]
     fn the_floor_under_a_face_is_lit_inside_the_circle_of_outcoming_light_only() {
         // One large face z = 0 (normal +z) over a light at depth 0.5; a
-        // floor point just above it gets light only within the circle of
+        // floor just above it, facing it (normal -z), gets light only within the circle of
         // radius d tan(asin(1/n)), dimming toward its edge (Fresnel), and
         // none beyond it.
         let (d, ior) = (0.5f32, 1.5f32);
@@ -177,7 +177,7 @@ mod tests {
             ([Vec3::new(-big, -big, 0.0), Vec3::new(big, big, 0.0), Vec3::new(-big, big, 0.0)], Vec3::Z),
         ];
         let light = Vec3::new(0.0, 0.0, -d);
-        let at = |r: f32| lit_through_faces(Vec3::new(r, 0.0, 1e-3), Vec3::Z, light, &faces, ior, 0.0);
+        let at = |r: f32| lit_through_faces(Vec3::new(r, 0.0, 1e-3), -Vec3::Z, light, &faces, ior, 0.0);
         assert!(at(0.0) > 0.9);
         let mut last = f32::INFINITY;
         for i in 0..20 {
@@ -192,10 +192,10 @@ mod tests {
             assert!(at(k * radius) < 1e-2 * at(0.0), "beyond the circle at {k} r: {}", at(k * radius));
         }
         // The sampled map gives the same values to within its interpolation.
-        let map = FloorMap::new(Vec3::new(0.0, 0.0, 1e-3), Vec3::X, -Vec3::Y, 2.0, 401, light, faces.to_vec(), ior, 0.0);
+        let map = FloorMap::new(Vec3::new(0.0, 0.0, 1e-3), Vec3::X, Vec3::Y, 2.0, 401, light, faces.to_vec(), ior, 0.0);
         for r in [0.0, 0.3 * radius, 0.7 * radius, 2.0 * radius, 5.0] {
             let q = Vec3::new(r, 0.013, 1e-3);
-            let exact = lit_through_faces(q, Vec3::Z, light, &faces, ior, 0.0);
+            let exact = lit_through_faces(q, -Vec3::Z, light, &faces, ior, 0.0);
             assert!((map.at(q) - exact).abs() < 0.02, "r = {r}: {} against {exact}", map.at(q));
         }
     }
