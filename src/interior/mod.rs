@@ -9,6 +9,7 @@
 
 pub mod bulb;
 pub mod config;
+pub mod floor;
 pub mod phong;
 pub mod scene;
 pub mod tone;
