@@ -94,10 +94,12 @@ impl<'a> Tracer<'a> {
             bulb: cfg.bulb,
             tir_circle: cfg.tir_circle,
             floor: (scene.floor_from != u32::MAX).then(|| {
-                // 3.5 mesh radii round its foot, at about a pixel a sample.
+                // 3.5 mesh radii round its foot, at about a pixel a sample
+                // (448 samples across at the figures' 401 pixels).
                 let (c, ex, ez) = scene.floor_frame;
                 let half = 3.5 * cfg.scale;
-                super::floor::FloorMap::new(c, ex, ez, half, 448, scene.light, scene.faces.clone(), cfg.ior, cfg.attenuation())
+                let n = (cfg.width.max(cfg.height) * 448).div_ceil(401).clamp(16, 2048);
+                super::floor::FloorMap::new(c, ex, ez, half, n, scene.light, scene.faces.clone(), cfg.ior, cfg.attenuation())
             }),
         }
     }
