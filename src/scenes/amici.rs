@@ -213,6 +213,7 @@ const WALL_HEIGHT: f64 = 0.6;
 /// view (`View`) is the bench from beside the lamp (Pictures 4-6), the
 /// screen close up, or the whole bench from above, behind the lamp and to
 /// its near side (Picture 3).
+// One body (over 80 lines): the bench's parts in the order they stand, sharing the beam's height and the table's size; each choice is commented where it is made.
 fn add_bench(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism) -> Result<()> {
     // `add_screen` has just made the screen and the slit beam (`build`).
     let screen = *scene.maps.first().expect("the bench view is built on the screen");

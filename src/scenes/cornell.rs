@@ -50,6 +50,7 @@ fn cornell_box(s: &mut World) {
     matte(s, "right wall", v(1.0, -1.0, 0.0), v(0.0, 0.0, 2.0), v(0.0, 2.0, 0.0), green);
 }
 
+// One body (over 80 lines): the box, the prism, the light and the camera of one scene family, each variant's choices commented where they are made.
 pub fn build(o: &SceneOptions) -> Result<World> {
     let glass = glass_medium(o.crown, o.ior, o.no_dispersion);
     let mut s = super::with_glass(o, glass);
@@ -236,6 +237,7 @@ pub fn build(o: &SceneOptions) -> Result<World> {
     Ok(s)
 }
 
+// One body (over 80 lines): the album cover's prism, beam, outline strips and camera, placed from one set of measures.
 pub fn dark_side(o: &SceneOptions) -> Result<World> {
     let glass = glass_medium(o.crown, o.ior, o.no_dispersion);
     let mut s = super::with_glass(o, glass);

@@ -356,6 +356,7 @@ impl Eye<'_> {
     /// (four per eye sample at up to 4 samples a pixel, fewer above, so a
     /// pixel takes about 16 in all), and for a beam whether `x` lies in it,
     /// unshadowed (docs/physics.md §13).
+    // One body (over 80 lines): one match over the light's kinds, each arm a few lines sharing the shadow test.
     fn direct_light(&self, id: usize, x: DVec3, light_u: [f64; 2], rng: &mut Rng, mut add: impl FnMut(usize, f64)) {
         use std::f64::consts::PI;
         let n = self.scene.faces[id].normal;
