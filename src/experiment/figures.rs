@@ -322,7 +322,7 @@ const GROUPS: [(&str, &[&str], &str); 8] = [
     (
         "004",
         &["lab-ior1.1-atten", "lab-ior1.4", "lab-ior1.8", "lab-ior2.0", "lab-ior3.0"],
-        "The index series, one cube and light (the bulb drawn at the light): each face glows only inside its circle of outcoming light, where the light inside meets it within the critical angle asin(1/n) (65.4, 45.6, 33.7, 30.0 and 19.5 degrees from 1.1 to 3.0; beyond it total internal reflection turns the light back), and the circles and the hot spots where the light leaves toward the eye shrink as the index rises; the cube stands on a table lit only by the light that gets out through its faces, so the circles fall on it as pools of light that shrink too.",
+        "The index series, one cube and light (the bulb drawn at the light): each face glows only inside its circle of outcoming light, where the light inside meets it within the critical angle asin(1/n) (65.4, 45.6, 33.7, 30.0 and 19.5 degrees from 1.1 to 3.0; beyond it total internal reflection turns the light back), and the circles and the hot spots where the light leaves toward the eye shrink as the index rises.",
     ),
     ("004", &["lab-ior1.4", "lab-ior1.4-n8"], "The hot spot widens at shininess 8."),
     ("004", &["lab-ior1.8", "lab-ior1.8-blue"], "The same index in white and in blue."),

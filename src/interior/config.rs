@@ -34,11 +34,6 @@ crate::named_enum! {
         /// back, as through a one-way mirror), so that a mirror in the box
         /// reflects a room all round.
         CornellClosed = "cornell-closed",
-        /// The mesh standing on a wide matte floor under its lowest face
-        /// (in its own frame, turned with it), the floor lit by the light
-        /// inside only through the faces it gets out of (docs/physics.md
-        /// §10b).
-        Table = "table",
     }
 }
 
@@ -115,7 +110,7 @@ impl InteriorConfig {
     /// thirds, as the shipped Cornell scenes set).
     pub fn attenuation(&self) -> f32 {
         self.atten.unwrap_or(match self.scene {
-            SceneKind::Mesh | SceneKind::Table => 1.0,
+            SceneKind::Mesh => 1.0,
             SceneKind::Cornell | SceneKind::CornellTiled | SceneKind::CornellClosed => 0.1,
         })
     }

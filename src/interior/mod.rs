@@ -9,7 +9,6 @@
 
 pub mod bulb;
 pub mod config;
-pub mod floor;
 pub mod phong;
 pub mod scene;
 pub mod tone;

@@ -56,29 +56,13 @@ pub struct InteriorScene {
     /// Triangles only rays from inside the box meet (the closed box's front
     /// wall): from this index on; `u32::MAX` = none.
     pub one_way_from: u32,
-    /// The floor's first triangle (scene `table`); `u32::MAX` = no floor.
-    pub floor_from: u32,
-    /// The floor's unit upward normal.
-    pub floor_up: Vec3,
-    /// The mesh's faces (vertices, unit outward normal), through which the
-    /// light inside reaches the floor.
-    pub faces: Vec<([Vec3; 3], Vec3)>,
-    /// The floor's axes and centre (the square's middle, under the mesh).
-    pub floor_frame: (Vec3, Vec3, Vec3),
 }
-
-/// Colour of the table's floor: a light warm grey, as a matte tabletop.
-pub const FLOOR: Rgb = Rgb(Vec3::new(0.72, 0.68, 0.62));
-/// Half the width of the floor square, in units of the mesh's radius: wide
-/// enough that its edge lies beyond the frame.
-pub const FLOOR_HALF: f32 = 12.0;
 
 impl InteriorScene {
     /// Places `mesh` (already loaded) as the configuration says.
     pub fn new(mut mesh: Mesh, cfg: &InteriorConfig) -> Self {
         let b = mesh.bounds();
         let centre = b.center();
-        let bottom = b.min.y - centre.y;
         let radius = mesh.positions.iter().map(|p| (*p - centre).length()).fold(0.0f32, f32::max);
         // A single point or an empty mesh has no size: keep scale as is.
         let norm = if radius > 0.0 && radius.is_finite() { cfg.scale / radius } else { cfg.scale };
@@ -90,21 +74,7 @@ impl InteriorScene {
         let mut triangles = mesh.build_triangles();
         let mut wall_colors = Vec::new();
         let mut one_way_from = u32::MAX;
-        let mut floor_from = u32::MAX;
-        let floor_up = rot * Vec3::Y;
-        let floor_frame = (MESH_CENTRE + rot * Vec3::new(0.0, bottom * norm - 1e-3 * cfg.scale, 0.0), rot * Vec3::X, rot * Vec3::Z);
-        if cfg.scene == SceneKind::Table {
-            // Under the lowest face in the mesh's own frame, a hair below it
-            // so the two never share a plane, turned with the mesh.
-            let (y, f) = (bottom * norm - 1e-3 * cfg.scale, FLOOR_HALF * cfg.scale);
-            let v = |x: f32, z: f32| MESH_CENTRE + rot * Vec3::new(x, y, z);
-            floor_from = triangles.len() as u32;
-            let quad = [v(-f, -f), v(-f, f), v(f, f), v(f, -f)];
-            for t in [[0, 1, 2], [0, 2, 3]] {
-                triangles.push(Triangle::new(quad[t[0]], quad[t[1]], quad[t[2]]));
-                wall_colors.push(FLOOR);
-            }
-        } else if cfg.scene != SceneKind::Mesh {
+        if cfg.scene != SceneKind::Mesh {
             let tiles = if cfg.scene == SceneKind::Cornell { 0 } else { 8 };
             let mut walls = cornell_walls(tiles);
             if cfg.scene == SceneKind::CornellClosed {
@@ -121,12 +91,7 @@ impl InteriorScene {
                 }
             }
         }
-        let normals: Vec<Vec3> = triangles.iter().map(|t| t.normal().normalize_or_zero()).collect();
-        let faces = if floor_from == u32::MAX {
-            Vec::new()
-        } else {
-            mesh.triangles.iter().zip(&normals).map(|(t, &n)| (t.map(|i| mesh.positions[i as usize]), n)).collect()
-        };
+        let normals = triangles.iter().map(|t| t.normal().normalize_or_zero()).collect();
         let object = Material { color: Rgb::from_u8(cfg.color), alpha: cfg.opacity / 100.0, ior: cfg.ior, translucent: cfg.opacity < 100.0 };
         InteriorScene {
             mesh,
@@ -137,15 +102,7 @@ impl InteriorScene {
             camera: Camera { width: cfg.width, height: cfg.height },
             object,
             one_way_from,
-            floor_from,
-            floor_up,
-            faces,
-            floor_frame,
         }
-    }
-
-    pub fn is_floor(&self, tri: u32) -> bool {
-        tri >= self.floor_from
     }
 
     /// A hit the ray passes through: the back of a one-way triangle (the

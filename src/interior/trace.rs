@@ -21,7 +21,7 @@
 
 use super::bulb::{closest_approach, glow};
 use super::config::{InteriorConfig, SpecularOpacity};
-use super::phong::{shade, Material, Phong, Shade};
+use super::phong::{shade, Phong};
 use super::scene::InteriorScene;
 use crate::color::Rgb;
 use crate::geometry::ray::offset_origin;
@@ -64,8 +64,6 @@ pub struct Tracer<'a> {
     pub bulb: f32,
     /// Draw the critical-angle circles on the faces the eye meets first.
     pub tir_circle: bool,
-    /// The table's floor lit through the faces, sampled round the mesh.
-    pub floor: Option<super::floor::FloorMap>,
 }
 
 impl<'a> Tracer<'a> {
@@ -93,14 +91,6 @@ impl<'a> Tracer<'a> {
             exposure: cfg.exposure,
             bulb: cfg.bulb,
             tir_circle: cfg.tir_circle,
-            floor: (scene.floor_from != u32::MAX).then(|| {
-                // 3.5 mesh radii round its foot, at about a pixel a sample
-                // (448 samples across at the figures' 401 pixels).
-                let (c, ex, ez) = scene.floor_frame;
-                let half = 3.5 * cfg.scale;
-                let n = (cfg.width.max(cfg.height) * 448).div_ceil(401).clamp(16, 2048);
-                super::floor::FloorMap::new(c, ex, ez, half, n, scene.light, scene.faces.clone(), cfg.ior, cfg.attenuation())
-            }),
         }
     }
 
@@ -160,17 +150,6 @@ impl<'a> Tracer<'a> {
         (incidence - (1.0 / m.ior).asin()).abs() < TIR_CIRCLE_WIDTH
     }
 
-    /// The table's floor at `p`: the ambient, and the light inside the mesh
-    /// where it gets out through the faces (docs/physics.md §10b), through
-    /// the faces' 1 - opacity and tinted by the object's colour.
-    fn floor_shade(&self, p: Vec3, m: &Material) -> Shade {
-        let k = &self.wall_phong;
-        let o = &self.scene.object;
-        let through = self.floor.as_ref().map_or(0.0, |f| f.at(p));
-        let lit = k.ka * (k.ambient * m.color) + (k.kd * through * (1.0 - o.alpha)) * (m.color * o.color * k.light_color);
-        Shade { lit, specular: Rgb::BLACK }
-    }
-
     /// Colour seen along `ray`, the rays traced and the total internal
     /// reflections met.
     pub fn trace(&self, mut ray: Ray) -> (Rgb, u64, u64) {
@@ -190,7 +169,7 @@ impl<'a> Tracer<'a> {
             let n = self.scene.normals[hit.tri as usize];
             let m = self.scene.material(&hit, self.use_file_colors);
             let k = if m.translucent { &self.phong } else { &self.wall_phong };
-            let s = if self.scene.is_floor(hit.tri) { self.floor_shade(p, &m) } else { shade(p, n, -ray.dir, self.scene.light, &m, k) };
+            let s = shade(p, n, -ray.dir, self.scene.light, &m, k);
             if count == self.max_trace || m.alpha >= 1.0 || !m.translucent {
                 colour += weight * (s.lit + s.specular);
                 // The bulb behind the last layer, drawn at the weight the
