@@ -283,6 +283,11 @@ fn figure_record(o: &FigureOptions, id: &str, png: &Path, bar: &crate::terminal:
     }
 }
 
+/// A shipped sweep's experiment, `experiments/NAME.toml`.
+fn shipped(name: &str, quick: bool) -> Result<super::spec::Experiment> {
+    super::spec::Experiment::load(&PathBuf::from("experiments").join(format!("{name}.toml")), quick)
+}
+
 /// The shipped sweeps, the spectral accuracy report and the display
 /// transforms. Resumed: a complete sweep is a record and is kept (its
 /// runs.csv rewritten byte for byte, its plots redrawn), so running the
@@ -293,7 +298,7 @@ fn run_sweeps_and_reports(o: &FigureOptions) -> Result<()> {
     let again = format!("refract figures{} --out {}", if o.quick { " --quick" } else { "" }, o.out.display());
     let opts = super::sweep::SweepOptions { jobs: 1, on_record: super::sweep::OnRecord::ResumeOrFresh, again, ..Default::default() };
     for (name, _) in SWEEPS {
-        let e = super::spec::Experiment::load(&PathBuf::from("experiments").join(format!("{name}.toml")), o.quick)?;
+        let e = shipped(name, o.quick)?;
         super::sweep::run(&e, &super::sweep::SweepOptions { out: Some(o.out.join(name)), ..opts.clone() })?;
     }
     super::spectral::write_report(&o.out.join("spectral"), crate::optics::glass::by_name("N-BK7")?)?;
@@ -420,7 +425,7 @@ fn contact_sheet(h: &mut String, out: &Path, name: &str) -> Result<()> {
 /// Each image of a sweep with the median render time of its runs (from
 /// runs.csv and the experiment file, which names the images).
 fn image_times(out: &Path, name: &str) -> Vec<(String, String)> {
-    let Ok(e) = super::spec::Experiment::load(&PathBuf::from("experiments").join(format!("{name}.toml")), false) else { return Vec::new() };
+    let Ok(e) = shipped(name, false) else { return Vec::new() };
     let Ok(text) = std::fs::read_to_string(out.join(name).join("runs.csv")) else { return Vec::new() };
     let mut r = csv::Reader::from_reader(text.as_bytes());
     let Ok(header) = r.headers().map(|h| h.iter().map(str::to_string).collect::<Vec<_>>()) else { return Vec::new() };
@@ -528,8 +533,7 @@ type Sweeps = [(&'static str, Option<super::spec::Experiment>)];
 /// figures, the sweeps' charts, the benchmark, the display transforms and
 /// the spectral accuracy charts.
 fn write_index(out: &Path, ids: &[String], records: &BTreeMap<String, Record>, quick: bool) -> Result<()> {
-    let experiments: Vec<(&str, Option<super::spec::Experiment>)> =
-        SWEEPS.iter().map(|(name, _)| (*name, super::spec::Experiment::load(&PathBuf::from("experiments").join(format!("{name}.toml")), quick).ok())).collect();
+    let experiments: Vec<(&str, Option<super::spec::Experiment>)> = SWEEPS.iter().map(|(name, _)| (*name, shipped(name, quick).ok())).collect();
     let mut h = index_head(quick);
     index_contents(&mut h, out, ids, &experiments)?;
     index_figures(&mut h, out, ids, records)?;
