@@ -379,10 +379,7 @@ fn the_cornell_walls_show_in_the_cube_only_when_rays_are_followed() {
 /// (without its inset and labels), with `set` overriding its parameters.
 fn prism_figure_with(id: &str, set: &[(&str, &str)]) -> (usize, usize, Vec<u8>) {
     let mut s = SceneFile::load(&repo(&format!("scenes/{id}.toml")), true).unwrap();
-    for (k, v) in set {
-        s.params.retain(|(p, _)| p != k);
-        s.params.push((k.to_string(), toml::Value::String(v.to_string())));
-    }
+    s.set(&set.iter().map(|(k, v)| format!("{k}={v}")).collect::<Vec<_>>()).unwrap();
     let cfg = refract::experiment::params::prism_config(&s.params).unwrap();
     let r = refract::spectral::render_config(&cfg, &refract::progress::Silent).unwrap();
     let img = &r.render.image;

@@ -8,7 +8,7 @@ use crate::modes;
 use crate::modes::glass::IorKind;
 use anyhow::{bail, Context, Result};
 use clap::{Args, Parser, Subcommand};
-use param_args::Given;
+use param_args::Flags;
 use std::ffi::OsString;
 use std::path::PathBuf;
 
@@ -179,7 +179,7 @@ pub struct PrismArgs {
     #[command(subcommand)]
     pub probe: Option<PrismCommand>,
     #[command(flatten)]
-    pub params: Given<param_args::Prism>,
+    pub params: Flags<param_args::Prism>,
     #[arg(long, default_value = "results/prism.png", help_heading = "Output", help = out_help(<modes::prism::Prism as modes::ModeKind>::FORMATS, ""))]
     pub out: PathBuf,
     /// Append one timing row to this CSV
@@ -199,7 +199,7 @@ pub enum PrismCommand {
     /// a ray totally reflected inside leaves the direction cells empty.
     Trace {
         #[command(flatten)]
-        scene: Given<param_args::PrismScene>,
+        scene: Flags<param_args::PrismScene>,
         /// Wavelengths in nm, comma-separated
         #[arg(long, value_delimiter = ',', value_parser = parse_visible_nm, default_value = "486.1327,587.5618,656.2725")]
         wavelengths: Vec<f64>,
@@ -391,7 +391,7 @@ fn parse_wavelength(s: &str) -> Result<f64, String> {
 #[derive(Args, Debug)]
 pub struct InteriorArgs {
     #[command(flatten)]
-    pub params: Given<param_args::Interior>,
+    pub params: Flags<param_args::Interior>,
     #[arg(long, help_heading = crate::params::interior::PROMPTS, help = out_help(<modes::interior::Interior as modes::ModeKind>::FORMATS, "results/interior.png"))]
     pub out: Option<PathBuf>,
     /// Append one timing row (mode, mesh, triangles, ..., rays_per_s) to this CSV
@@ -403,7 +403,7 @@ impl InteriorArgs {
     /// True when any of the report's prompt flags was given.
     fn flag_mode(&self) -> bool {
         let prompt = |k: &str| crate::params::find(crate::params::interior::PARAMS, k).is_some_and(|p| p.section == crate::params::interior::PROMPTS);
-        self.out.is_some() || self.params.values.iter().any(|(k, _)| prompt(k))
+        self.out.is_some() || self.params.given.iter().any(|g| prompt(g.key))
     }
 
     /// Flag mode: the report's fields from flags or their defaults.
@@ -540,7 +540,7 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Render { file, quick, out, set } if modes::gltf_file::is_gltf(&file) => run_gltf(file, quick, out, &set),
         Command::Render { file, quick, out, set } => {
             let mut scene = crate::experiment::scene_file::SceneFile::load(&file, quick)?;
-            if quick && scene.params == crate::experiment::scene_file::SceneFile::load(&file, false)?.params {
+            if quick && scene.same_values(&crate::experiment::scene_file::SceneFile::load(&file, false)?) {
                 bail!("--quick: {} has no [quick] settings, so the render would be the full one; add a [quick] table or leave --quick out", file.display());
             }
             scene.set(&set)?;
@@ -570,15 +570,7 @@ fn run_export(name: &str, out: &std::path::Path, set: &[String]) -> Result<()> {
     modes::export::check(name, !set.is_empty(), out)?;
     let mut params = Vec::new();
     if !modes::export::is_example(name) {
-        let mut file = SceneFile {
-            id: name.into(),
-            report: String::new(),
-            caption: String::new(),
-            mode: modes::Mode::Prism,
-            params: modes::export::scene_params(name),
-            close_up: None,
-            labels: Vec::new(),
-        };
+        let mut file = SceneFile::unnamed(name, modes::Mode::Prism, modes::export::scene_params(name)?);
         file.set(set)?;
         params = file.params;
     }
@@ -593,21 +585,14 @@ fn run_gltf(file: PathBuf, quick: bool, out: Option<PathBuf>, set: &[String]) ->
     use crate::experiment::scene_file::SceneFile;
     let stem = file.file_stem().and_then(|s| s.to_str()).filter(|s| !s.is_empty()).unwrap_or("gltf");
     let id: String = stem.chars().map(|c| if c.is_ascii_alphanumeric() || "-_.".contains(c) { c } else { '-' }).collect();
-    let mut scene = SceneFile {
-        id,
-        report: String::new(),
-        caption: String::new(),
-        mode: modes::Mode::Prism,
-        params: vec![("gltf".into(), toml::Value::String(file.to_string_lossy().into_owned()))],
-        close_up: None,
-        labels: Vec::new(),
-    };
+    let named = modes::Mode::Prism.given_text("gltf", &file.to_string_lossy(), modes::Source::Chosen("the file to render"));
+    let mut scene = SceneFile::unnamed(&id, modes::Mode::Prism, vec![named.map_err(|error| modes::ModeError::Key { key: "gltf".into(), error })?]);
     let given = |key: &str| set.iter().any(|s| s.split_once('=').is_some_and(|(k, _)| k.trim().replace('-', "_") == key));
     if quick {
         // A quick look, as `prism --quick`: fewer photons, one sample.
-        for (k, v) in [("photons", 100_000), ("spp", 1)] {
-            if !given(k) {
-                scene.params.push((k.into(), toml::Value::Integer(v)));
+        for (key, value) in [("photons", 100_000), ("spp", 1)] {
+            if !given(key) {
+                scene.params.push(modes::Given { key, value: crate::params::Value::Count(value), from: modes::Source::Flag("quick".into()) });
             }
         }
     }
@@ -616,7 +601,7 @@ fn run_gltf(file: PathBuf, quick: bool, out: Option<PathBuf>, set: &[String]) ->
     if !given("size") {
         modes::gltf_file::fit_frame(&mut cfg, if quick { 320 } else { 640 });
         let (w, h) = (cfg.scene.width, cfg.scene.height);
-        scene.params.push(("size".into(), toml::Value::Array(vec![toml::Value::Integer(w as i64), toml::Value::Integer(h as i64)])));
+        scene.params.push(modes::Given { key: "size", value: crate::params::Value::Size([w, h]), from: modes::Source::Chosen("the camera's aspect ratio") });
     }
     if let Some(w) = modes::prism::gltf_check(&cfg)? {
         eprintln!("warning: {w}");
@@ -642,8 +627,8 @@ fn render_to(scene: &crate::experiment::scene_file::SceneFile, out: Option<PathB
     // The keys were checked before the output was named; one its format
     // leaves unused (the tone of a .pfm) is the scene's choice for its
     // picture, so it is pointed out, not refused.
-    if let Some((key, why)) = scene.mode.first_ignored_writing(&scene.params, scene.params.iter().map(|(k, _)| k.as_str()), &out)? {
-        eprintln!("warning: {}: `{key}` does not change {}: {why}", scene.id, out.display());
+    if let Some((g, why)) = scene.mode.first_ignored_writing(&scene.params, &out)? {
+        eprintln!("warning: {}: `{}` does not change {}: {why}", scene.id, g.written_key(), out.display());
     }
     let bars = crate::terminal::Bars::new();
     let (_, summary) = scene.render_summarised(&out, &bars)?;
@@ -777,7 +762,7 @@ fn run_sweep(args: SweepArgs) -> Result<()> {
         bail!("--quick: {} has no [quick] settings, so the sweep would be the full one; add a [quick] table or leave --quick out", file.display());
     }
     if let Some((i, n)) = args.shard {
-        let runs = crate::experiment::grid::expand(&e);
+        let runs = crate::experiment::grid::expand(&e)?;
         if !crate::experiment::plan::assign(&runs, n).contains(&i) {
             let chains = crate::experiment::plan::chain_count(&runs);
             bail!(

@@ -5,6 +5,7 @@
 //! the same row that scene files use.
 
 use crate::modes::{self, ModeKind};
+use crate::params::given::{Given, Source};
 use crate::params::{self, Kind, Param, Value};
 use clap::builder::{PossibleValue, TypedValueParser};
 use clap::parser::ValueSource;
@@ -13,9 +14,10 @@ use std::marker::PhantomData;
 
 /// A flag the run it is given to would ignore: refused, with why.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error("--{flag}: {why}")]
+#[error("{at}: {why}")]
 pub struct IgnoredFlag {
-    pub flag: String,
+    /// The flag as `Given::at` names it (`--photons`).
+    pub at: String,
     pub why: String,
 }
 
@@ -74,20 +76,20 @@ impl ParamSet for Interior {
     }
 }
 
-/// The parameters given on the command line (defaults are not listed:
-/// the configuration already has them).
+/// The parameters given on the command line, each from its flag
+/// (defaults are not listed: the configuration already has them).
 #[derive(Clone, Debug)]
-pub struct Given<S> {
-    pub values: Vec<(&'static str, Value)>,
+pub struct Flags<S> {
+    pub given: Vec<Given>,
     set: PhantomData<S>,
 }
 
-impl<S: ParamSet> Given<S> {
+impl<S: ParamSet> Flags<S> {
     /// Sets every given value on `c`.
     pub fn apply(&self, c: &mut S::Config) {
-        for (key, v) in &self.values {
-            if let Some(p) = S::params().into_iter().find(|p| p.key == *key) {
-                (p.set)(c, v);
+        for g in &self.given {
+            if let Some(p) = S::params().into_iter().find(|p| p.key == g.key) {
+                (p.set)(c, &g.value);
             }
         }
     }
@@ -102,14 +104,18 @@ impl<S: ParamSet> Given<S> {
     /// Refuses a flag that `c` (the run these flags describe) would ignore,
     /// naming it and why.
     pub fn check_used(&self, c: &S::Config) -> Result<(), IgnoredFlag> {
-        match params::first_ignored_change(S::params().into_iter().filter(|p| self.has(p.key)), c, &S::defaults()) {
-            Some((p, why)) => Err(IgnoredFlag { flag: p.flag(), why }),
+        let rows = self.given.iter().filter_map(|g| S::params().into_iter().find(|p| p.key == g.key));
+        match params::first_ignored_change(rows, c, &S::defaults()) {
+            Some((p, why)) => {
+                let at = self.given.iter().find(|g| g.key == p.key).map_or_else(|| format!("--{}", p.flag()), Given::at);
+                Err(IgnoredFlag { at, why })
+            }
             None => Ok(()),
         }
     }
 
     pub fn has(&self, key: &str) -> bool {
-        self.values.iter().any(|(k, _)| *k == key)
+        self.given.iter().any(|g| g.key == key)
     }
 }
 
@@ -141,9 +147,9 @@ fn arg<C>(p: &'static Param<C>, defaults: &C, required: bool) -> Arg {
     a.help(help)
 }
 
-impl<S: ParamSet> clap::FromArgMatches for Given<S> {
+impl<S: ParamSet> clap::FromArgMatches for Flags<S> {
     fn from_arg_matches(m: &ArgMatches) -> Result<Self, clap::Error> {
-        let mut values = Vec::new();
+        let mut given = Vec::new();
         for p in S::params() {
             if m.value_source(p.key) != Some(ValueSource::CommandLine) {
                 continue;
@@ -152,11 +158,11 @@ impl<S: ParamSet> clap::FromArgMatches for Given<S> {
                 Kind::Flag => Some(Value::Flag(m.get_flag(p.key))),
                 _ => m.get_one::<Value>(p.key).cloned(),
             };
-            if let Some(v) = v {
-                values.push((p.key, v));
+            if let Some(value) = v {
+                given.push(Given { key: p.key, value, from: Source::Flag(p.flag()) });
             }
         }
-        Ok(Given { values, set: PhantomData })
+        Ok(Flags { given, set: PhantomData })
     }
 
     fn update_from_arg_matches(&mut self, m: &ArgMatches) -> Result<(), clap::Error> {
@@ -165,7 +171,7 @@ impl<S: ParamSet> clap::FromArgMatches for Given<S> {
     }
 }
 
-impl<S: ParamSet> clap::Args for Given<S> {
+impl<S: ParamSet> clap::Args for Flags<S> {
     fn augment_args(cmd: Command) -> Command {
         let defaults = S::defaults();
         S::params().into_iter().fold(cmd, |cmd, p| cmd.arg(arg(p, &defaults, S::required().contains(&p.key))))

@@ -20,8 +20,9 @@ use toml::Value;
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct CloseUp {
-    /// Parameters that differ from the figure's.
-    pub params: Vec<(String, Value)>,
+    /// Parameters that differ from the figure's (the scene file checks
+    /// those `parse` gives back as written and puts them here).
+    pub params: Vec<crate::params::given::Given>,
     /// Top-left corner, fractions of the figure's width and height.
     pub at: [f64; 2],
     /// Width, a fraction of the figure's width.
@@ -53,8 +54,9 @@ pub enum CloseUpError {
     Params,
 }
 
-/// Reads a scene file's `[close_up]` table; the error names the key.
-pub fn parse(v: &Value) -> Result<CloseUp, CloseUpError> {
+/// Reads a scene file's `[close_up]` table, and its parameters as written
+/// (for the scene file to check by the mode's table); the error names the key.
+pub fn parse(v: &Value) -> Result<(CloseUp, Vec<(String, Value)>), CloseUpError> {
     let Value::Table(t) = v else { return Err(CloseUpError::NotTable) };
     if let Some(k) = t.keys().find(|k| !["at", "width", "aspect", "label", "params"].contains(&k.as_str())) {
         return Err(CloseUpError::UnknownKey(k.clone()));
@@ -84,7 +86,7 @@ pub fn parse(v: &Value) -> Result<CloseUp, CloseUpError> {
         Some(Value::Table(p)) if !p.is_empty() => p.iter().map(|(k, v)| (k.clone(), v.clone())).collect(),
         _ => return Err(CloseUpError::Params),
     };
-    Ok(CloseUp { params, at, width, aspect, label })
+    Ok((CloseUp { params: Vec::new(), at, width, aspect, label }, params))
 }
 
 impl CloseUp {
@@ -132,8 +134,8 @@ mod tests {
     #[test]
     fn parses_a_close_up_and_names_the_bad_key() {
         let v: Value = toml::from_str("[close_up]\nat = [0.1, 0.2]\nwidth = 0.4\naspect = 2\n[close_up.params]\nview = \"screen\"").unwrap();
-        let i = parse(&v["close_up"]).unwrap();
-        assert_eq!((i.at, i.width, i.aspect, i.params.len()), ([0.1, 0.2], 0.4, 2.0, 1));
+        let (i, written) = parse(&v["close_up"]).unwrap();
+        assert_eq!((i.at, i.width, i.aspect, written.len()), ([0.1, 0.2], 0.4, 2.0, 1));
         assert_eq!(i.place(1000, 500), Some(([400, 200], [100, 100])));
         assert_eq!(CloseUp { at: [0.1, 0.8], ..i }.place(1000, 500), None, "runs off the bottom");
         for (bad, says) in [

@@ -20,6 +20,9 @@ pub enum ExperimentError {
     /// A key the file's scene refuses where no line holds it.
     #[error("{file}: `{key}`: {why}")]
     FileKey { file: String, key: String, why: String },
+    /// A value refused, named where it was given (a flag, a prompt's answer).
+    #[error("{at}: {why}")]
+    Given { at: String, why: String },
     /// The scene a file describes cannot be built.
     #[error("{file}: {error}")]
     Scene { file: String, error: crate::scenes::SceneError },

@@ -431,7 +431,7 @@ fn image_times(out: &Path, name: &str) -> Vec<(String, String)> {
     let Ok(header) = r.headers().map(|h| h.iter().map(str::to_string).collect::<Vec<_>>()) else { return Vec::new() };
     let Some(t) = header.iter().position(|c| c == "render_s") else { return Vec::new() };
     let rows: Vec<csv::StringRecord> = r.records().flatten().collect();
-    let grid = super::grid::expand(&e);
+    let Ok(grid) = super::grid::expand(&e) else { return Vec::new() };
     let mut by_name: Vec<(String, Vec<f64>)> = Vec::new();
     for row in &rows {
         let (Some(id), Some(v)) = (row.get(0).and_then(|x| x.parse::<usize>().ok()), row.get(t).and_then(|x| x.parse::<f64>().ok())) else { continue };

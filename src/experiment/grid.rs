@@ -3,7 +3,7 @@
 //! file (so shards, engines and resumed sweeps agree on it).
 
 use super::spec::{Case, Experiment};
-use crate::modes::Mode;
+use crate::modes::{Given, Mode, ModeError, Source};
 use toml::Value;
 
 /// One run of the grid.
@@ -13,22 +13,37 @@ pub struct RunSpec {
     pub mode: Mode,
     pub case: String,
     pub repeat: u32,
-    /// Effective parameters: fixed, then the case's, then the swept ones.
+    /// Effective parameters as written (the runs.csv cells): fixed, then
+    /// the case's, then the swept ones.
     pub params: Vec<(String, Value)>,
+    /// The same values as the run takes them, each with its file and line.
+    pub given: Vec<Given>,
     /// Index along each sweep axis.
     pub at: Vec<usize>,
 }
 
 /// Every run of an experiment, in a fixed order (case, then the sweep axes
-/// with the first outermost, then repeats).
-pub fn expand(e: &Experiment) -> Vec<RunSpec> {
+/// with the first outermost, then repeats). Each value was checked when
+/// the file was read; one the mode refuses after all is an error.
+pub fn expand(e: &Experiment) -> Result<Vec<RunSpec>, ModeError> {
     let cases = if e.cases.is_empty() {
         vec![Case { name: String::new(), mode: e.mode, params: Vec::new(), expect: super::spec::Expect::Ok }]
     } else {
         e.cases.clone()
     };
     let mut runs = Vec::new();
-    for Case { name: case, mode, params: case_params, .. } in &cases {
+    for (nth, Case { name: case, mode, params: case_params, .. }) in cases.iter().enumerate() {
+        // Where a run's value is written: the case's own list or value,
+        // else the sweep axis, else the fixed table.
+        let from = |k: &str| -> Source {
+            if case_params.iter().any(|(c, _)| c == k) {
+                e.places.source("case", nth, k)
+            } else if e.sweep.iter().any(|(a, _)| a == k) {
+                e.places.source("sweep", 0, k)
+            } else {
+                e.places.source("fixed", 0, k)
+            }
+        };
         let axes: Vec<(String, Vec<Value>)> = e.axes_for(case_params).map(|(k, v)| (k.clone(), v.clone())).collect();
         let overrides: Vec<(String, Value)> = case_params.iter().filter(|(k, _)| !axes.iter().any(|(a, _)| a == k)).cloned().collect();
         let lens: Vec<usize> = axes.iter().map(|s| s.1.len()).collect();
@@ -49,10 +64,11 @@ pub fn expand(e: &Experiment) -> Vec<RunSpec> {
                 params.retain(|(p, _)| *p != k);
                 params.push((k, v));
             }
+            let given = mode.typed(&params, from)?;
             for repeat in 0..e.repeats {
-                runs.push(RunSpec { id: runs.len(), mode: *mode, case: case.clone(), repeat, params: params.clone(), at: at.clone() });
+                runs.push(RunSpec { id: runs.len(), mode: *mode, case: case.clone(), repeat, params: params.clone(), given: given.clone(), at: at.clone() });
             }
         }
     }
-    runs
+    Ok(runs)
 }

@@ -5,17 +5,17 @@
 
 use crate::interior::InteriorConfig;
 pub use crate::modes::Mode;
-use crate::modes::{config, interior::Interior, prism::Prism, ModeError};
+use crate::modes::{config, interior::Interior, prism::Prism, Given, ModeError};
 use crate::spectral::SpectralConfig;
 use toml::Value;
 
 /// The interior configuration these parameters describe.
-pub fn interior_config(given: &[(String, Value)]) -> Result<InteriorConfig, ModeError> {
+pub fn interior_config(given: &[Given]) -> Result<InteriorConfig, ModeError> {
     config::<Interior>(given)
 }
 
 /// The spectral configuration these parameters describe.
-pub fn prism_config(given: &[(String, Value)]) -> Result<SpectralConfig, ModeError> {
+pub fn prism_config(given: &[Given]) -> Result<SpectralConfig, ModeError> {
     config::<Prism>(given)
 }
 

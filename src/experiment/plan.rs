@@ -40,7 +40,7 @@ pub fn assign(runs: &[RunSpec], n: usize) -> Vec<usize> {
     for r in runs {
         let c = chains.entry(chain_key(r)).or_insert((r.id, Vec::new(), 0.0));
         c.1.push(r.id);
-        c.2 += r.mode.cost(&r.params).seconds;
+        c.2 += r.mode.cost(&r.given).seconds;
     }
     let mut chains: Vec<(usize, Vec<usize>, f64)> = chains.into_values().collect();
     // Most costly first; equal costs in run order.
@@ -109,10 +109,10 @@ pub struct ShardLoad {
 /// The loads of `n` shards of `runs`, the grid of `e`.
 pub fn loads(e: &Experiment, runs: &[RunSpec], n: usize) -> Vec<ShardLoad> {
     let shard = assign(runs, n);
-    let reference = e.reference_params().map(|p| e.mode.cost(&p));
+    let reference = e.reference_given().and_then(Result::ok).map(|p| e.mode.cost(&p));
     let mut out = vec![ShardLoad::default(); n];
     for (r, &s) in runs.iter().zip(&shard) {
-        let c = r.mode.cost(&r.params);
+        let c = r.mode.cost(&r.given);
         out[s].runs += 1;
         out[s].seconds += c.seconds;
         out[s].bytes = out[s].bytes.max(c.bytes);
@@ -273,7 +273,7 @@ fn summary(e: &Experiment, n: usize, loads: &[ShardLoad], path: &Path, how: &str
 
 /// Writes the plan's script into its folder; returns what to tell the user.
 pub fn write(e: &Experiment, o: &PlanOptions) -> Result<String> {
-    let runs = expand(e);
+    let runs = expand(e)?;
     let n = shard_count(&runs, o.shards)?;
     if o.cpus_per_task == 0 || o.cpus_per_task > 1024 {
         return Err(ExperimentError::flag("--cpus-per-task", format!("{} is not between 1 and 1024", o.cpus_per_task)));
@@ -322,14 +322,9 @@ mod tests {
     use crate::modes::Mode;
 
     fn run(id: usize, at: Vec<usize>, trace: i64, size: i64) -> RunSpec {
-        RunSpec {
-            id,
-            mode: Mode::Interior,
-            case: String::new(),
-            repeat: 0,
-            params: vec![("trace".into(), toml::Value::Integer(trace)), ("size".into(), toml::Value::Array(vec![size.into(), size.into()]))],
-            at,
-        }
+        let params = vec![("trace".into(), toml::Value::Integer(trace)), ("size".into(), toml::Value::Array(vec![size.into(), size.into()]))];
+        let given = Mode::Interior.typed(&params, |_| crate::modes::Source::Set).unwrap();
+        RunSpec { id, mode: Mode::Interior, case: String::new(), repeat: 0, params, given, at }
     }
 
     #[test]
@@ -366,7 +361,7 @@ mod tests {
     fn scripts_leave_no_placeholder() {
         let file = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/experiments/lab-trace.toml"));
         let e = Experiment::load(file, true).unwrap();
-        let runs = expand(&e);
+        let runs = expand(&e).unwrap();
         for engine in [Engine::Parallel, Engine::Slurm] {
             let o = PlanOptions {
                 file: file.into(),

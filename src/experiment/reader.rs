@@ -40,7 +40,7 @@
 
 use super::error::{ExperimentError, Result};
 use super::key_lines::KeyLines;
-use super::spec::{fnv1a, Case, Expect, Experiment, PlotKind, PlotSpec, MAX_RUNS};
+use super::spec::{fnv1a, Case, Expect, Experiment, Places, PlotKind, PlotSpec, MAX_RUNS};
 use crate::modes::Mode;
 use crate::names::Named;
 use std::path::Path;
@@ -88,11 +88,12 @@ impl Experiment {
             plots: p.plots(&outputs)?,
             quick,
             fingerprint,
+            places: p.places(),
         };
         p.check_names_once(&e)?;
         p.check_plot_columns(&e)?;
         p.check_run_count(&e)?;
-        let grid = super::grid::expand(&e);
+        let grid = super::grid::expand(&e)?;
         p.check_keys_used(&e, &grid)?;
         p.check_plot_axes(&e, &grid)?;
         p.check_reference(&e)?;
@@ -161,9 +162,7 @@ impl<'a> FileParser<'a> {
     /// An error at `key` of the `nth` `[section]`, with its line (under
     /// --quick, the line of `[quick.section]`'s key where that overrides it).
     fn err(&self, section: &str, nth: usize, key: &str, msg: impl std::fmt::Display) -> ExperimentError {
-        let quick = format!("quick.{section}");
-        let section = if self.quick.contains_key(section) && self.keys.offset(&quick, nth, key).is_some() { quick.as_str() } else { section };
-        ExperimentError::Key { file: self.file.into(), line: self.keys.line(section, nth, key), key: key.into(), why: msg.to_string() }
+        ExperimentError::Key { file: self.file.into(), line: self.line(section, nth, key), key: key.into(), why: msg.to_string() }
     }
 
     fn table(&self, key: &str) -> Result<Table> {
@@ -190,6 +189,31 @@ impl<'a> FileParser<'a> {
             .into_iter()
             .map(|(k, v)| mode.check(&k, &v, self.base()).map(|v| (k.clone(), v)).map_err(|m| self.err(section, 0, &k, m)))
             .collect()
+    }
+
+    /// The line of every parameter key (under --quick, of `[quick.section]`'s
+    /// key where that overrides it), for the runs' values to carry.
+    fn places(&self) -> Places {
+        let mut lines = Vec::new();
+        for section in ["fixed", "sweep", "reference"] {
+            for k in self.merged(section).unwrap_or_default().keys() {
+                lines.push((section, 0, k.clone(), self.line(section, 0, k)));
+            }
+        }
+        if let Some(Value::Array(list)) = self.root.get("case") {
+            for (i, t) in list.iter().enumerate().filter_map(|(i, t)| t.as_table().map(|t| (i, t))) {
+                lines.extend(t.keys().map(|k| ("case", i, k.clone(), self.line("case", i, k))));
+            }
+        }
+        Places { file: self.file.into(), lines }
+    }
+
+    /// The line of `key` in the `nth` `[section]` (its [quick] override's
+    /// line where --quick overrides it).
+    fn line(&self, section: &str, nth: usize, key: &str) -> usize {
+        let quick = format!("quick.{section}");
+        let section = if self.quick.contains_key(section) && self.keys.offset(&quick, nth, key).is_some() { quick.as_str() } else { section };
+        self.keys.line(section, nth, key)
     }
 
     fn string(&self, key: &str) -> Result<String> {
@@ -451,7 +475,7 @@ impl<'a> FileParser<'a> {
         let restated = |key: &str| e.fixed.iter().any(|(k, v)| k == key && e.mode.restates_default(k, v)) && !e.sweep.iter().any(|(k, _)| k == key);
         for key in e.param_names().into_iter().filter(|k| !restated(k)) {
             let mut why = None;
-            let used = grid.iter().filter(|r| r.params.iter().any(|(k, _)| *k == key)).any(|r| match r.mode.ignored(&r.params, &key) {
+            let used = grid.iter().filter(|r| r.params.iter().any(|(k, _)| *k == key)).any(|r| match r.mode.ignored(&r.given, &key) {
                 Some(w) => {
                     why.get_or_insert(w);
                     false
@@ -521,9 +545,10 @@ impl<'a> FileParser<'a> {
 
     /// A reference key the reference run would ignore.
     fn check_reference(&self, e: &Experiment) -> Result<()> {
-        if let (Some(over), Some(given)) = (&e.reference, e.reference_params()) {
-            if let Ok(Some((key, why))) = e.mode.first_ignored(&given, over.iter().map(|(k, _)| k.as_str())) {
-                return Err(self.err("reference", 0, &key, format!("the reference run would ignore it: {why}")));
+        if let (Some(over), Some(given)) = (&e.reference, e.reference_given().transpose()?) {
+            let keys: Vec<&str> = over.iter().map(|(k, _)| k.as_str()).collect();
+            if let Ok(Some((g, why))) = e.mode.first_ignored_among(&given, &keys) {
+                return Err(self.err("reference", 0, g.written_key(), format!("the reference run would ignore it: {why}")));
             }
         }
         Ok(())

@@ -25,8 +25,9 @@
 use super::error::{ExperimentError, Result};
 use super::key_lines::KeyLines;
 use super::reader::parse_toml;
-use crate::modes::Mode;
+use crate::modes::{Given, Mode, Source};
 use crate::names::Named;
+use crate::params::given::put;
 use crate::progress::Progress;
 use crate::scenes::SceneError;
 use std::path::Path;
@@ -38,10 +39,13 @@ pub struct SceneFile {
     pub report: String,
     pub caption: String,
     pub mode: Mode,
-    pub params: Vec<(String, Value)>,
+    /// The parameters, each with its line in the file (or the flag that set it).
+    pub params: Vec<Given>,
     /// Pasted on, then drawn on, a PNG output after the render.
     pub close_up: Option<super::close_up::CloseUp>,
     pub labels: Vec<super::labels::Label>,
+    /// The parameters as the file writes them (`key = value, ...`), for the gallery.
+    pub written: String,
 }
 
 impl SceneFile {
@@ -50,12 +54,18 @@ impl SceneFile {
         Self::parse(&text, &path.display().to_string(), quick)
     }
 
+    /// A scene of `mode` made on the command line (no file).
+    pub fn unnamed(id: &str, mode: Mode, params: Vec<Given>) -> SceneFile {
+        SceneFile { id: id.into(), report: String::new(), caption: String::new(), mode, params, close_up: None, labels: Vec::new(), written: String::new() }
+    }
+
     pub fn parse(text: &str, file: &str, quick: bool) -> Result<SceneFile> {
         let root = parse_toml(text, file)?;
         // Paths in the file are resolved from its folder.
         let base = Path::new(file).parent().unwrap_or(Path::new(""));
         let keys = KeyLines::new(text);
         let err = |section: &str, key: &str, why: String| ExperimentError::Key { file: file.into(), line: keys.line(section, 0, key), key: key.into(), why };
+        let from = |section: &str, key: &str| Source::File { path: file.into(), line: keys.line(section, 0, key), key: key.into() };
         for k in root.keys() {
             if !["id", "report", "caption", "mode", "params", "quick", "close_up", "label"].contains(&k.as_str()) {
                 return Err(err("", k, "unknown key; expected id, report, caption, mode, params, quick, close_up or label".into()));
@@ -74,20 +84,24 @@ impl SceneFile {
         }
         let mode = s("mode")?;
         let mode = Mode::from_name(&mode).ok_or_else(|| err("", "mode", format!("`{mode}` is not interior or prism")))?;
-        let mut params: Vec<(String, Value)> = Vec::new();
-        // The section each key was last set in (for the line of an error).
-        let mut from: Vec<(String, &str)> = Vec::new();
+        let mut params: Vec<Given> = Vec::new();
+        // As written, in the same order, for the gallery.
+        let mut written: Vec<(String, Value)> = Vec::new();
         let sections: &[&str] = if quick { &["params", "quick"] } else { &["params"] };
         for section in sections {
             match root.get(*section) {
                 None => {}
                 Some(Value::Table(t)) => {
                     for (k, v) in t {
-                        let v = mode.check(k, v, base).map_err(|m| err(section, k, m.to_string()))?;
-                        params.retain(|(p, _)| p != k);
-                        params.push((k.clone(), v));
-                        from.retain(|(p, _)| p != k);
-                        from.push((k.clone(), section));
+                        let g = mode.given(k, v, base, from(section, k)).map_err(|m| err(section, k, m.to_string()))?;
+                        // A mesh path is recorded as found.
+                        let shown = match &g.value {
+                            crate::params::Value::Path(p) => Value::String(p.display().to_string()),
+                            _ => v.clone(),
+                        };
+                        written.retain(|(p, _)| p != k);
+                        written.push((k.clone(), shown));
+                        put(&mut params, g);
                     }
                 }
                 Some(_) => return Err(err("", section, "must be a table".into())),
@@ -101,9 +115,10 @@ impl SceneFile {
             params,
             close_up: match root.get("close_up") {
                 Some(v) => {
-                    let mut close = super::close_up::parse(v).map_err(|m| err("", "close_up", m.to_string()))?;
-                    for (k, v) in &mut close.params {
-                        *v = mode.check(k, v, base).map_err(|m| err("close_up.params", k, m.to_string()))?;
+                    let (mut close, own) = super::close_up::parse(v).map_err(|m| err("", "close_up", m.to_string()))?;
+                    for (k, v) in &own {
+                        let g = mode.given(k, v, base, from("close_up.params", k)).map_err(|m| err("close_up.params", k, m.to_string()))?;
+                        put(&mut close.params, g);
                     }
                     Some(close)
                 }
@@ -113,17 +128,17 @@ impl SceneFile {
                 Some(v) => super::labels::parse(v).map_err(|m| err("", "label", m.to_string()))?,
                 None => Vec::new(),
             },
+            written: written.iter().map(|(k, v)| format!("{k} = {v}")).collect::<Vec<_>>().join(", "),
         };
-        if let Some((key, why)) = scene.ignored()? {
-            let section = from.iter().find(|(k, _)| *k == key).map_or("params", |(_, s)| *s);
-            return Err(err(section, &key, why));
+        if let Some((g, why)) = scene.mode.first_ignored(&scene.params)? {
+            return Err(refused(&g, why));
         }
         // A value the scene cannot use (haze on a scene with no beam, an
         // incidence the prism reflects totally): refused now, on its line.
         match mode.scene_error(&scene.params) {
             None => {}
-            Some(SceneError::Param { key, why }) => match from.iter().find(|(k, _)| mode.canonical(k) == Some(key)) {
-                Some((k, section)) => return Err(err(section, k, why)),
+            Some(SceneError::Param { key, why }) => match scene.params.iter().find(|g| g.key == key) {
+                Some(g) => return Err(refused(g, why)),
                 None => return Err(ExperimentError::FileKey { file: file.into(), key: key.into(), why }),
             },
             Some(error) => return Err(ExperimentError::Scene { file: file.into(), error }),
@@ -131,10 +146,10 @@ impl SceneFile {
         Ok(scene)
     }
 
-    /// A parameter the run would ignore (the scene has no use for it), and
-    /// why: a file's key, as a flag, is refused rather than dropped.
-    fn ignored(&self) -> Result<Option<(String, String)>> {
-        Ok(self.mode.first_ignored(&self.params, self.params.iter().map(|(k, _)| k.as_str()))?)
+    /// Whether `other` sets the same values (wherever they were written).
+    pub fn same_values(&self, other: &SceneFile) -> bool {
+        let pairs = |s: &SceneFile| s.params.iter().map(|g| (g.key, g.value.clone())).collect::<Vec<_>>();
+        pairs(self) == pairs(other)
     }
 
     /// Renders to `out`; returns the render time in seconds (light pass,
@@ -172,10 +187,9 @@ impl SceneFile {
             let mut other = self.clone();
             other.close_up = None;
             other.labels.clear();
-            let size_value = Value::Array(vec![Value::Integer(size[0] as i64), Value::Integer(size[1] as i64)]);
-            for (k, v) in view.params.iter().cloned().chain([("size".to_string(), size_value)]) {
-                other.params.retain(|(p, _)| *p != k);
-                other.params.push((k, v));
+            let fitted = Given { key: "size", value: crate::params::Value::Size(size), from: Source::Chosen("the close-up's place on the figure") };
+            for g in view.params.iter().cloned().chain([fitted]) {
+                put(&mut other.params, g);
             }
             let stem = out.file_stem().map_or_else(|| "figure".into(), |s| s.to_string_lossy().into_owned());
             let tmp = out.with_file_name(format!(".{stem}.close-up.{}.png", std::process::id()));
@@ -211,21 +225,29 @@ impl SceneFile {
         for o in overrides {
             let (k, v) = o.split_once('=').ok_or_else(|| ExperimentError::flag("--set", format!("`{o}` is not KEY=VALUE")))?;
             let k = k.trim().replace('-', "_");
-            let value = self.mode.parse_text(&k, v).map_err(|error| match error {
+            let g = self.mode.given_text(&k, v, Source::Set).map_err(|error| match error {
                 crate::params::KeyError::Unknown { .. } => ExperimentError::SetUnknown { key: k.clone(), error },
                 crate::params::KeyError::Value(_) => ExperimentError::SetValue { key: k.clone(), why: error.to_string() },
             })?;
-            self.params.retain(|(p, _)| *p != k);
-            self.params.push((k, value.to_toml()));
+            put(&mut self.params, g);
         }
-        match self.ignored()? {
-            Some((key, why)) => Err(ExperimentError::SetValue { key, why }),
+        match self.mode.first_ignored(&self.params)? {
+            Some((g, why)) => Err(refused(&g, why)),
             None => Ok(()),
         }
     }
 
-    /// The parameters as `key = value` text, for the gallery.
+    /// The parameters as the file writes them, for the gallery.
     pub fn describe(&self) -> String {
-        self.params.iter().map(|(k, v)| format!("{k} = {v}")).collect::<Vec<_>>().join(", ")
+        self.written.clone()
+    }
+}
+
+/// A value refused, named where it was given (the file's line, `--set`).
+fn refused(g: &Given, why: String) -> ExperimentError {
+    match &g.from {
+        Source::File { path, line, key } => ExperimentError::Key { file: path.clone(), line: *line, key: key.clone(), why },
+        Source::Set => ExperimentError::SetValue { key: g.key.into(), why },
+        _ => ExperimentError::Given { at: g.at(), why },
     }
 }

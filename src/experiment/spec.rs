@@ -4,7 +4,7 @@
 //! anything (its parameter columns, its runs.csv columns, its run count).
 //! `grid` expands an experiment into its runs.
 
-use crate::modes::Mode;
+use crate::modes::{Given, Mode, ModeError, Source};
 use toml::Value;
 
 /// A named case of an experiment (stability conditions, timing groups).
@@ -91,6 +91,24 @@ pub struct Experiment {
     /// fingerprint of its text and quick flag (FNV-1a, 64 bits), so merge
     /// can refuse shards of another experiment or another version of it.
     pub fingerprint: String,
+    /// Where each parameter is written, so a run's values carry their lines.
+    pub places: Places,
+}
+
+/// The file and line of each parameter key of an experiment file.
+#[derive(Clone, Debug, Default)]
+pub struct Places {
+    pub file: String,
+    /// Section (`fixed`, `sweep`, `case`, `reference`), entry, key, line.
+    pub lines: Vec<(&'static str, usize, String, usize)>,
+}
+
+impl Places {
+    /// Where `key` of the `nth` `[section]` was given.
+    pub fn source(&self, section: &str, nth: usize, key: &str) -> Source {
+        let line = self.lines.iter().find(|(s, n, k, _)| *s == section && *n == nth && k == key).map_or(1, |l| l.3);
+        Source::File { path: self.file.clone(), line, key: key.into() }
+    }
 }
 
 /// FNV-1a over bytes: a stable 64-bit fingerprint (not a secure hash).
@@ -153,6 +171,13 @@ impl Experiment {
     /// nothing.
     pub fn same_runs(&self, other: &Experiment) -> bool {
         (&self.fixed, &self.sweep, &self.cases, &self.reference, self.repeats) == (&other.fixed, &other.sweep, &other.cases, &other.reference, other.repeats)
+    }
+
+    /// The reference run's values, each with where it is written.
+    pub fn reference_given(&self) -> Option<Result<Vec<Given>, ModeError>> {
+        let over = self.reference.as_ref()?;
+        let from = |k: &str| if over.iter().any(|(o, _)| o == k) { self.places.source("reference", 0, k) } else { self.places.source("fixed", 0, k) };
+        Some(self.mode.typed(&self.reference_params()?, from))
     }
 
     /// The reference run's parameters: the fixed ones with the reference's

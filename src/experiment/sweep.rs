@@ -14,12 +14,11 @@ pub use super::row::NO_REFERENCE;
 use super::row::{Compared, RunRow, Status};
 use super::spec::Experiment;
 use crate::image_io::{atomic_write, write_rgb8};
-use crate::modes::MeshCache;
+use crate::modes::{Given, MeshCache, Source};
 use std::collections::{HashMap, HashSet};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
-use toml::Value;
 
 /// What a sweep does with a record already in its folder.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -73,7 +72,7 @@ struct RunOutcome {
 /// mean time per render (and how many renders were timed), in wall time
 /// and in the process's CPU time (every thread; what a shared machine's
 /// other load does not add to).
-fn run_one(mode: Mode, params: &[(String, Value)], meshes: &MeshCache, min_time: f64) -> RunOutcome {
+fn run_one(mode: Mode, params: &[Given], meshes: &MeshCache, min_time: f64) -> RunOutcome {
     let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| -> Result<RunOutcome, crate::modes::ModeError> {
         let cpu = crate::timing::process_cpu_seconds();
         let mut run = mode.render(params, &crate::progress::Silent, meshes)?;
@@ -219,7 +218,7 @@ pub fn run(e: &Experiment, opts: &SweepOptions) -> Result<Outcome> {
     crate::image_io::remove_stale_temps(&dir.join("images"));
     let header = e.columns();
     let csv_path = dir.join("runs.csv");
-    let all = expand(e);
+    let all = expand(e)?;
     let existing = keep_or_move(e, &dir, &header, opts.on_record)?;
     // Start the file afresh with the kept rows only.
     write_rows(&csv_path, &header, &existing)?;
@@ -240,8 +239,8 @@ pub fn run(e: &Experiment, opts: &SweepOptions) -> Result<Outcome> {
     let shard_ids = opts.shard.map(|(_, n)| super::plan::assign(&all, n));
     let pending = all.iter().any(|r| !done.contains(&r.id) && opts.shard.is_none_or(|(i, _)| shard_ids.as_ref().is_some_and(|s| s[r.id] == i)));
     let reference_runs = pending || !dir.join("reference.csv").is_file();
-    let reference_params = e.reference_params().filter(|_| reference_runs);
-    warn_once(reference_params.iter().map(|p| (e.mode, &p[..])).chain(all.iter().filter(|r| mine.contains(&r.id)).map(|r| (r.mode, &r.params[..]))));
+    let reference_params = e.reference_given().transpose()?.filter(|_| reference_runs);
+    warn_once(reference_params.iter().map(|p| (e.mode, &p[..])).chain(all.iter().filter(|r| mine.contains(&r.id)).map(|r| (r.mode, &r.given[..]))));
     let (reference, reference_error) = if reference_runs { reference_frame(e, &dir, &meshes)? } else { (None, None) };
     if let Some(err) = &reference_error {
         eprintln!("refract: the reference run failed: {err}; the runs go on, with rmse, psnr and rel_rmse marked `{NO_REFERENCE}`");
@@ -272,10 +271,10 @@ pub fn run(e: &Experiment, opts: &SweepOptions) -> Result<Outcome> {
 /// Tells the user, before the first run, what a run's mode would warn of
 /// (`Mode::warnings`: an `obj` mesh the face hierarchy cannot narrow):
 /// once for the sweep, not once a run, asking the first run of each mesh.
-fn warn_once<'a>(runs: impl Iterator<Item = (Mode, &'a [(String, Value)])>) {
-    let mut asked: Vec<&Value> = Vec::new();
+fn warn_once<'a>(runs: impl Iterator<Item = (Mode, &'a [Given])>) {
+    let mut asked: Vec<&crate::params::Value> = Vec::new();
     for (mode, params) in runs {
-        let Some((_, mesh)) = params.iter().find(|(k, _)| k == "obj") else { continue };
+        let Some(mesh) = params.iter().find(|g| g.key == "obj").map(|g| &g.value) else { continue };
         if asked.contains(&mesh) {
             continue;
         }
@@ -347,7 +346,7 @@ fn keep_or_move(e: &Experiment, dir: &Path, header: &[String], how: OnRecord) ->
                     Err(fresh_hint(&format!("{}, not of {} ({version})", describe(&fingerprints), e.fingerprint)))
                 }
                 OnRecord::Resume | OnRecord::ResumeOrFresh => {
-                    let (kept, notes) = super::record::check_rows(&csv, rows, expand(e).len())?;
+                    let (kept, notes) = super::record::check_rows(&csv, rows, expand(e)?.len())?;
                     for n in notes {
                         eprintln!("note: {n}");
                     }
@@ -357,7 +356,7 @@ fn keep_or_move(e: &Experiment, dir: &Path, header: &[String], how: OnRecord) ->
                     Ok(kept)
                 }
                 OnRecord::Refuse => {
-                    let total = expand(e).len();
+                    let total = expand(e)?.len();
                     let have = rows.iter().filter_map(|(_, r)| r[0].parse::<usize>().ok()).filter(|&id| id < total).collect::<HashSet<_>>().len();
                     Err(ExperimentError::Record {
                         path: csv.clone(),
@@ -375,7 +374,7 @@ fn keep_or_move(e: &Experiment, dir: &Path, header: &[String], how: OnRecord) ->
 /// rendered again with another seed, the error between the two over the
 /// square root of two (0 for a reference that draws nothing at random).
 fn reference_frame(e: &Experiment, dir: &Path, meshes: &MeshCache) -> Result<(Option<Frame>, Option<String>)> {
-    let Some(p) = e.reference_params() else { return Ok((None, None)) };
+    let Some(p) = e.reference_given().transpose()? else { return Ok((None, None)) };
     let t = std::time::Instant::now();
     let o = run_one(e.mode, &p, meshes, 0.0);
     let seconds = t.elapsed().as_secs_f64();
@@ -387,10 +386,10 @@ fn reference_frame(e: &Experiment, dir: &Path, meshes: &MeshCache) -> Result<(Op
     let noise = if e.mode.ignored(&p, "seed").is_some() {
         0.0
     } else {
-        let seed = p.iter().find(|(k, _)| k == "seed").and_then(|(_, v)| v.as_integer()).unwrap_or(1);
+        let seed = p.iter().rev().find(|g| g.key == "seed").map_or(1, |g| g.value.count());
         let mut other = p.clone();
-        other.retain(|(k, _)| k != "seed");
-        other.push(("seed".into(), Value::Integer(seed.wrapping_add(7919))));
+        let twin = crate::params::Value::Count(seed.wrapping_add(7919));
+        crate::params::given::put(&mut other, Given { key: "seed", value: twin, from: Source::Chosen("the reference's twin, another seed") });
         let twin = run_one(e.mode, &other, meshes, 0.0).frame;
         twin.and_then(|g| metrics::relative_error(&g, &f).or_else(|| metrics::relative_rmse(&g, &f))).map_or(f64::NAN, |d| d / 2f64.sqrt())
     };
@@ -479,7 +478,7 @@ impl Sweep<'_> {
 
     /// Runs one run and appends its row to runs.csv.
     fn run_row(&self, r: &RunSpec) {
-        let RunOutcome { frame, mut row } = run_one(r.mode, &r.params, &self.meshes, self.e.min_time);
+        let RunOutcome { frame, mut row } = run_one(r.mode, &r.given, &self.meshes, self.e.min_time);
         row.experiment = self.e.fingerprint.clone();
         [row.host, row.cpu, row.cores, row.load_1min] = machine();
         if let Some(f) = &frame {
@@ -714,7 +713,7 @@ fn missing_runs(rows: &[(Vec<String>, usize)], experiment: Option<&Experiment>, 
     let mut missing = Vec::new();
     if let Some(e) = experiment {
         let have: HashSet<usize> = rows.iter().filter_map(|(r, _)| r[0].parse().ok()).collect();
-        let total = expand(e).len();
+        let total = expand(e)?.len();
         missing = (0..total).filter(|id| !have.contains(id)).map(|id| id.to_string()).collect();
         if !missing.is_empty() && !resume {
             return Err(ExperimentError::InNoShard { runs: missing.join(", "), missing: missing.len(), total });

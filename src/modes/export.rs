@@ -5,10 +5,10 @@
 use super::error::ModeError;
 use super::prism::Prism;
 use super::Result;
+use super::{Given, Source};
 use crate::names::Named;
 use crate::scenes::{examples, SceneKind};
 use std::path::Path;
-use toml::Value;
 
 /// Every scene `export` takes: the built-in ones, then the glTF examples.
 pub fn scene_names() -> Vec<&'static str> {
@@ -37,14 +37,15 @@ pub fn check(name: &str, any_given: bool, out: &Path) -> Result<()> {
 }
 
 /// The parameters of built-in scene `name` before any is given.
-pub fn scene_params(name: &str) -> Vec<(String, Value)> {
-    vec![("scene".to_string(), Value::String(name.into()))]
+pub fn scene_params(name: &str) -> Result<Vec<Given>> {
+    let scene = super::Mode::Prism.given_text("scene", name, Source::Chosen("the scene to export"));
+    Ok(vec![scene.map_err(|error| ModeError::Key { key: "scene".into(), error })?])
 }
 
 /// Writes scene `name` to `out`: an example as it is, a built-in scene with
 /// the prism mode's parameters `params` (its `scene_params`, then those
 /// given); returns what was written, for the user.
-pub fn export(name: &str, params: &[(String, Value)], out: &Path) -> Result<String> {
+pub fn export(name: &str, params: &[Given], out: &Path) -> Result<String> {
     check(name, !params.is_empty(), out)?;
     if is_example(name) {
         let world = examples::by_name(name, 640, 480).ok_or_else(|| ModeError::UnknownScene { name: name.into(), all: scene_names().join(", ") })?;

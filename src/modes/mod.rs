@@ -24,6 +24,7 @@ use crate::image_io::ImageFormat;
 use crate::params;
 use crate::progress::Progress;
 pub use error::ModeError;
+pub use params::given::{Given, Source};
 pub use run::{Cost, Frame, MeshCache, ModeKind, Record, Report, Run};
 use std::path::{Path, PathBuf};
 use toml::Value;
@@ -116,11 +117,9 @@ fn tidy(p: &Path) -> PathBuf {
 }
 
 /// The configuration `given` describes, from the mode's defaults, checked.
-pub fn config<M: ModeKind>(given: &[(String, Value)]) -> Result<M::Config> {
+pub fn config<M: ModeKind>(given: &[Given]) -> Result<M::Config> {
     let mut cfg = M::defaults();
-    for (k, v) in given {
-        params::apply_toml(M::params(), &mut cfg, k, v).map_err(|error| ModeError::Key { key: k.clone(), error })?;
-    }
+    params::given::apply(M::params(), &mut cfg, given);
     M::validate(&cfg)?;
     Ok(cfg)
 }
@@ -137,31 +136,57 @@ impl Mode {
         with_mode!(self, M => params::find(M::params(), key).map(|p| p.key))
     }
 
-    /// Checks one parameter of a scene or experiment file in folder `base`
-    /// (on the mode's defaults) and gives it back with a mesh path it names
-    /// resolved from that folder (`resolve_from`); the mesh must exist.
+    /// Reads one `key = value` of a scene or experiment file in folder
+    /// `base`, checked by the key's row, with a mesh file it names
+    /// resolved from that folder (`resolve_from`; the mesh must exist).
+    pub fn given(self, key: &str, v: &Value, base: &Path, from: Source) -> Result<Given, CheckError> {
+        Ok(self.read(key, v, base, from)?.0)
+    }
+
+    /// Checks one parameter of an experiment file (as `given`) and gives
+    /// it back as written, but for a mesh path, written as found.
     pub fn check(self, key: &str, v: &Value, base: &Path) -> Result<Value, CheckError> {
+        let (_, found) = self.read(key, v, base, Source::Set)?;
+        Ok(found.map_or_else(|| v.clone(), |f| Value::String(f.display().to_string())))
+    }
+
+    /// The value given and the mesh file it names, found.
+    fn read(self, key: &str, v: &Value, base: &Path, from: Source) -> Result<(Given, Option<PathBuf>), CheckError> {
         with_mode!(self, M => {
-            let Some(_) = params::find(M::params(), key) else {
+            let Some(row) = params::find(M::params(), key) else {
                 return Err(params::unknown_key(M::params(), key, self.name()).into());
             };
+            let mut given = Given { key: row.key, value: row.kind.parse_toml(v).map_err(params::KeyError::from)?, from };
             let mut cfg = M::defaults();
-            params::apply_toml(M::params(), &mut cfg, key, v)?;
+            (row.set)(&mut cfg, &given.value);
             match M::mesh_file(&cfg, key) {
-                Some(p) => Ok(resolve_from(base, &p).map(|found| Value::String(found.display().to_string()))?),
-                None => Ok(v.clone()),
+                Some(p) => {
+                    let found = resolve_from(base, &p)?;
+                    given.value = row.kind.parse_text(&found.display().to_string()).map_err(params::KeyError::from)?;
+                    Ok((given, Some(found)))
+                }
+                None => Ok((given, None)),
             }
         })
     }
 
-    /// A value typed as text (`--set KEY=VALUE`), read by the key's row;
-    /// an unknown key names the nearest and every key (the caller names
-    /// the key).
-    pub fn parse_text(self, key: &str, text: &str) -> Result<params::Value, params::KeyError> {
+    /// A value typed as text (`--set KEY=VALUE`, a flag), read by the
+    /// key's row; an unknown key names the nearest and every key (the
+    /// caller names the key).
+    pub fn given_text(self, key: &str, text: &str, from: Source) -> Result<Given, params::KeyError> {
         with_mode!(self, M => match params::find(M::params(), key) {
-            Some(p) => Ok(p.kind.parse_text(text)?),
+            Some(p) => Ok(Given { key: p.key, value: p.kind.parse_text(text)?, from }),
             None => Err(params::unknown_key(M::params(), key, self.name())),
         })
+    }
+
+    /// Experiment parameters (`key = value` as written, each checked when
+    /// the file was read) as given values, each with where it was given.
+    pub fn typed(self, written: &[(String, Value)], from: impl Fn(&str) -> Source) -> Result<Vec<Given>> {
+        with_mode!(self, M => written
+            .iter()
+            .map(|(k, v)| params::given::from_toml(M::params(), k, v, from(k)).map_err(|error| ModeError::Key { key: k.clone(), error }))
+            .collect())
     }
 
     /// Whether `v` is `key`'s default (a key that is not the mode's, or a
@@ -173,28 +198,33 @@ impl Mode {
         }))
     }
 
-    /// The first of `keys` that the run `given` describes would ignore (a
-    /// key set to its default is let be: `params::first_ignored_change`),
-    /// and why; an error if the configuration itself is refused.
-    pub fn first_ignored<'k>(self, given: &[(String, Value)], keys: impl IntoIterator<Item = &'k str>) -> Result<Option<(String, String)>> {
-        self.first_ignored_at(given, keys, None)
+    /// The first of `given` that the run they describe would ignore (one
+    /// set to its default is let be: `params::first_ignored_change`), and
+    /// why; an error if the configuration itself is refused.
+    pub fn first_ignored(self, given: &[Given]) -> Result<Option<(Given, String)>> {
+        self.first_ignored_at(given, |_| true, None)
+    }
+
+    /// As `first_ignored`, among the values of `keys` only.
+    pub fn first_ignored_among(self, given: &[Given], keys: &[&str]) -> Result<Option<(Given, String)>> {
+        self.first_ignored_at(given, |g| keys.iter().any(|k| self.canonical(k) == Some(g.key)), None)
     }
 
     /// As `first_ignored`, for the run writing its image to `out` (a
     /// scene file's keys are checked before its output is named; the
     /// output's format may leave one unused, as a .pfm leaves the tone).
-    pub fn first_ignored_writing<'k>(self, given: &[(String, Value)], keys: impl IntoIterator<Item = &'k str>, out: &Path) -> Result<Option<(String, String)>> {
-        self.first_ignored_at(given, keys, Some(out))
+    pub fn first_ignored_writing(self, given: &[Given], out: &Path) -> Result<Option<(Given, String)>> {
+        self.first_ignored_at(given, |_| true, Some(out))
     }
 
-    fn first_ignored_at<'k>(self, given: &[(String, Value)], keys: impl IntoIterator<Item = &'k str>, out: Option<&Path>) -> Result<Option<(String, String)>> {
+    fn first_ignored_at(self, given: &[Given], pick: impl Fn(&Given) -> bool, out: Option<&Path>) -> Result<Option<(Given, String)>> {
         with_mode!(self, M => {
             let mut cfg = config::<M>(given)?;
             if let Some(out) = out {
                 M::set_out(&mut cfg, out);
             }
-            let set = keys.into_iter().filter_map(|k| params::find(M::params(), k));
-            Ok(params::first_ignored_change(set, &cfg, &M::defaults()).map(|(p, why)| (p.key.to_string(), why)))
+            let picked: Vec<Given> = given.iter().filter(|g| pick(g)).cloned().collect();
+            Ok(params::given::first_ignored(M::params(), &picked, &cfg, &M::defaults()).map(|(g, why)| (g.clone(), why)))
         })
     }
 
@@ -202,7 +232,7 @@ impl Mode {
     /// it, or its configuration is refused anyway, which the run reports).
     /// A key set to its default counts here too (an axis's default value
     /// is one run of the axis).
-    pub fn ignored(self, given: &[(String, Value)], key: &str) -> Option<String> {
+    pub fn ignored(self, given: &[Given], key: &str) -> Option<String> {
         with_mode!(self, M => {
             let cfg = config::<M>(given).ok()?;
             params::first_ignored(params::find(M::params(), key), &cfg).map(|(_, why)| why)
@@ -214,7 +244,7 @@ impl Mode {
     /// named), so a file can refuse it on the key's line before any work.
     /// `None` where it builds, or where the configuration itself is
     /// refused, which the run reports.
-    pub fn scene_error(self, given: &[(String, Value)]) -> Option<crate::scenes::SceneError> {
+    pub fn scene_error(self, given: &[Given]) -> Option<crate::scenes::SceneError> {
         match self {
             Mode::Prism => crate::scenes::build(&config::<prism::Prism>(given).ok()?.scene).err(),
             Mode::Interior => None,
@@ -226,7 +256,7 @@ impl Mode {
     /// (`spectral::soup_warning`). The scene is built for it only when the
     /// run names such a mesh; nothing to say where its configuration is
     /// refused, which the run reports.
-    pub fn warnings(self, given: &[(String, Value)]) -> Vec<String> {
+    pub fn warnings(self, given: &[Given]) -> Vec<String> {
         let Mode::Prism = self else { return Vec::new() };
         let Some(cfg) = config::<prism::Prism>(given).ok().filter(|c| c.scene.obj.is_some()) else { return Vec::new() };
         crate::scenes::build(&cfg.scene).ok().and_then(|scene| crate::spectral::soup_warning(&cfg, &scene)).into_iter().collect()
@@ -239,17 +269,17 @@ impl Mode {
 
     /// The estimated cost of a run (a refused configuration costs little:
     /// it fails at once).
-    pub fn cost(self, given: &[(String, Value)]) -> Cost {
+    pub fn cost(self, given: &[Given]) -> Cost {
         with_mode!(self, M => config::<M>(given).map_or(Cost { seconds: 0.01, bytes: 0.0 }, |c| M::cost(&c)))
     }
 
     /// Renders the run `given` describes and writes its image to `out`.
-    pub fn render_to(self, given: &[(String, Value)], out: &Path, progress: &dyn Progress) -> Result<Run> {
+    pub fn render_to(self, given: &[Given], out: &Path, progress: &dyn Progress) -> Result<Run> {
         with_mode!(self, M => M::render_to(config::<M>(given)?, out, progress))
     }
 
     /// Renders the run `given` describes, writing nothing.
-    pub fn render(self, given: &[(String, Value)], progress: &dyn Progress, meshes: &MeshCache) -> Result<Run> {
+    pub fn render(self, given: &[Given], progress: &dyn Progress, meshes: &MeshCache) -> Result<Run> {
         with_mode!(self, M => M::render(&config::<M>(given)?, progress, meshes))
     }
 }

@@ -7,6 +7,7 @@
 //! experiment files are checked and applied through them, and sweeps start
 //! from the same defaults, so a parameter means the same everywhere.
 
+pub mod given;
 pub mod interior;
 pub mod prism;
 pub mod prompts;

@@ -12,11 +12,13 @@
 //! prompt accepts exactly what the flag and the scene files accept (a
 //! file name holds no space, as with `cin >>`).
 
+use super::given::{Given, Source};
 use super::interior::PARAMS;
-use super::{channel, find, parse_real, Param, ValueError};
+use super::{channel, find, parse_real, Param, Value, ValueError};
 use crate::interior::config::InteriorConfig;
 use crate::mesh::source::MeshSource;
 use std::io::{BufRead, Write};
+use std::path::PathBuf;
 
 #[derive(Debug, thiserror::Error)]
 pub enum PromptError {
@@ -115,12 +117,11 @@ fn row(key: &str) -> &'static Param<InteriorConfig> {
     find(PARAMS, key).unwrap_or(&PARAMS[0])
 }
 
-/// Asks for the value of parameter `key` and sets it on `c`.
-fn ask_param(p: &mut Prompter, prompt: &str, key: &str, c: &mut InteriorConfig) -> Result<(), PromptError> {
+/// Asks for the value of parameter `key`: a value given at its prompt.
+fn ask_param(p: &mut Prompter, prompt: &'static str, key: &str) -> Result<Given, PromptError> {
     let r = row(key);
-    let v = ask(p, prompt, |s| r.kind.parse_text(s))?;
-    (r.set)(c, &v);
-    Ok(())
+    let value = ask(p, prompt, |s| r.kind.parse_text(s))?;
+    Ok(Given { key: r.key, value, from: Source::Prompt(prompt) })
 }
 
 /// A mesh file that exists and reads as a mesh (read here, when it is
@@ -149,26 +150,40 @@ fn yes_no(s: &str) -> Result<bool, ValueError> {
     }
 }
 
+/// The report's thirteen answers: each field a value given at its
+/// question, and the output image's name.
+pub struct Answers {
+    pub given: Vec<Given>,
+    pub out: PathBuf,
+}
+
+/// Asks the report's thirteen questions, in its order.
+pub fn answers(p: &mut Prompter) -> Result<Answers, PromptError> {
+    let mut given = vec![ask_param(p, "Maximum ray trace count", "trace")?, ask_param(p, "Opacity of object (0-100)", "opacity")?];
+    const COLOUR: &str = "RGB color of object, int in [0,255]";
+    writeln!(p.out, "{COLOUR}")?;
+    let rgb = [ask(p, "R", channel)?, ask(p, "G", channel)?, ask(p, "B", channel)?];
+    given.push(Given { key: "object_colour", value: Value::Rgb(rgb), from: Source::Prompt(COLOUR) });
+    let out = ask(p, "File name of output file", super::out_path)?;
+    const OFF: &str = "File name of .off file";
+    let off = ask(p, OFF, mesh)?;
+    given.push(Given { key: "off", value: Value::Text(off.to_string()), from: Source::Prompt(OFF) });
+    const COFF: &str = "Is entered .off file in color off format? (0 = No, 1 = Yes)";
+    given.push(Given { key: "coff", value: Value::Flag(ask(p, COFF, yes_no)?), from: Source::Prompt(COFF) });
+    given.push(ask_param(p, "Scale Factor", "scale")?);
+    let rot = [ask(p, "X rotation (degrees)", parse_real)?, ask(p, "Y rotation (degrees)", parse_real)?, ask(p, "Z rotation (degrees)", parse_real)?];
+    given.push(Given { key: "rot", value: Value::Triple(rot), from: Source::Prompt("X, Y and Z rotation (degrees)") });
+    given.push(ask_param(p, "Refractive Index", "ior")?);
+    Ok(Answers { given, out })
+}
+
 /// Fills the report's thirteen fields of `base` from the answers; the other
 /// settings (shininess, size, ...) stay as `base` has them.
 pub fn ask_all(p: &mut Prompter, base: InteriorConfig) -> Result<InteriorConfig, PromptError> {
+    let a = answers(p)?;
     let mut c = base;
-    ask_param(p, "Maximum ray trace count", "trace", &mut c)?;
-    ask_param(p, "Opacity of object (0-100)", "opacity", &mut c)?;
-    writeln!(p.out, "RGB color of object, int in [0,255]")?;
-    let r = ask(p, "R", channel)?;
-    let g = ask(p, "G", channel)?;
-    let b = ask(p, "B", channel)?;
-    c.color = [r, g, b];
-    c.out = ask(p, "File name of output file", super::out_path)?;
-    c.off = ask(p, "File name of .off file", mesh)?;
-    c.coff = ask(p, "Is entered .off file in color off format? (0 = No, 1 = Yes)", yes_no)?;
-    ask_param(p, "Scale Factor", "scale", &mut c)?;
-    let x = ask(p, "X rotation (degrees)", parse_real)?;
-    let y = ask(p, "Y rotation (degrees)", parse_real)?;
-    let z = ask(p, "Z rotation (degrees)", parse_real)?;
-    c.rot = glam::DVec3::new(x, y, z).as_vec3();
-    ask_param(p, "Refractive Index", "ior", &mut c)?;
+    super::given::apply(PARAMS, &mut c, &a.given);
+    c.out = a.out;
     Ok(c)
 }
 
