@@ -8,6 +8,8 @@ mod common;
 mod cli_prompts;
 // Malformed OFF files and impossible parameters: one line, non-zero, no output.
 mod bad_input;
+// A given value's refusal names where it was given: file line, flag, --set, prompt.
+mod given_sources;
 // The BVH and the report's linear scan give the same pixels.
 mod bvh_vs_linear;
 // Same seed, same image, whatever the thread count.

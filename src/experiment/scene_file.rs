@@ -251,3 +251,27 @@ fn refused(g: &Given, why: String) -> ExperimentError {
         _ => ExperimentError::Given { at: g.at(), why },
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::params::Value as Typed;
+
+    /// Each value is typed once, with its line (the [quick] one where it
+    /// overrides); `--set` replaces it as a typed value; the gallery's
+    /// text stays as the file writes it.
+    #[test]
+    fn each_value_carries_its_line_and_set_replaces_it() {
+        let text = "id = \"x\"\nmode = \"prism\"\n[params]\nphotons = 2000\nsize = [8, 4]\n[quick]\nphotons = 1000\n";
+        let mut s = SceneFile::parse(text, "x.toml", true).unwrap();
+        let photons = |s: &SceneFile| s.params.iter().find(|g| g.key == "photons").unwrap().clone();
+        assert_eq!((photons(&s).at(), photons(&s).value), ("x.toml:7: `photons`".to_string(), Typed::Count(1000)));
+        assert_eq!(s.describe(), "size = [8, 4], photons = 1000");
+        s.set(&["photons=3e3".to_string()]).unwrap();
+        assert_eq!((photons(&s).at(), photons(&s).value), ("--set photons".to_string(), Typed::Count(3000)));
+        let e = s.set(&["photons=0".to_string()]).unwrap_err().to_string();
+        assert_eq!(e, "--set photons: 0 is not between 1 and 2000000000");
+        let e = SceneFile::parse(&text.replace("1000", "0"), "x.toml", true).unwrap_err().to_string();
+        assert_eq!(e, "x.toml:7: `photons`: 0 is not between 1 and 2000000000");
+    }
+}

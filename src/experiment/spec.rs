@@ -312,4 +312,15 @@ sweep = { trace = [0] }
         let some = GOOD.replace("size = [16, 16]", "size = [16, 16]\nseed = 3").replace("trace = [0, 2]", "trace = [0, 2]\nspp = [1, 4]");
         Experiment::parse(&some, "t.toml", false).unwrap();
     }
+
+    /// A run's values carry the file and line they were written on (the
+    /// [quick] line where --quick overrides one).
+    #[test]
+    fn a_runs_values_carry_their_file_and_line() {
+        let at = |e: &Experiment, key: &str| super::super::grid::expand(e).unwrap()[0].given.iter().find(|g| g.key == key).unwrap().at();
+        let full = Experiment::parse(GOOD, "t.toml", false).unwrap();
+        assert_eq!((at(&full, "size"), at(&full, "trace")), ("t.toml:6: `size`".into(), "t.toml:8: `trace`".into()));
+        let quick = Experiment::parse(GOOD, "t.toml", true).unwrap();
+        assert_eq!(at(&quick, "trace"), "t.toml:11: `trace`");
+    }
 }

@@ -247,4 +247,18 @@ mod tests {
         assert_eq!(e.to_string(), "reading standard input: stream did not contain valid UTF-8");
         assert!(std::error::Error::source(&e).is_none(), "a source would print the reason again");
     }
+
+    /// Each answer is a value given at its question, checked by its row.
+    #[test]
+    fn each_answer_is_a_value_given_at_its_question() {
+        let off = concat!(env!("CARGO_MANIFEST_DIR"), "/off/cube.off");
+        let text = format!("3 25 255 0 0 out.png {off} 0 1.5 10 20 30 1.4\n");
+        let a = answers(&mut Prompter::new(&mut text.as_bytes(), &mut Vec::new(), false)).unwrap();
+        let by = |k: &str| a.given.iter().find(|g| g.key == k).unwrap();
+        assert_eq!(by("opacity").at(), "the answer to \"Opacity of object (0-100)\"");
+        assert_eq!((by("trace").value.count(), by("ior").value.real()), (3, 1.4));
+        assert_eq!(by("object_colour").value, Value::Rgb([255, 0, 0]));
+        assert_eq!(by("rot").value, Value::Triple([10.0, 20.0, 30.0]));
+        assert_eq!((a.given.len(), a.out), (8, PathBuf::from("out.png")));
+    }
 }
