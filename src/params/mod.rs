@@ -5,7 +5,9 @@
 //! (`SpectralConfig::new`, `InteriorConfig::with_defaults`), read through
 //! the row. The command line builds its flags from these rows, scene and
 //! experiment files are checked and applied through them, and sweeps start
-//! from the same defaults, so a parameter means the same everywhere.
+//! from the same defaults, so a parameter means the same everywhere. What
+//! a user gives is a [`given::Given`]: the checked value with where it came
+//! from, so a refusal names the flag, the file's line or the prompt.
 
 pub mod given;
 pub mod interior;
