@@ -281,6 +281,6 @@ fn the_command_line_renders_and_refuses_exact_images() {
     let o = run(&["prism", "--scene", "cornell-laser", "--exact", "--out", dir.path().join("x.png").to_str().unwrap()], "", &repo(""));
     assert_clean_failure(&o, "--exact needs one collimated beam; this scene has 2 lights");
     let o = run(&["prism", "--scene", "single-prism", "--passes", "4", "--k", "20", "--out", dir.path().join("y.png").to_str().unwrap()], "", &repo(""));
-    assert_clean_failure(&o, "--passes needs a gather radius");
+    assert_clean_failure(&o, "--passes, --k: passes above 1 need a gather radius");
     assert!(!dir.path().join("x.png").exists() && !dir.path().join("y.png").exists());
 }

@@ -50,3 +50,23 @@ fn an_ignored_value_is_named_where_it_was_given() {
     let flags = ["interior", "--off", off.to_str().unwrap(), "--trace", "0", "--opacity", "50", "--out", "o.png"];
     assert_clean_failure(&run(&flags, "", d), &format!("--opacity: {why}"));
 }
+
+/// A whole configuration the prism mode refuses (k below 4; k with passes)
+/// is named at each value's place: the file's line, the flag, `--set`; an
+/// experiment refuses it before any run.
+#[test]
+fn a_refused_combination_is_named_where_its_values_were_given() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let few = "k = 2 is below 4: the k-nearest estimate";
+    std::fs::write(d.join("k.toml"), "id = \"k\"\nmode = \"prism\"\n[params]\nmap = \"kdtree\"\nsize = [8, 8]\nk = 2\n").unwrap();
+    assert_clean_failure(&run(&["render", "k.toml", "--out", "o.png"], "", d), &format!("k.toml:6: `k`: {few}"));
+    std::fs::write(d.join("k6.toml"), "id = \"k\"\nmode = \"prism\"\n[params]\nmap = \"kdtree\"\nsize = [8, 8]\nk = 6\n").unwrap();
+    assert_clean_failure(&run(&["render", "k6.toml", "--set", "passes=3", "--out", "o.png"], "", d), "--set passes, k6.toml:6: `k`: passes above 1");
+    let flags = ["prism", "--size", "8,8", "--map", "kdtree", "--k", "6", "--passes", "3", "--out", "o.png"];
+    assert_clean_failure(&run(&flags, "", d), "--passes, --k: passes above 1 need a gather radius");
+    let sweep = "name = \"k\"\nmode = \"prism\"\n[fixed]\nmap = \"kdtree\"\nsize = [8, 8]\nk = 2\n[sweep]\nphotons = [1000, 2000]\n";
+    std::fs::write(d.join("k-sweep.toml"), sweep).unwrap();
+    assert_clean_failure(&run(&["sweep", "k-sweep.toml", "--out", "runs"], "", d), &format!("k-sweep.toml:6: `k`: {few}"));
+    assert!(!d.join("o.png").exists() && !d.join("runs").exists(), "nothing written, no run started");
+}

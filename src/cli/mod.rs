@@ -705,6 +705,7 @@ fn run_prism(args: PrismArgs) -> Result<()> {
         modes::prism::quick(&mut cfg, |k| args.params.has(k));
     }
     args.params.check_used(&cfg)?;
+    modes::check::<modes::prism::Prism>(&cfg, &args.params.given)?;
     let bars = crate::terminal::Bars::new();
     Ok(modes::prism::run_to_files(&cfg, args.timing_csv.as_deref(), &bars, &mut |line| bars.println(&line))?)
 }

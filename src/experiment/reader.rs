@@ -94,6 +94,7 @@ impl Experiment {
         p.check_plot_columns(&e)?;
         p.check_run_count(&e)?;
         let grid = super::grid::expand(&e)?;
+        check_configurations(&e, &grid)?;
         p.check_keys_used(&e, &grid)?;
         p.check_plot_axes(&e, &grid)?;
         p.check_reference(&e)?;
@@ -553,6 +554,17 @@ impl<'a> FileParser<'a> {
         }
         Ok(())
     }
+}
+
+/// A run whose whole configuration its mode refuses (k below 4, k with
+/// passes) is refused now, named at its values' lines, unless its case
+/// expects its runs to fail.
+fn check_configurations(e: &Experiment, grid: &[super::grid::RunSpec]) -> Result<(), crate::modes::ModeError> {
+    let expected_to_fail = |case: &str| e.cases.iter().any(|c| c.name == case && c.expect == super::spec::Expect::Error);
+    for run in grid.iter().filter(|r| r.repeat == 0 && !expected_to_fail(&r.case)) {
+        run.mode.check_given(&run.given)?;
+    }
+    Ok(())
 }
 
 /// `{ from, to, step }` as the list of values, inclusive of `to` within

@@ -116,15 +116,26 @@ fn tidy(p: &Path) -> PathBuf {
     out.iter().collect()
 }
 
+/// Checks the whole configuration `cfg` (made from `given`), naming a
+/// refusal where its values were given.
+pub fn check<M: ModeKind>(cfg: &M::Config, given: &[Given]) -> Result<()> {
+    M::validate(cfg).map_err(|e| e.at(given))
+}
+
 /// The configuration `given` describes, from the mode's defaults, checked.
 pub fn config<M: ModeKind>(given: &[Given]) -> Result<M::Config> {
     let mut cfg = M::defaults();
     params::given::apply(M::params(), &mut cfg, given);
-    M::validate(&cfg)?;
+    check::<M>(&cfg, given)?;
     Ok(cfg)
 }
 
 impl Mode {
+    /// Checks the whole configuration `given` describes (`check`).
+    pub fn check_given(self, given: &[Given]) -> Result<()> {
+        with_mode!(self, M => config::<M>(given).map(|_| ()))
+    }
+
     /// Whether `key` is a parameter of the mode.
     pub fn known(self, key: &str) -> bool {
         with_mode!(self, M => params::find(M::params(), key).is_some())

@@ -108,7 +108,7 @@ pub fn quick(cfg: &mut SpectralConfig, given: impl Fn(&str) -> bool) {
 /// tells the user (`say`) of its warnings and of
 /// what it wrote.
 pub fn run_to_files(cfg: &SpectralConfig, timing_csv: Option<&Path>, progress: &dyn Progress, say: &mut dyn FnMut(String)) -> Result<(), ModeError> {
-    Prism::validate(cfg)?;
+    Prism::validate(cfg).map_err(|e| e.at(&[]))?;
     // The default folder, results/, is made; any other must exist.
     if let Some(parent) = cfg.out.parent().filter(|p| !p.as_os_str().is_empty() && cfg.out.starts_with("results")) {
         crate::image_io::create_folder(parent)?;

@@ -99,7 +99,7 @@ impl SpectralConfig {
         }
     }
 
-    /// Rejects impossible combinations, naming the flags. (Each value's
+    /// Rejects impossible combinations, naming the keys. (Each value's
     /// own range is checked where it is parsed, by `params::prism`.)
     pub fn validate(&self) -> std::result::Result<(), ConfigError> {
         if self.passes > 1 && self.k.is_some() {
@@ -114,19 +114,34 @@ impl SpectralConfig {
     }
 }
 
-/// A combination of spectral parameters that makes no run.
+/// A combination of spectral parameters that makes no run. The messages
+/// name the parameters by their keys; the caller says where each was given
+/// (a flag, a file's line: `modes::ModeError::at`).
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum ConfigError {
-    #[error("--passes needs a gather radius: progressive photon mapping shrinks it, and --k has none")]
+    #[error("passes above 1 need a gather radius: progressive photon mapping shrinks it, and the k-nearest estimate (k) has none")]
     PassesWithK,
     #[error(
-        "--k {0}: below 4 the k-nearest estimate (k - 1) / (pi r^2) counts too few photons (at --k 2 one, with infinite variance: it reads about 3 % low); use --k 4 or more"
+        "k = {0} is below 4: the k-nearest estimate (k - 1) / (pi r^2) counts too few photons (at k = 2 one, with infinite variance: it reads about 3 % low); use 4 or more"
     )]
     FewNeighbours(usize),
-    #[error("--k needs --map kdtree: the buffer and the film hold texels and pixels, not photons")]
+    #[error("k needs map kdtree: the buffer and the film hold texels and pixels, not photons")]
     KWithoutKdtree,
-    #[error("--k and --radius exclude each other")]
+    #[error("k and radius exclude each other: the k-nearest estimate sets its own radius")]
     KWithRadius,
+}
+
+impl ConfigError {
+    /// The parameters whose values make the combination, the first the
+    /// one to change.
+    pub fn keys(&self) -> &'static [&'static str] {
+        match self {
+            ConfigError::PassesWithK => &["passes", "k"],
+            ConfigError::FewNeighbours(_) => &["k"],
+            ConfigError::KWithoutKdtree => &["k", "map"],
+            ConfigError::KWithRadius => &["k", "radius"],
+        }
+    }
 }
 
 /// Why a run made no image: its settings, its scene, the memory it would
