@@ -6,7 +6,7 @@
 
 use crate::common::*;
 
-const INTERIOR_KEYS: &str = "trace, opacity, object_colour, off, coff, scale, rot, ior, shininess, atten, light_pos, ka, kd, wall_kd, ks, specular_opacity, size, background, exposure, tone, scene, bulb, tir_circle, diffuse_tir, spp, offset, accel, seed, threads";
+const INTERIOR_KEYS: &str = "trace, opacity, object_colour, off, coff, scale, rot, ior, shininess, atten, light_pos, ka, kd, wall_kd, ks, specular_opacity, size, background, exposure, tone, scene, bulb, tir_circle, diffuse_tir, fresnel_exit, spp, offset, accel, seed, threads";
 
 #[test]
 fn glass_names_match_alike_in_every_command() {

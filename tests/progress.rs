@@ -65,7 +65,7 @@ fn render_and_interior_summaries_give_size_rays_exposure_and_stages() {
     assert!(o.status.success(), "{}", stderr(&o));
     let err = stderr(&o);
     let last = err.lines().last().unwrap();
-    assert!(last.starts_with("wrote r.png (40x30, 12 triangles, 1200 rays, exposure 1.5; "), "{err}");
+    assert!(last.starts_with("wrote r.png (40x30, 12 triangles, 9600 rays, exposure 1.5; "), "{err}");
     let (sum, total) = times(last);
     assert!((sum - total).abs() <= 0.011, "{last}");
     assert_eq!(err.lines().count(), 1, "one line: {err}");
@@ -77,5 +77,5 @@ fn piped_figures_say_each_figure_as_it_is_written() {
     let o = run_env(&["figures", "--quick", "--only", "lab-ior1.4", "--out", "f", "--scene-dir", repo("scenes").to_str().unwrap()], dir.path(), "5");
     assert!(o.status.success(), "{}", stderr(&o));
     let err = stderr(&o);
-    assert!(err.lines().any(|l| l.starts_with("figure 1/1 lab-ior1.4: 301x301, 12 triangles, 132495 rays, exposure 1.5; ")), "{err}");
+    assert!(err.lines().any(|l| l.starts_with("figure 1/1 lab-ior1.4: 301x301, 12 triangles, 264993 rays, exposure 1.5; ")), "{err}");
 }

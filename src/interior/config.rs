@@ -100,6 +100,12 @@ pub struct InteriorConfig {
     /// inside the circle of outcoming light and not beyond it (a choice,
     /// not the report's diffuse term; docs/physics.md §10).
     pub diffuse_tir: bool,
+    /// Weight the diffuse and specular of a light behind a translucent
+    /// face by the Fresnel transmittance T = 1 - R of the light's way out
+    /// (docs/physics.md §2): the circle of outcoming light fades to 0 at
+    /// its edge, the critical angle, instead of ending in a step (a
+    /// choice, not the report's terms; docs/physics.md §10).
+    pub fresnel_exit: bool,
 }
 
 impl InteriorConfig {
@@ -151,6 +157,7 @@ impl InteriorConfig {
             bulb: 0.0,
             tir_circle: false,
             diffuse_tir: false,
+            fresnel_exit: false,
         }
     }
 }

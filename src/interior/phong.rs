@@ -15,6 +15,7 @@
 //! There is no shadow test, as in the report.
 
 use crate::color::Rgb;
+use crate::optics::fresnel::Fresnel;
 use crate::optics::{reflect, refract};
 use glam::Vec3;
 
@@ -43,6 +44,10 @@ pub struct Phong {
     /// The diffuse of a light behind a translucent face only where that
     /// light gets out through it (a choice, not the report's term).
     pub diffuse_tir: bool,
+    /// The diffuse and specular of a light behind a translucent face
+    /// weighted by the Fresnel transmittance of its way out, which falls
+    /// to 0 at the critical angle (a choice, not the report's terms).
+    pub fresnel_exit: bool,
 }
 
 /// A hit's colour split in two, because the report's fix composites the
@@ -75,6 +80,7 @@ pub fn shade(p: Vec3, n: Vec3, view: Vec3, light: Vec3, m: &Material, k: &Phong)
     let mut diffuse = if m.translucent { cos_beta.abs() } else { cos_beta.max(0.0) };
 
     let light_behind = cos_beta < 0.0;
+    let mut exit = 1.0;
     let cos_alpha = if !light_behind {
         // Same side as the viewer: the reflected ray, as in plain Phong.
         Some(reflect(-l, n_view).dot(view))
@@ -88,12 +94,18 @@ pub fn shade(p: Vec3, n: Vec3, view: Vec3, light: Vec3, m: &Material, k: &Phong)
         if k.diffuse_tir && out.is_none() {
             diffuse = 0.0;
         }
+        // The share of the light that gets out, T = 1 - R (Fresnel, §2),
+        // grades the circle's edge: T -> 0 as the incidence nears asin(1/n).
+        if k.fresnel_exit {
+            exit = out.map_or(0.0, |_| Fresnel::dielectric(cos_beta as f64, n_from as f64, n_to as f64).transmittance() as f32);
+            diffuse *= exit;
+        }
         out.map(|t| t.dot(view))
     } else {
         None
     };
     let spec = match cos_alpha {
-        Some(c) if c > 0.0 => c.powf(k.shininess),
+        Some(c) if c > 0.0 => exit * c.powf(k.shininess),
         _ => 0.0,
     };
     let falloff = 1.0 / (1.0 + k.atten * d * d);
@@ -109,7 +121,8 @@ mod tests {
         Material { color: Rgb::WHITE, alpha: 0.25, ior, translucent: true }
     }
 
-    const K: Phong = Phong { ka: 0.0, kd: 1.0, ks: 1.0, shininess: 16.0, atten: 0.0, light_color: Rgb::WHITE, ambient: Rgb::WHITE, diffuse_tir: false };
+    const K: Phong =
+        Phong { ka: 0.0, kd: 1.0, ks: 1.0, shininess: 16.0, atten: 0.0, light_color: Rgb::WHITE, ambient: Rgb::WHITE, diffuse_tir: false, fresnel_exit: false };
 
     #[test]
     fn light_at_sphere_centre_is_normal_incidence_everywhere() {
@@ -175,6 +188,41 @@ mod tests {
             }
             assert!(shade(p, Vec3::Z, Vec3::Z, light, &glass(n), &plain).lit.0.x > 0.0);
         }
+    }
+
+    #[test]
+    fn the_fresnel_exit_fades_the_circle_to_nothing_at_its_edge() {
+        // Face z = 0 seen head-on, light inside at depth d, index 1.4: with
+        // the Fresnel weight the glow falls monotonically from the centre
+        // (T = 1 - ((n-1)/(n+1))^2 = 0.972 of the ungraded there) to under
+        // 0.3 of the centre's at 0.995 of the radius, and to 0 beyond, where
+        // the gate alone still glows at over 0.6 of its centre's (a step).
+        let (d, n) = (0.5f32, 1.4f32);
+        let radius = d * (1.0 / n).asin().tan();
+        let light = Vec3::new(0.0, 0.0, -d);
+        let graded = Phong { ks: 0.0, diffuse_tir: true, fresnel_exit: true, ..K };
+        let gated = Phong { ks: 0.0, diffuse_tir: true, ..K };
+        let at = |r: f32, k: &Phong| shade(Vec3::new(r * 0.6, r * 0.8, 0.0), Vec3::Z, Vec3::Z, light, &glass(n), k).lit.0.x;
+        let centre = at(0.0, &graded);
+        assert!((centre / at(0.0, &gated) - (1.0 - ((n - 1.0) / (n + 1.0)).powi(2))).abs() < 1e-4, "{centre}");
+        let mut last = f32::INFINITY;
+        for i in 0..1000 {
+            let r = i as f32 / 1000.0 * radius;
+            let g = at(r, &graded);
+            assert!(g <= last + 1e-6, "r = {r}: {g} after {last}");
+            last = g;
+        }
+        let edge = 0.995 * radius;
+        assert!(at(edge, &graded) < 0.3 * centre, "{} against {centre}", at(edge, &graded));
+        assert!(at(edge, &gated) > 0.6 * at(0.0, &gated), "the gate alone: {}", at(edge, &gated));
+        assert_eq!(at(1.01 * radius, &graded), 0.0);
+        // The specular too: a view along the exit ray near the edge sees a
+        // fraction T of the ungraded highlight.
+        let p = Vec3::new(0.9 * radius, 0.0, 0.0);
+        let out = transmitted((p - light).normalize(), Vec3::Z, n, 1.0).unwrap();
+        let t = Fresnel::dielectric((p - light).normalize().z as f64, n as f64, 1.0).transmittance() as f32;
+        let s = |k: &Phong| shade(p, Vec3::Z, out, light, &glass(n), &Phong { ks: 1.0, kd: 0.0, ..*k }).specular.0.x;
+        assert!((s(&graded) - t * s(&gated)).abs() < 1e-5 && t < 0.9, "{} against {} x {t}", s(&graded), s(&gated));
     }
 
     #[test]

@@ -77,6 +77,7 @@ impl<'a> Tracer<'a> {
             light_color: cfg.light_color,
             ambient: Rgb::WHITE,
             diffuse_tir: cfg.diffuse_tir,
+            fresnel_exit: cfg.fresnel_exit,
         };
         Tracer {
             scene,

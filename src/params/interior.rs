@@ -353,6 +353,18 @@ pub static PARAMS: &[Param<InteriorConfig>] = &[
         ignored: no_critical_angle,
     },
     Param {
+        key: "fresnel_exit",
+        aliases: &[],
+        section: SCENE,
+        help: "Weight the light behind a face, diffuse and specular, by the Fresnel transmittance of its way out, which falls to 0 at the critical angle: the circle of outcoming light fades at its edge (a choice, not the report's terms)",
+        unit: "",
+        kind: Kind::Flag,
+        auto: "",
+        get: |c| Some(Value::Flag(c.fresnel_exit)),
+        set: |c, v| c.fresnel_exit = v.flag(),
+        ignored: never,
+    },
+    Param {
         key: "spp",
         aliases: &[],
         section: SCENE,
