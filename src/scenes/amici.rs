@@ -191,7 +191,7 @@ const BENCH_SCREEN_DISTANCE: f64 = 1.6;
 /// clearly seen under the figures' display (AgX with its print look at
 /// exposure 0.0075), the strip's yellow-green middle rolling toward white
 /// while the screen around it stays mid grey.
-const WINDOW_POWER: f64 = 600.0;
+const WINDOW_POWER: f64 = 1000.0;
 /// The walls' albedo: a dark grey, as an optics lab's walls are kept so
 /// that the light the prism's faces send back (a few per cent of the beam
 /// per face, in colours) leaves no bright patches on them.
@@ -244,7 +244,7 @@ fn add_bench(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism) -> Result<
     // from above so its top shows the three wedges; the screen whole at the
     // top right, the fan of colours reaching it from below the strip, not
     // across it.
-    let bench_cam = DVec3::new(-0.8, -0.25, 0.12);
+    let bench_cam = DVec3::new(-1.22, -0.325, 0.153);
     let (x0, x1) = (bench_cam.x - 0.5, strip_centre.x + 0.06);
     let (y0, y1) = (strip_centre.y.min(0.0) - 1.3, strip_centre.y.max(0.0) + 0.3);
     super::matte(scene, "table", DVec3::new(x0, y0, z), DVec3::new(x1 - x0, 0.0, 0.0), DVec3::new(0.0, y1 - y0, 0.0), [0.45; 3]);
@@ -334,7 +334,7 @@ fn add_bench(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism) -> Result<
         spectrum: light_spectrum(o, "D65")?,
         power,
     });
-    scene.photon_shares = Some(vec![0.8, 0.2]);
+    scene.photon_shares = Some(vec![0.65, 0.35]);
     // Light straight from either beam by shadow rays (docs/physics.md
     // §13): the table and the white slit image come out without photon
     // noise; the photons carry what crosses the prism.
@@ -350,14 +350,14 @@ fn add_bench(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism) -> Result<
     let (cam, target, hfov): (DVec3, DVec3, f64) = match o.view {
         // Beside the lamp (`bench_cam`): the prism near, the strip on the
         // screen large beyond it.
-        View::Scene => (bench_cam, DVec3::new(0.45, 0.0, 0.0), 20.0),
+        View::Scene => (bench_cam, DVec3::new(0.856, 0.08, -0.024), 14.4),
         // Square on to the strip from 40 cm: the strip across the frame.
         View::Screen => (strip_centre - DVec3::new(0.4, 0.0, 0.0), strip_centre, 2.0 * (0.5 * 0.7 * sw / 0.4).atan().to_degrees()),
         // Above the bench, behind the lamp and to its near side: the camera
         // of Pictures 4-6, the lamp, the prism, the fan and the screen all
         // in view, the prism as large as a view of the whole bench allows
         // (it is 16 cm of a bench 2.5 m long).
-        View::Overview => (DVec3::new(-1.5, -1.25, 0.6), DVec3::new(-0.05, -0.05, -0.08), 43.0),
+        View::Overview => (DVec3::new(-2.78, -1.81, 0.52), DVec3::new(-0.17, -0.02, -0.05), 28.1),
     };
     if o.view == View::Overview {
         // That camera drawn where it stands: a grey body 8 x 5 x 5 cm on a
@@ -416,7 +416,7 @@ const BENCH_RAIL_HEIGHT: f64 = 0.025;
 const TRIPOD_LEG_ANGLES: [f64; 3] = [90.0, 210.0, 330.0];
 const TRIPOD_SPREAD: f64 = 0.14;
 /// How far the lamp's slit stands before the prism's entry face, m.
-const BENCH_LAMP_GAP: f64 = 0.15;
+const BENCH_LAMP_GAP: f64 = 0.30;
 /// Faces an eye path through the bench's prism splits at (`World::
 /// eye_split_depth`): top, two cemented faces, base and back; measured at
 /// quick size, 4 left the prism's top grainy, 8 smooth, for 10 % more eye
@@ -426,7 +426,7 @@ const BENCH_SPLIT_DEPTH: usize = 8;
 /// The bench's haze, per metre: enough that the beam shows over the
 /// table's light, too little to veil the screen or, seen along the fan,
 /// to outshine the strip.
-const BENCH_HAZE: f64 = 3.0;
+const BENCH_HAZE: f64 = 1.5;
 
 /// Picture 1: a compact fluorescent lamp down a hall past the prism, and
 /// the camera just before the entry face looking back through the prism
