@@ -1339,8 +1339,10 @@ fn report_000_bench_labels_stand_clear_of_the_prism_and_the_screen() {
             let scene = refract::scenes::build(&cfg.scene).unwrap();
             let (w, h) = (cfg.scene.width, cfg.scene.height);
             let projected = |keep: &dyn Fn(&refract::world::Face) -> bool| -> Option<[f64; 4]> {
-                let pts: Vec<glam::DVec2> = scene.faces.iter().filter(|f| keep(f)).flat_map(|f| f.verts.iter().filter_map(|v| scene.camera.project(*v))).collect();
-                (!pts.is_empty()).then(|| pts.iter().fold([f64::MAX, f64::MIN, f64::MAX, f64::MIN], |b, p| [b[0].min(p.x), b[1].max(p.x), b[2].min(p.y), b[3].max(p.y)]))
+                let pts: Vec<glam::DVec2> =
+                    scene.faces.iter().filter(|f| keep(f)).flat_map(|f| f.verts.iter().filter_map(|v| scene.camera.project(*v))).collect();
+                (!pts.is_empty())
+                    .then(|| pts.iter().fold([f64::MAX, f64::MIN, f64::MAX, f64::MIN], |b, p| [b[0].min(p.x), b[1].max(p.x), b[2].min(p.y), b[3].max(p.y)]))
             };
             let glass = projected(&|f| matches!(f.surface, refract::world::Surface::Interface { .. }));
             let screen = projected(&|f| f.name == "screen");
@@ -1352,7 +1354,13 @@ fn report_000_bench_labels_stand_clear_of_the_prism_and_the_screen() {
                 let drawn = (0..w * h).filter(|&i| buf[i * 3..i * 3 + 3].iter().any(|&c| c != 0)).map(|i| ((i % w) as f64, (i / w) as f64));
                 let b = drawn.fold([f64::MAX, f64::MIN, f64::MAX, f64::MIN], |b, (x, y)| [b[0].min(x), b[1].max(x), b[2].min(y), b[3].max(y)]);
                 assert!(b[0] >= 0.0 && b[1] < w as f64, "{id} (quick {quick}): label {:?} drawn", label.text);
-                assert!(b[0] > 0.0 && b[1] < (w - 1) as f64, "{id} (quick {quick}): label {:?} cut by the frame's edge: columns {}..{}", label.text, b[0], b[1]);
+                assert!(
+                    b[0] > 0.0 && b[1] < (w - 1) as f64,
+                    "{id} (quick {quick}): label {:?} cut by the frame's edge: columns {}..{}",
+                    label.text,
+                    b[0],
+                    b[1]
+                );
                 for (what, other) in [("the prism", glass), ("the screen", screen)] {
                     let Some(o) = other else { continue };
                     let apart = b[1] < o[0] || o[1] < b[0] || b[3] < o[2] || o[3] < b[2];
