@@ -1414,3 +1414,49 @@ fn the_lasers_band_on_the_wall_is_a_smooth_spectrum_with_a_red_end() {
     assert!(longest <= 3, "the band prints a clipped block {longest} px long");
     assert!(end[0] >= 100 && end[0] >= 2 * end[1] && end[0] >= 2 * end[2], "660 nm is not red: {end:?}");
 }
+
+#[test]
+fn report_000_bench_labels_stand_clear_of_the_prism_and_the_screen() {
+    // Each label of Pictures 3-6, as drawn at full and quick size (the
+    // box of the pixels it changes on a blank image), lies outside the
+    // boxes the prism's glass and the screen project to: a label is beside
+    // its subject, never printed over it (the last reader found "Amici
+    // prism" and "white beam from the lamp's slit" over the prism).
+    for id in ["css552-p3", "css552-p4", "css552-p5", "css552-p6"] {
+        for quick in [false, true] {
+            let s = SceneFile::load(&repo(&format!("scenes/{id}.toml")), quick).unwrap();
+            let cfg = refract::experiment::params::prism_config(&s.params).unwrap();
+            let scene = refract::scenes::build(&cfg.scene).unwrap();
+            let (w, h) = (cfg.scene.width, cfg.scene.height);
+            let projected = |keep: &dyn Fn(&refract::world::Face) -> bool| -> Option<[f64; 4]> {
+                let pts: Vec<glam::DVec2> =
+                    scene.faces.iter().filter(|f| keep(f)).flat_map(|f| f.verts.iter().filter_map(|v| scene.camera.project(*v))).collect();
+                (!pts.is_empty())
+                    .then(|| pts.iter().fold([f64::MAX, f64::MIN, f64::MAX, f64::MIN], |b, p| [b[0].min(p.x), b[1].max(p.x), b[2].min(p.y), b[3].max(p.y)]))
+            };
+            let glass = projected(&|f| matches!(f.surface, refract::world::Surface::Interface { .. }));
+            let screen = projected(&|f| f.name == "screen");
+            assert!(screen.is_some(), "{id}: a screen");
+            assert_eq!(glass.is_none(), id == "css552-p4", "{id}: the prism's glass is in every bench picture but Picture 4");
+            for label in &s.labels {
+                let mut buf = vec![0u8; w * h * 3];
+                refract::experiment::labels::draw(&mut buf, w, h, std::slice::from_ref(label)).unwrap();
+                let drawn = (0..w * h).filter(|&i| buf[i * 3..i * 3 + 3].iter().any(|&c| c != 0)).map(|i| ((i % w) as f64, (i / w) as f64));
+                let b = drawn.fold([f64::MAX, f64::MIN, f64::MAX, f64::MIN], |b, (x, y)| [b[0].min(x), b[1].max(x), b[2].min(y), b[3].max(y)]);
+                assert!(b[0] >= 0.0 && b[1] < w as f64, "{id} (quick {quick}): label {:?} drawn", label.text);
+                assert!(
+                    b[0] > 0.0 && b[1] < (w - 1) as f64,
+                    "{id} (quick {quick}): label {:?} cut by the frame's edge: columns {}..{}",
+                    label.text,
+                    b[0],
+                    b[1]
+                );
+                for (what, other) in [("the prism", glass), ("the screen", screen)] {
+                    let Some(o) = other else { continue };
+                    let apart = b[1] < o[0] || o[1] < b[0] || b[3] < o[2] || o[3] < b[2];
+                    assert!(apart, "{id} (quick {quick}): label {:?} at {b:?} over {what} at {o:?}", label.text);
+                }
+            }
+        }
+    }
+}

@@ -185,13 +185,14 @@ fn add_screen(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism, design: &
 
 /// How far the bench view's screen stands past the prism, m: far enough
 /// that the strip (about 19 cm across) is large beside the prism seen from
-/// 0.7 m behind it.
+/// 1.2 m behind it.
 const BENCH_SCREEN_DISTANCE: f64 = 1.6;
-/// The window light's power over a table-sized footprint, W: the room
-/// clearly seen under the figures' display (AgX with its print look at
-/// exposure 0.0075), the strip's yellow-green middle rolling toward white
-/// while the screen around it stays mid grey.
-const WINDOW_POWER: f64 = 600.0;
+/// The window light's power over a table-sized footprint, W: a dim fill
+/// under which the room, the card under the prism and the glass's edges
+/// read in the figures' display (AgX with its print look at exposure
+/// 0.005; at 600 W the room sank to murk), the screen around the strip
+/// mid grey.
+const WINDOW_POWER: f64 = 1000.0;
 /// The walls' albedo: a dark grey, as an optics lab's walls are kept so
 /// that the light the prism's faces send back (a few per cent of the beam
 /// per face, in colours) leaves no bright patches on them.
@@ -238,13 +239,16 @@ fn add_bench(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism) -> Result<
     *half = DVec2::new(BENCH_SLIT.0 / 2.0, BENCH_SLIT.1 / 2.0);
     *start += *dir * (0.3 - BENCH_LAMP_GAP);
     let start = *start;
-    // The camera of Pictures 4-6: beside the lamp, 25 cm to the side of
-    // the beam and 12 cm above it, looking down the bench with a long lens
-    // (20 degrees across): the prism whole in the near left, seen a little
-    // from above so its top shows the three wedges; the screen whole at the
-    // top right, the fan of colours reaching it from below the strip, not
-    // across it.
-    let bench_cam = DVec3::new(-0.8, -0.25, 0.12);
+    // The camera of Pictures 4-6: 0.9 m behind the lamp, 33 cm to the
+    // side of the beam and 15 cm above it, looking down the bench with a
+    // long lens (14.4 degrees across), chosen so that the strip spans a
+    // quarter of the frame: the lamp stands outside the frame's left edge
+    // (the white beam comes in from it; framing the lamp whole as well
+    // leaves the strip at most a sixth of the frame, the bench being 12
+    // times the strip's length); the prism whole in the near left, seen a
+    // little from above so its top shows; the screen whole at the top
+    // right, the fan of colours reaching it from below the strip.
+    let bench_cam = DVec3::new(-1.22, -0.325, 0.153);
     let (x0, x1) = (bench_cam.x - 0.5, strip_centre.x + 0.06);
     let (y0, y1) = (strip_centre.y.min(0.0) - 1.3, strip_centre.y.max(0.0) + 0.3);
     super::matte(scene, "table", DVec3::new(x0, y0, z), DVec3::new(x1 - x0, 0.0, 0.0), DVec3::new(0.0, y1 - y0, 0.0), [0.45; 3]);
@@ -296,7 +300,7 @@ fn add_bench(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism) -> Result<
     // The window light: down onto the table, 35 degrees from behind the
     // lamp, so the screen's face and the back wall are lit too. Its
     // footprint covers the table and reaches the back wall's top; it has
-    // a fifth of the photons, the beam the rest.
+    // 35 % of the photons (all of them through the glass), the beam the rest.
     // Tipped 35 degrees from the vertical toward +x and 15 toward +y, so
     // that the back wall and the far side wall are lit as well.
     let dir = DVec3::new(35f64.to_radians().tan(), 15f64.to_radians().tan(), -1.0).normalize();
@@ -334,7 +338,7 @@ fn add_bench(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism) -> Result<
         spectrum: light_spectrum(o, "D65")?,
         power,
     });
-    scene.photon_shares = Some(vec![0.8, 0.2]);
+    scene.photon_shares = Some(vec![0.65, 0.35]);
     // Light straight from either beam by shadow rays (docs/physics.md
     // §13): the table and the white slit image come out without photon
     // noise; the photons carry what crosses the prism.
@@ -350,14 +354,14 @@ fn add_bench(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism) -> Result<
     let (cam, target, hfov): (DVec3, DVec3, f64) = match o.view {
         // Beside the lamp (`bench_cam`): the prism near, the strip on the
         // screen large beyond it.
-        View::Scene => (bench_cam, DVec3::new(0.45, 0.0, 0.0), 20.0),
+        View::Scene => (bench_cam, DVec3::new(0.856, 0.08, -0.024), 14.4),
         // Square on to the strip from 40 cm: the strip across the frame.
         View::Screen => (strip_centre - DVec3::new(0.4, 0.0, 0.0), strip_centre, 2.0 * (0.5 * 0.7 * sw / 0.4).atan().to_degrees()),
         // Above the bench, behind the lamp and to its near side: the camera
         // of Pictures 4-6, the lamp, the prism, the fan and the screen all
-        // in view, the prism as large as a view of the whole bench allows
-        // (it is 16 cm of a bench 2.5 m long).
-        View::Overview => (DVec3::new(-1.5, -1.25, 0.6), DVec3::new(-0.05, -0.05, -0.08), 43.0),
+        // in view, the tripod whole, the prism as large as a view of the
+        // whole bench allows (it is 16 cm of a bench 3 m long).
+        View::Overview => (DVec3::new(-2.78, -1.81, 0.52), DVec3::new(-0.17, -0.02, -0.05), 28.1),
     };
     if o.view == View::Overview {
         // That camera drawn where it stands: a grey body 8 x 5 x 5 cm on a
@@ -415,8 +419,10 @@ const BENCH_RAIL_HEIGHT: f64 = 0.025;
 /// from +x, seen from above) and how far out their feet stand, m.
 const TRIPOD_LEG_ANGLES: [f64; 3] = [90.0, 210.0, 330.0];
 const TRIPOD_SPREAD: f64 = 0.14;
-/// How far the lamp's slit stands before the prism's entry face, m.
-const BENCH_LAMP_GAP: f64 = 0.15;
+/// How far the lamp's slit stands before the prism's entry face, m: far
+/// enough that the lamp housing stands wholly outside the frame of
+/// Pictures 4-6 (at 15 cm its front corner was cut by the frame's edge).
+const BENCH_LAMP_GAP: f64 = 0.30;
 /// Faces an eye path through the bench's prism splits at (`World::
 /// eye_split_depth`): top, two cemented faces, base and back; measured at
 /// quick size, 4 left the prism's top grainy, 8 smooth, for 10 % more eye
@@ -425,8 +431,9 @@ const BENCH_SPLIT_DEPTH: usize = 8;
 
 /// The bench's haze, per metre: enough that the beam shows over the
 /// table's light, too little to veil the screen or, seen along the fan,
-/// to outshine the strip.
-const BENCH_HAZE: f64 = 3.0;
+/// to outshine the strip (at 3 the fan in the haze was as bright as the
+/// strip and veiled its violet end).
+const BENCH_HAZE: f64 = 1.5;
 
 /// Picture 1: a compact fluorescent lamp down a hall past the prism, and
 /// the camera just before the entry face looking back through the prism
