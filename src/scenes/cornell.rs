@@ -252,7 +252,14 @@ pub fn dark_side(o: &SceneOptions) -> Result<World> {
     let h = side * 3f64.sqrt() / 2.0;
     let cross = [DVec2::new(-side / 2.0, -h / 3.0), DVec2::new(side / 2.0, -h / 3.0), DVec2::new(0.0, 2.0 * h / 3.0)];
     if !o.no_prism {
-        s.add_extruded("prism", &[(cross, 1)], 0.0, tall);
+        // The prism stands 0.2 mm above the backdrop (on three thin feet,
+        // say): the beam's lower rays, descending 2.2 degrees, meet its
+        // base inside the glass at grazing incidence and are totally
+        // reflected, and what the exit face reflects back inside leaves by
+        // the blackened side. Standing on the backdrop (its base and the
+        // backdrop one plane), those rays landed on the backdrop under the
+        // glass: a bright bar across the prism and a blue line crossing it.
+        s.add_extruded("prism", &[(cross, 1)], 2e-4, tall);
         // The cover's white outline: the prism's top edges, ground and
         // glowing (three thin emitting strips on the top face, 4 mm wide:
         // at 8 mm they read as a white wireframe), lit from within as a
@@ -320,12 +327,13 @@ pub fn dark_side(o: &SceneOptions) -> Result<World> {
     let mut shares = vec![1e-9; s.lights.len()];
     shares[beam] = 1.0;
     s.photon_shares = Some(shares);
-    s.probe = (aim - dir * 0.5, dir);
+    s.probe = (aim + DVec3::Z * (tall / 2.0) - dir * 0.5, dir);
     // Framed as the cover: the prism large, in the middle of the picture
-    // and in its upper half, the beam in from the left edge, and the whole
+    // (its centroid 40 px above the middle: lower, the fan's violet edge
+    // left by the bottom corner), the beam in from the left edge, and the whole
     // fan leaving across the right edge, its violet side clear of the
     // bottom (framed on the prism's right, the fan left by the corner).
-    let centre = DVec3::new(0.03, -0.15, 0.0);
+    let centre = DVec3::new(0.03, -0.09, 0.0);
     s.camera = Camera::look_at(centre + DVec3::Z * 2.8, centre, DVec3::Y, 16.8, o.width, o.height);
     Ok(s)
 }
