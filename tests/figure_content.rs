@@ -1324,3 +1324,28 @@ fn the_lasers_band_on_the_wall_is_a_smooth_spectrum_with_a_red_end() {
     assert!(longest <= 3, "the band prints a clipped block {longest} px long");
     assert!(end[0] >= 100 && end[0] >= 2 * end[1] && end[0] >= 2 * end[2], "660 nm is not red: {end:?}");
 }
+
+#[test]
+fn the_lasers_band_is_shown_large_in_a_close_up() {
+    // pm-laser-prism at quick size, as the figure command writes it: its
+    // close-up of the back wall shows the band of spectrum hundreds of
+    // pixels long (in the picture it is about 60): along the close-up's
+    // middle row at least 200 strongly coloured pixels (max - min channel
+    // above 80; 221 at 2026-11-25), with red (R above 150, over twice G)
+    // at its left end and blue-violet (B the largest channel, above 120)
+    // at its right, in that order.
+    let s = SceneFile::load(&repo("scenes/pm-laser-prism.toml"), true).unwrap();
+    let view = s.close_up.clone().expect("pm-laser-prism has a close-up");
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("laser.png");
+    s.render(&out, &refract::progress::Silent).unwrap();
+    let img = image::open(&out).unwrap().to_rgb8();
+    let ([iw, ih], [x0, y0]) = view.place(img.width() as usize, img.height() as usize).expect("the close-up fits");
+    let row: Vec<[u8; 3]> = (x0..x0 + iw).map(|x| img.get_pixel(x as u32, (y0 + ih / 2) as u32).0).collect();
+    let coloured = row.iter().filter(|p| p.iter().max().unwrap() - p.iter().min().unwrap() > 80).count();
+    let red = row.iter().position(|p| p[0] > 150 && p[0] as u32 > 2 * p[1] as u32);
+    let violet = row.iter().rposition(|p| p[2] > 120 && p[2] >= p[0] && p[2] >= p[1]);
+    eprintln!("the band close up: {coloured} coloured px of {iw}; red at {red:?}, blue-violet at {violet:?}");
+    assert!(coloured >= 200, "the band close up is {coloured} px long");
+    assert!(matches!((red, violet), (Some(r), Some(v)) if r < v), "red at {red:?}, blue-violet at {violet:?}");
+}

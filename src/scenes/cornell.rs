@@ -9,7 +9,7 @@
 //!   cover, with the prism level and its top edges glowing white.
 
 use super::Result;
-use super::{glass_medium, light_spectrum, matte, rotate_z, SceneKind, SceneOptions};
+use super::{glass_medium, light_spectrum, matte, rotate_z, SceneKind, SceneOptions, View};
 use crate::spectrum::Spectrum;
 use crate::world::interface::Polarisation;
 use crate::world::{Camera, Emission, Face, Light, Surface, World};
@@ -220,7 +220,22 @@ pub fn build(o: &SceneOptions) -> Result<World> {
         }
     }
     s.probe = (probe_from, dir);
-    s.camera = if laser {
+    s.camera = if laser && o.view == View::Wall {
+        // The band of spectrum on the back wall, close up: square on from
+        // 70 cm, 42 cm of wall across the frame (the band is about 36 cm
+        // long), centred between where 420 and 680 nm land; in clear air,
+        // as the haze between the camera and the wall would veil it.
+        s.haze = 0.0;
+        let lands = |nm: f64| {
+            let p = crate::world::probe::probe(&s, nm);
+            let start = p.exit_point + p.exit_dir * 1e-9;
+            s.intersect(start, p.exit_dir, None).map_or(DVec3::new(-0.5, 1.0, 0.6), |hit| start + p.exit_dir * hit.t)
+        };
+        let centre = (lands(420.0) + lands(680.0)) / 2.0;
+        let (across, from) = (0.42, 0.7);
+        let vfov = 2.0 * (across / 2.0 * o.height as f64 / o.width as f64 / from).atan().to_degrees();
+        Camera::look_at(centre - DVec3::Y * from, centre, DVec3::Z, vfov, o.width, o.height)
+    } else if laser {
         // Framed on the laser, the prism, the fan and the band on the back
         // wall, from a little left of centre (from in front, the prism's
         // entry face looked a dark block).
