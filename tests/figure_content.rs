@@ -865,9 +865,25 @@ fn the_point_light_prism_stands_clear_of_the_frame_and_the_tube_reads_as_a_tube(
     // about 3 px thick).
     let (sleeve, w, h) = projected("pm-mirror-tube", |f| f.name.starts_with("tube sleeve"));
     assert!(!sleeve.is_empty(), "the tube has a sleeve");
+    // Its sides matte and neutral grey, so that each is shaded by its
+    // slope to the room's light (as a polished mirror they showed the red
+    // wall and the dark room in bands: a red-and-black stick).
+    let s = SceneFile::load(&repo("scenes/pm-mirror-tube.toml"), false).unwrap();
+    let scene = refract::scenes::build(&refract::experiment::params::prism_config(&s.params).unwrap().scene).unwrap();
+    for f in scene.faces.iter().filter(|f| f.name.starts_with("tube sleeve")) {
+        match &f.surface {
+            refract::world::Surface::Diffuse { albedo, .. } => {
+                let [r, g, b] = albedo.rgb;
+                assert!(r == g && g == b && (0.3..=0.8).contains(&r), "{}: albedo {:?}", f.name, albedo.rgb);
+            }
+            other => panic!("{} is {other:?}, not matte", f.name),
+        }
+    }
     let (lo, hi) = sleeve.iter().fold((glam::DVec2::splat(f64::MAX), glam::DVec2::splat(f64::MIN)), |(lo, hi), p| (lo.min(*p), hi.max(*p)));
     assert!(lo.x >= 0.0 && lo.y >= 0.0 && hi.x <= w && hi.y <= h, "the tube is cut by the frame: {lo:?} to {hi:?}");
-    let (end_a, end_b) = (sleeve.iter().step_by(4).copied().collect::<Vec<_>>(), sleeve.iter().skip(1).step_by(4).copied().collect::<Vec<_>>());
+    // Each side a rectangle from one edge of the ring round the bulb's end
+    // (its first vertex) along the tube (its fourth).
+    let (end_a, end_b) = (sleeve.iter().step_by(4).copied().collect::<Vec<_>>(), sleeve.iter().skip(3).step_by(4).copied().collect::<Vec<_>>());
     let length = end_a.iter().zip(&end_b).map(|(a, b)| a.distance(*b)).fold(0.0, f64::max);
     assert!(length >= 60.0, "the tube is {length:.0} px long on the picture");
     let across = end_a.iter().flat_map(|a| end_a.iter().map(move |b| a.distance(*b))).fold(0.0, f64::max);

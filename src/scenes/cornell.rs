@@ -125,7 +125,7 @@ pub fn build(o: &SceneOptions) -> Result<World> {
                 s.faces.push(Face::rect(&format!("mirror tube {i}"), c, dir * len, e, Surface::Mirror { reflectance: 0.95 }));
             }
 
-            // The tube's body as the camera sees it: a polished metal
+            // The tube's body as the camera sees it: a metal
             // sleeve, an eight-sided cylinder 4.4 cm across round the
             // square bore, closed by a cap behind the end mirror (a
             // choice: the bare 2.5 cm bore read as a stick). It lies
@@ -138,9 +138,14 @@ pub fn build(o: &SceneOptions) -> Result<World> {
                 let (sn, cs) = (k as f64 * std::f64::consts::TAU / sides_n as f64).sin_cos();
                 u * (radius * cs) + w * (radius * sn)
             };
+            // The sides matte grey (brushed metal, a choice): as a polished
+            // mirror they showed the red wall and the dark room in bands,
+            // and the tube read as a red-and-black stick; matte, each side
+            // takes the room's light by its slope, shaded as a cylinder.
             for k in 0..sides_n {
                 let (c0, c1) = (round(k), round(k + 1));
-                s.faces.push(Face::rect(&format!("tube sleeve {k}"), start + c0, dir * len, c1 - c0, sleeve.clone()));
+                // Normal (c1 - c0) x dir: outward, the lit side.
+                matte(&mut s, &format!("tube sleeve {k}"), start + c0, c1 - c0, dir * len, [0.55; 3]);
             }
             let cap = (0..sides_n).map(|k| start - dir * 1e-4 + round(k)).collect();
             s.faces.push(Face::polygon("tube cap", cap, -dir, sleeve));
