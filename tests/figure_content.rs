@@ -1365,3 +1365,34 @@ fn the_lasers_band_is_shown_large_in_a_close_up() {
     assert!(coloured >= 200, "the band close up is {coloured} px long");
     assert!(matches!((red, violet), (Some(r), Some(v)) if r < v), "red at {red:?}, blue-violet at {violet:?}");
 }
+
+#[test]
+fn the_point_lights_grey_wedge_is_the_prisms_shadow() {
+    // pm-pointlight-faint's caption: the grey wedge on the left of the
+    // back wall is the prism's shadow, and the light through the prism is
+    // bent to the right into the arcs. The line from the point light
+    // through the prism's centre meets the back wall left of the picture's
+    // middle; the probe ray at 550 nm, bent by the prism, meets it right
+    // of that line's point, over 60 px away.
+    let s = SceneFile::load(&repo("scenes/pm-pointlight-faint.toml"), false).unwrap();
+    let cfg = refract::experiment::params::prism_config(&s.params).unwrap();
+    let scene = refract::scenes::build(&cfg.scene).unwrap();
+    let light = scene.lights.iter().find_map(|l| match l.emission {
+        refract::world::Emission::Point { pos } => Some(pos),
+        _ => None,
+    });
+    let light = light.expect("a point light");
+    let glass: Vec<glam::DVec3> =
+        scene.faces.iter().filter(|f| matches!(f.surface, refract::world::Surface::Interface { .. })).flat_map(|f| f.verts.clone()).collect();
+    let centre = glass.iter().copied().sum::<glam::DVec3>() / glass.len() as f64;
+    let straight = (centre - light).normalize();
+    // Past the prism: where the straight line meets the back wall (y = 1).
+    let shadow = light + straight * ((1.0 - light.y) / straight.y);
+    let p = refract::world::probe::probe(&scene, 550.0);
+    let start = p.exit_point + p.exit_dir * 1e-9;
+    let hit = scene.intersect(start, p.exit_dir, None).expect("the bent light meets a wall");
+    let (a, b) = (scene.camera.project(shadow).expect("in view"), scene.camera.project(start + p.exit_dir * hit.t).expect("in view"));
+    eprintln!("point light: the prism's shadow at {a:?}, the bent light at {b:?} (on {})", scene.name(hit.face));
+    assert!(a.x < cfg.scene.width as f64 / 2.0, "the prism's shadow at {a:?}, not on the left");
+    assert!(b.x > a.x + 60.0, "the bent light at {b:?}, not right of the shadow at {a:?}");
+}
