@@ -28,7 +28,7 @@ const DRAWN: [(&str, &str, &str); 2] = [
     (
         "pm-spectra-compare",
         "003",
-        "The same scene with different wavelength-to-colour maps (CIE, buckets, interpolated gradient, HSL-based, custom red-white-blue); the interpolated gradient and the HSL hue look alike, as both sweep the hue circle evenly from violet to red",
+        "The same scene with different wavelength-to-colour maps (CIE, buckets, interpolated gradient, HSL-based, custom red-white-blue), each tile the far part of the album cover's fan, red edge up; the 81 buckets of 5 nm follow CIE, paler; the interpolated gradient and the HSL hue look alike, as both sweep the hue circle evenly from violet to red",
     ),
 ];
 
@@ -748,8 +748,13 @@ fn colour_compare(png: &Path, quick: bool, scenes: &Path) -> Result<String> {
     let file = SceneFile::load(&scenes.join("pm-dark-side.toml"), quick)?;
     let mut cfg = super::params::prism_config(&file.params)?;
     // Three tiles across fit a 1400 px page at 1:1, the quick set's too
-    // (with fewer samples: its tiles must be read at the same size).
-    let (tw, th) = (440usize, 300usize);
+    // (with fewer samples: its tiles must be read at the same size). Each
+    // tile is cropped to the fan's far part, where it is widest, turned so
+    // that it runs across the tile (red along the top, violet along the
+    // bottom): the fan fills the tile and its colours are bands 60 to 150
+    // px across (a crop of the prism and the whole fan left each fan a
+    // thin sliver in a corner of mostly black tiles).
+    let (tw, th) = (440usize, 180usize);
     let (label_h, font) = (44usize, 30);
     let indent = 14;
     (cfg.scene.width, cfg.scene.height) = (tw, th);
@@ -762,14 +767,7 @@ fn colour_compare(png: &Path, quick: bool, scenes: &Path) -> Result<String> {
     for (k, map) in maps.iter().enumerate() {
         cfg.colours = *map;
         let mut scene = build(&cfg.scene)?;
-        // The crop: the prism whole near the tile's top, the incoming
-        // beam's last part, and the whole fan, from the exit face to the
-        // tile's right edge, which it leaves across its full width (at
-        // 11.5 degrees, centred right of the prism, the tile's corner cut
-        // every fan; a wider crop shows the fan end in mid-air where its
-        // light comes down onto the backdrop).
-        let centre = glam::DVec3::new(-0.01, -0.1, 0.0);
-        scene.camera = crate::world::Camera::look_at(centre + glam::DVec3::Z * 2.8, centre, glam::DVec3::Y, 13.5, tw, th);
+        scene.camera = fan_camera(&scene, tw, th);
         let r = crate::spectral::render_world(&cfg, &scene, &crate::progress::Silent)?;
         let tile = r.render.image.to_srgb8(r.exposure, cfg.gamut);
         let (x0, y0) = ((k % cols) * tw, (k / cols) * (th + label_h) + label_h);
@@ -797,12 +795,36 @@ fn colour_compare(png: &Path, quick: bool, scenes: &Path) -> Result<String> {
     }
     write_rgb8(png, w, h, &buf)?;
     Ok(format!(
-        "pm-dark-side's scene file ({}, {} photons, {} samples a pixel per tile), each tile cropped to the prism and fan; colour maps: {}",
+        "pm-dark-side's scene file ({}, {} photons, {} samples a pixel per tile), each tile cropped to the fan's far part ({FAN_FROM:.2} to {FAN_TO:.2} m from the prism), turned to run across it; colour maps: {}",
         cfg.scene.crown.name,
         cfg.photons,
         cfg.spp,
         maps.iter().map(|m| m.name()).collect::<Vec<_>>().join(", ")
     ))
+}
+
+/// The part of the album cover's fan each colour-map tile shows: from
+/// this far beyond the prism's exit face (metres along the fan) to that.
+const FAN_FROM: f64 = 0.32;
+const FAN_TO: f64 = 0.78;
+
+/// A camera straight above the album cover's fan (as the figure's own),
+/// framed on its part from `FAN_FROM` to `FAN_TO` and turned so that it
+/// runs left to right across the `tw` x `th` tile, its red edge at the top.
+fn fan_camera(scene: &crate::world::World, tw: usize, th: usize) -> crate::world::Camera {
+    use glam::DVec3;
+    let (violet, red) = (crate::world::probe::probe(scene, 400.0), crate::world::probe::probe(scene, 700.0));
+    let flat = |v: DVec3| DVec3::new(v.x, v.y, 0.0);
+    // The lit fan's axis lies nearer its violet edge than the two
+    // wavelengths' mean (the beam's width spreads violet most).
+    let along = flat(violet.exit_dir * 0.7 + red.exit_dir * 0.3).normalize();
+    let centre = flat(red.exit_point) + along * ((FAN_FROM + FAN_TO) / 2.0);
+    // Up on the tile: the fan's left side seen from above, where red is.
+    let up = DVec3::Z.cross(along);
+    let height = 2.8;
+    let half_w = (FAN_TO - FAN_FROM) / 2.0;
+    let vfov = 2.0 * (half_w * th as f64 / tw as f64 / height).atan().to_degrees();
+    crate::world::Camera::look_at(centre + DVec3::Z * height, centre, up, vfov, tw, th)
 }
 
 #[cfg(test)]

@@ -86,7 +86,18 @@ fn bench_only(c: &SpectralConfig) -> Option<String> {
     if let Some(why) = builtin_only(c) {
         return Some(why);
     }
-    (c.scene.kind != SceneKind::AmiciBench).then(|| format!("the {} scene has one view (amici-bench has three)", c.scene.kind.name()))
+    let fits = match c.scene.kind {
+        SceneKind::AmiciBench => c.scene.view != View::Wall,
+        SceneKind::CornellLaser => matches!(c.scene.view, View::Scene | View::Wall),
+        _ => false,
+    };
+    (!fits).then(|| {
+        format!(
+            "the {} scene has no {} view (amici-bench has scene, screen and overview; cornell-laser scene and wall)",
+            c.scene.kind.name(),
+            c.scene.view.name()
+        )
+    })
 }
 
 fn has_glass(c: &SpectralConfig) -> Option<String> {
@@ -252,7 +263,7 @@ pub static PARAMS: &[Param<SpectralConfig>] = &[
         key: "view",
         aliases: &[],
         section: SCENE,
-        help: "Where the camera stands in amici-bench",
+        help: "Where the camera stands in amici-bench (scene, screen, overview) and cornell-laser (scene, wall: the band of spectrum close up)",
         unit: "",
         kind: Kind::Choice(choices::<View>),
         auto: "",

@@ -354,7 +354,7 @@ fn add_bench(scene: &mut World, o: &SceneOptions, prism: &AmiciPrism) -> Result<
     let (cam, target, hfov): (DVec3, DVec3, f64) = match o.view {
         // Beside the lamp (`bench_cam`): the prism near, the strip on the
         // screen large beyond it.
-        View::Scene => (bench_cam, DVec3::new(0.856, 0.08, -0.024), 14.4),
+        View::Scene | View::Wall => (bench_cam, DVec3::new(0.856, 0.08, -0.024), 14.4),
         // Square on to the strip from 40 cm: the strip across the frame.
         View::Screen => (strip_centre - DVec3::new(0.4, 0.0, 0.0), strip_centre, 2.0 * (0.5 * 0.7 * sw / 0.4).atan().to_degrees()),
         // Above the bench, behind the lamp and to its near side: the camera

@@ -9,7 +9,7 @@
 //!   cover, with the prism level and its top edges glowing white.
 
 use super::Result;
-use super::{glass_medium, light_spectrum, matte, rotate_z, SceneKind, SceneOptions};
+use super::{glass_medium, light_spectrum, matte, rotate_z, SceneKind, SceneOptions, View};
 use crate::spectrum::Spectrum;
 use crate::world::interface::Polarisation;
 use crate::world::{Camera, Emission, Face, Light, Surface, World};
@@ -125,7 +125,7 @@ pub fn build(o: &SceneOptions) -> Result<World> {
                 s.faces.push(Face::rect(&format!("mirror tube {i}"), c, dir * len, e, Surface::Mirror { reflectance: 0.95 }));
             }
 
-            // The tube's body as the camera sees it: a polished metal
+            // The tube's body as the camera sees it: a metal
             // sleeve, an eight-sided cylinder 4.4 cm across round the
             // square bore, closed by a cap behind the end mirror (a
             // choice: the bare 2.5 cm bore read as a stick). It lies
@@ -138,9 +138,14 @@ pub fn build(o: &SceneOptions) -> Result<World> {
                 let (sn, cs) = (k as f64 * std::f64::consts::TAU / sides_n as f64).sin_cos();
                 u * (radius * cs) + w * (radius * sn)
             };
+            // The sides matte grey (brushed metal, a choice): as a polished
+            // mirror they showed the red wall and the dark room in bands,
+            // and the tube read as a red-and-black stick; matte, each side
+            // takes the room's light by its slope, shaded as a cylinder.
             for k in 0..sides_n {
                 let (c0, c1) = (round(k), round(k + 1));
-                s.faces.push(Face::rect(&format!("tube sleeve {k}"), start + c0, dir * len, c1 - c0, sleeve.clone()));
+                // Normal (c1 - c0) x dir: outward, the lit side.
+                matte(&mut s, &format!("tube sleeve {k}"), start + c0, c1 - c0, dir * len, [0.55; 3]);
             }
             let cap = (0..sides_n).map(|k| start - dir * 1e-4 + round(k)).collect();
             s.faces.push(Face::polygon("tube cap", cap, -dir, sleeve));
@@ -220,7 +225,22 @@ pub fn build(o: &SceneOptions) -> Result<World> {
         }
     }
     s.probe = (probe_from, dir);
-    s.camera = if laser {
+    s.camera = if laser && o.view == View::Wall {
+        // The band of spectrum on the back wall, close up: square on from
+        // 70 cm, 42 cm of wall across the frame (the band is about 36 cm
+        // long), centred between where 420 and 680 nm land; in clear air,
+        // as the haze between the camera and the wall would veil it.
+        s.haze = 0.0;
+        let lands = |nm: f64| {
+            let p = crate::world::probe::probe(&s, nm);
+            let start = p.exit_point + p.exit_dir * 1e-9;
+            s.intersect(start, p.exit_dir, None).map_or(DVec3::new(-0.5, 1.0, 0.6), |hit| start + p.exit_dir * hit.t)
+        };
+        let centre = (lands(420.0) + lands(680.0)) / 2.0;
+        let (across, from) = (0.42, 0.7);
+        let vfov = 2.0 * (across / 2.0 * o.height as f64 / o.width as f64 / from).atan().to_degrees();
+        Camera::look_at(centre - DVec3::Y * from, centre, DVec3::Z, vfov, o.width, o.height)
+    } else if laser {
         // Framed on the laser, the prism, the fan and the band on the back
         // wall, from a little left of centre (from in front, the prism's
         // entry face looked a dark block).
@@ -252,7 +272,14 @@ pub fn dark_side(o: &SceneOptions) -> Result<World> {
     let h = side * 3f64.sqrt() / 2.0;
     let cross = [DVec2::new(-side / 2.0, -h / 3.0), DVec2::new(side / 2.0, -h / 3.0), DVec2::new(0.0, 2.0 * h / 3.0)];
     if !o.no_prism {
-        s.add_extruded("prism", &[(cross, 1)], 0.0, tall);
+        // The prism stands 0.2 mm above the backdrop (on three thin feet,
+        // say): the beam's lower rays, descending 2.2 degrees, meet its
+        // base inside the glass at grazing incidence and are totally
+        // reflected, and what the exit face reflects back inside leaves by
+        // the blackened side. Standing on the backdrop (its base and the
+        // backdrop one plane), those rays landed on the backdrop under the
+        // glass: a bright bar across the prism and a blue line crossing it.
+        s.add_extruded("prism", &[(cross, 1)], 2e-4, tall);
         // The cover's white outline: the prism's top edges, ground and
         // glowing (three thin emitting strips on the top face, 4 mm wide:
         // at 8 mm they read as a white wireframe), lit from within as a
@@ -320,12 +347,13 @@ pub fn dark_side(o: &SceneOptions) -> Result<World> {
     let mut shares = vec![1e-9; s.lights.len()];
     shares[beam] = 1.0;
     s.photon_shares = Some(shares);
-    s.probe = (aim - dir * 0.5, dir);
+    s.probe = (aim + DVec3::Z * (tall / 2.0) - dir * 0.5, dir);
     // Framed as the cover: the prism large, in the middle of the picture
-    // and in its upper half, the beam in from the left edge, and the whole
+    // (its centroid 40 px above the middle: lower, the fan's violet edge
+    // left by the bottom corner), the beam in from the left edge, and the whole
     // fan leaving across the right edge, its violet side clear of the
     // bottom (framed on the prism's right, the fan left by the corner).
-    let centre = DVec3::new(0.03, -0.15, 0.0);
+    let centre = DVec3::new(0.03, -0.09, 0.0);
     s.camera = Camera::look_at(centre + DVec3::Z * 2.8, centre, DVec3::Y, 16.8, o.width, o.height);
     Ok(s)
 }

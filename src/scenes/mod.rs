@@ -78,8 +78,8 @@ crate::named_enum! {
 impl SceneKind {}
 
 crate::named_enum! {
-    /// Where the camera stands (amici-bench has three views; every other
-    /// scene has its own one).
+    /// Where the camera stands (amici-bench has three views, cornell-laser
+    /// two; every other scene has its own one).
     pub enum View {
         /// The scene's own camera (amici-bench: behind the lamp, above the table, down the bench).
         Scene = "scene",
@@ -87,6 +87,8 @@ crate::named_enum! {
         Screen = "screen",
         /// amici-bench: the whole bench from high above its side.
         Overview = "overview",
+        /// cornell-laser: the band of spectrum on the back wall, close up and square on.
+        Wall = "wall",
     }
 }
 
