@@ -722,6 +722,34 @@ fn the_glass_sphere_fringes_the_light_blue_inside_and_orange_red_outside() {
 }
 
 #[test]
+fn the_light_through_the_sphere_rolls_off_and_its_ghost_is_smooth() {
+    // cs348b-sphere-arealight at its quick sampling (2 a pixel): the
+    // light's image is not a flat clipped patch: of its bright pixels
+    // (every channel above 185) at most half are pure white (all three at
+    // 250 or more), and their grey values spread over at least 25 levels
+    // (the filmic display's roll-off; under the camera display at 8 times
+    // nearly all were 255). The faint copy of the light after two
+    // reflections inside the glass, within 12 px of the sphere's centre,
+    // carries no colour grain: no pixel there has |R - B| above 30 (the
+    // chance-followed reflections printed it as coloured specks).
+    let (w, h, img) = sphere_arealight(2, true, true);
+    let px = |i: usize| [img[i * 3] as i32, img[i * 3 + 1] as i32, img[i * 3 + 2] as i32];
+    let bright: Vec<i32> = (0..w * h).map(px).filter(|p| p.iter().all(|&c| c > 185)).map(|p| (p[0] + p[1] + p[2]) / 3).collect();
+    let pure = bright.iter().filter(|&&g| g >= 250).count() as f64 / bright.len().max(1) as f64;
+    let (lo, hi) = (*bright.iter().min().unwrap_or(&0), *bright.iter().max().unwrap_or(&0));
+    let ghost = (0..w * h)
+        .filter(|&i| ((i % w) as f64 - w as f64 / 2.0).hypot((i / w) as f64 - h as f64 / 2.0) < 12.0)
+        .map(|i| (px(i)[0] - px(i)[2]).abs())
+        .max()
+        .unwrap();
+    eprintln!("light's image: {} bright px, {pure:.2} pure white, grey {lo} to {hi}; ghost colour up to {ghost}", bright.len());
+    assert!(bright.len() > 500, "the light shows through the sphere: {} px", bright.len());
+    assert!(pure <= 0.5, "the light's image is clipped flat: {pure:.2} of it pure white");
+    assert!(hi - lo >= 15, "the light's image rolls off over {} levels", hi - lo);
+    assert!(ghost <= 30, "coloured grain at the sphere's centre: |R - B| up to {ghost}");
+}
+
+#[test]
 fn the_glass_sphere_is_seen_against_its_backdrop() {
     // Report 001's sphere is visible, not only the light through it: within
     // 150 px of the frame's centre (inside the sphere's disc, about 270 px

@@ -127,6 +127,10 @@ fn area_light(s: &mut World, o: &SceneOptions) -> Result<()> {
     // frame's height), so the fringes, which scale with its image, are
     // 3-5 px wide at 1:1 with no inset.
     s.camera = Camera::look_at(DVec3::ZERO, DVec3::new(3.0, 0.0, 0.0), DVec3::Z, 21.0, o.width, o.height);
+    // The faint copy of the lamp seen after two reflections inside the
+    // glass (R^2, near the sphere's centre) is followed whole, not by the
+    // min(1, 4R) chance that printed it as coloured grain.
+    s.eye_follow_reflections = 3;
     Ok(())
 }
 
