@@ -1135,7 +1135,7 @@ fn the_sphere_before_the_lit_plate_shows_a_broad_yellow_to_red_band() {
 
 #[test]
 fn the_metal_plate_reads_as_lit_metal() {
-    // cs348b-sphere-metal: the plate is lit, not grey: at half size,
+    // cs348b-sphere-metal: the plate is lit, not grey, and fills the frame: at half size,
     // outside the sphere, its strip light's line is near white (the
     // columns within 1 px of the frame's centre, mean above 200: 227
     // measured on 2026-11-25, the 8 mm line under a pixel wide), its
@@ -1143,8 +1143,14 @@ fn the_metal_plate_reads_as_lit_metal() {
     // bright as its outer edges (the outermost 15 px; 107 and 57
     // measured), and the plate's mean above 60 of 255 (71 measured: a
     // metal surface in light, not a dark plate).
+    // The plate fills the frame (no grey border round it: its outer
+    // corners project outside the frame on every side); the edges measured
+    // are then the frame's.
     let (w, h, c, radius, plate, img) = sphere_metal_half(true);
     let (lo, hi) = plate.iter().fold((glam::DVec2::splat(f64::MAX), glam::DVec2::splat(f64::MIN)), |(lo, hi), &p| (lo.min(p), hi.max(p)));
+    eprintln!("metal plate spans ({:.0}, {:.0}) to ({:.0}, {:.0}) px in {w}x{h}", lo.x, lo.y, hi.x, hi.y);
+    assert!(lo.x <= 0.0 && lo.y <= 0.0 && hi.x >= w as f64 && hi.y >= h as f64, "a border round the plate: it spans {lo:?} to {hi:?} px");
+    let (lo, hi) = (lo.max(glam::DVec2::ZERO), hi.min(glam::DVec2::new(w as f64, h as f64)));
     let grey = |x: usize, y: usize| (img[(y * w + x) * 3] as f64 + img[(y * w + x) * 3 + 1] as f64 + img[(y * w + x) * 3 + 2] as f64) / 3.0;
     let (mut line, mut sheen, mut edge, mut all) = (vec![], vec![], vec![], vec![]);
     for y in 0..h {
