@@ -1218,7 +1218,11 @@ fn the_final_card_stands_whole_in_the_frame_against_a_darker_wall() {
     // the card beside the ring (between the ring and the card's right
     // edge) is at least 1.4 times as bright as the wall beyond that edge,
     // the wall is not black (above 25 of 255: the room, not a void), and
-    // the hole's centre is the brightest of the three (near white).
+    // the hole reads as a hole: its darkest part under 0.7 of the card's
+    // brightness (57 against 102 measured on 2026-11-25: the camera sees
+    // the wall in the card's shadow through it; until then it saw the
+    // beam's source there, near white, which a reader took for a lit
+    // patch on the card).
     use glam::DVec3;
     use refract::scenes::{build, SceneKind, SceneOptions};
     let s = SceneFile::load(&repo("scenes/cs348b-final.toml"), true).unwrap();
@@ -1271,7 +1275,11 @@ fn the_final_card_stands_whole_in_the_frame_against_a_darker_wall() {
     };
     let card_lum = mean_at(DVec3::new(0.0, y_max - 0.2, 0.0));
     let wall_lum = mean_at(DVec3::new(-1.0, y_max + 0.3, 0.0));
-    let hole_lum = mean_at(DVec3::new(0.0, 0.0, 0.0));
+    // The hole: the darkest of five spots across it (the camera, at about
+    // 21 degrees, sees the wall behind it, part in the card's shadow; the
+    // hazy beam leaving it lightens the rest).
+    let hole_lum =
+        [(0.0, 0.0), (0.06, 0.0), (-0.06, 0.0), (0.0, 0.06), (0.0, -0.06)].into_iter().map(|(y, z)| mean_at(DVec3::new(0.0, y, z))).fold(f64::MAX, f64::min);
     // The beam between the hole and the sphere, seen in the haze: half way
     // along it, brighter than the air 0.4 m below it.
     let beam_lum = mean_at(DVec3::new(1.2, 0.0, 0.0));
@@ -1280,7 +1288,7 @@ fn the_final_card_stands_whole_in_the_frame_against_a_darker_wall() {
     assert!(beam_lum > air_lum + 25.0, "the beam shows between the hole and the sphere: {beam_lum:.0} against {air_lum:.0}");
     assert!(card_lum >= 1.4 * wall_lum, "the card {card_lum:.0} against the wall {wall_lum:.0}");
     assert!(wall_lum > 25.0, "the wall shows: {wall_lum:.0}");
-    assert!(hole_lum > 230.0 && hole_lum > card_lum, "the hole shows its bright source: {hole_lum:.0}");
+    assert!(hole_lum < 0.7 * card_lum, "the hole reads as a hole, darker than the card: {hole_lum:.0} against {card_lum:.0}");
 }
 
 #[test]
