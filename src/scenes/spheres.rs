@@ -127,6 +127,10 @@ fn area_light(s: &mut World, o: &SceneOptions) -> Result<()> {
     // frame's height), so the fringes, which scale with its image, are
     // 3-5 px wide at 1:1 with no inset.
     s.camera = Camera::look_at(DVec3::ZERO, DVec3::new(3.0, 0.0, 0.0), DVec3::Z, 21.0, o.width, o.height);
+    // The faint copy of the lamp seen after two reflections inside the
+    // glass (R^2, near the sphere's centre) is followed whole, not by the
+    // min(1, 4R) chance that printed it as coloured grain.
+    s.eye_follow_reflections = 3;
     Ok(())
 }
 
@@ -184,8 +188,11 @@ fn metal_plate(s: &mut World, o: &SceneOptions) -> Result<()> {
     // dim room behind the camera (2 %), which the glass reflects faintly.
     glow(s, o, "back wall", [DVec3::new(7.0, 6.0, -4.0), DVec3::new(0.0, -12.0, 0.0), DVec3::new(0.0, 0.0, 8.0)], 0.01)?;
     glow(s, o, "front wall", [DVec3::new(-3.0, -30.0, -6.0), DVec3::new(0.0, 60.0, 0.0), DVec3::new(0.0, 0.0, 12.0)], 0.02)?;
-    // A 26 degree field: the sphere large, whole, the plate's edges in view.
-    s.camera = Camera::look_at(DVec3::ZERO, DVec3::new(3.0, 0.0, 0.0), DVec3::Z, 26.0, o.width, o.height);
+    // A 22 degree field (vertical): the plate fills the frame edge to edge
+    // (1.42 m by 1.9 m of it in view at 4:3), so the picture is all lit
+    // metal with no grey border, and the sphere, whole, spans about 87 %
+    // of the frame's height.
+    s.camera = Camera::look_at(DVec3::ZERO, DVec3::new(3.0, 0.0, 0.0), DVec3::Z, 22.0, o.width, o.height);
     Ok(())
 }
 
@@ -302,15 +309,26 @@ fn card_lamps(s: &mut World, o: &SceneOptions) -> Result<()> {
     // N-SF11) before it leaves toward the camera. On the old dark
     // card that copy showed as a ghost circle; on the lit card and
     // wall it is under 5 of 255 levels.
+    // The source stands 0.8 m behind the card and is 0.3 m square: from
+    // the sphere, on the beam's axis, it fills the hole; from the camera,
+    // which looks through the hole at about 21 degrees, the line of sight
+    // lands 0.2-0.4 m to the side of it, on the wall in the card's shadow,
+    // so the hole reads as a hole (darker than the card), not as a lit
+    // white square. Its radiance is the old 0.8 m face's (0.5 over 0.64 m^2).
     let source = s.lights.len();
     s.faces.push(Face::rect(
         "beam source",
-        DVec3::new(-0.3, -0.4, -0.4),
-        DVec3::new(0.0, 0.8, 0.0),
-        DVec3::new(0.0, 0.0, 0.8),
+        DVec3::new(-0.8, -0.15, -0.15),
+        DVec3::new(0.0, 0.3, 0.0),
+        DVec3::new(0.0, 0.0, 0.3),
         Surface::Emitter { light: source },
     ));
-    s.lights.push(Light { name: "beam source".into(), emission: Emission::Area { face: s.faces.len() - 1 }, spectrum: light_spectrum(o, "d65")?, power: 0.5 });
+    s.lights.push(Light {
+        name: "beam source".into(),
+        emission: Emission::Area { face: s.faces.len() - 1 },
+        spectrum: light_spectrum(o, "d65")?,
+        power: 0.5 * 0.09 / 0.64,
+    });
     Ok(())
 }
 

@@ -241,10 +241,10 @@ impl Eye<'_> {
             // Near the camera (`World::eye_split_depth`) the transmitted part always goes on with
             // weight T (no roulette noise in the main image); the weak
             // reflected part is followed with probability min(1, 4R) and
-            // weight R / that. Deeper, one branch is chosen by Russian
+            // weight R / that (always, up to `World::eye_follow_reflections`). Deeper, one branch is chosen by Russian
             // roulette.
             Some(t) if p.depth < self.scene.eye_split_depth => {
-                let q = (4.0 * r).min(1.0);
+                let q = if p.depth < self.scene.eye_follow_reflections { 1.0 } else { (4.0 * r).min(1.0) };
                 if q > 0.0 && rng.f64() < q {
                     let region = self.scene.region_after(id, c.reflected);
                     stack.push(Path { o: x, d: c.reflected, skip: Some(id), region, weight: p.weight * r / q, depth: p.depth + 1, ..*p });

@@ -93,6 +93,12 @@ pub struct World {
     /// through many cemented faces raises it, so what the glass shows
     /// carries no roulette grain.
     pub eye_split_depth: usize,
+    /// Interfaces up to this depth (0: none) always send on the reflected
+    /// part of an eye path too (weight R), not with probability min(1, 4R):
+    /// set where a faint reflection inside the glass reaches a light far
+    /// brighter than the rest of the scene, which the probability would
+    /// print as coloured grain.
+    pub eye_follow_reflections: usize,
     /// The prisms' convex parts and convex outlines, for finding the next
     /// surface faster (`cells`); rebuilt from the faces by `add_extruded`
     /// and `build_accel`.
@@ -148,6 +154,7 @@ impl World {
             indirect_gather: 1.0,
             caustics_apart: false,
             eye_split_depth: 4,
+            eye_follow_reflections: 0,
             cells: Cells::default(),
         }
     }
