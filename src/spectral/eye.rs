@@ -241,8 +241,8 @@ impl Eye<'_> {
             // Near the camera (`World::eye_split_depth`) the transmitted part always goes on with
             // weight T (no roulette noise in the main image); the weak
             // reflected part is followed with probability min(1, 4R) and
-            // weight R / that (always, up to `World::eye_follow_reflections`). Deeper, one branch is chosen by Russian
-            // roulette.
+            // weight R / that (always, up to `World::eye_follow_reflections`).
+            // Deeper, one branch is chosen by Russian roulette.
             Some(t) if p.depth < self.scene.eye_split_depth => {
                 let q = if p.depth < self.scene.eye_follow_reflections { 1.0 } else { (4.0 * r).min(1.0) };
                 if q > 0.0 && rng.f64() < q {
