@@ -130,20 +130,25 @@ impl SceneFile {
             },
             written: written.iter().map(|(k, v)| format!("{k} = {v}")).collect::<Vec<_>>().join(", "),
         };
-        if let Some((g, why)) = scene.mode.first_ignored(&scene.params)? {
+        scene.check_values(file)?;
+        Ok(scene)
+    }
+
+    /// Refuses, on its line, a value the run would ignore or the scene
+    /// cannot use (haze on a scene with no beam, an incidence the prism
+    /// reflects totally), before any work.
+    fn check_values(&self, file: &str) -> Result<()> {
+        if let Some((g, why)) = self.mode.first_ignored(&self.params)? {
             return Err(refused(&g, why));
         }
-        // A value the scene cannot use (haze on a scene with no beam, an
-        // incidence the prism reflects totally): refused now, on its line.
-        match mode.scene_error(&scene.params) {
-            None => {}
-            Some(SceneError::Param { key, why }) => match scene.params.iter().find(|g| g.key == key) {
-                Some(g) => return Err(refused(g, why)),
-                None => return Err(ExperimentError::FileKey { file: file.into(), key: key.into(), why }),
+        match self.mode.scene_error(&self.params) {
+            None => Ok(()),
+            Some(SceneError::Param { key, why }) => match self.params.iter().find(|g| g.key == key) {
+                Some(g) => Err(refused(g, why)),
+                None => Err(ExperimentError::FileKey { file: file.into(), key: key.into(), why }),
             },
-            Some(error) => return Err(ExperimentError::Scene { file: file.into(), error }),
+            Some(error) => Err(ExperimentError::Scene { file: file.into(), error }),
         }
-        Ok(scene)
     }
 
     /// Whether `other` sets the same values (wherever they were written).
