@@ -24,7 +24,12 @@ pub struct IgnoredFlag {
 /// A set of rows offered as flags.
 pub trait ParamSet: 'static {
     type Config: 'static;
-    fn params() -> Vec<&'static Param<Self::Config>>;
+    /// The mode's whole table, which every given key belongs to.
+    fn table() -> &'static [Param<Self::Config>];
+    /// The rows offered as flags (all of the table unless narrowed).
+    fn params() -> Vec<&'static Param<Self::Config>> {
+        Self::table().iter().collect()
+    }
     fn defaults() -> Self::Config;
     /// Flags that must be given (when the mode's rule says so) rather than
     /// defaulted: their help says so, and shows no default.
@@ -45,8 +50,8 @@ pub struct Interior;
 
 impl ParamSet for Prism {
     type Config = <modes::prism::Prism as ModeKind>::Config;
-    fn params() -> Vec<&'static Param<Self::Config>> {
-        modes::prism::Prism::params().iter().collect()
+    fn table() -> &'static [Param<Self::Config>] {
+        modes::prism::Prism::params()
     }
     fn defaults() -> Self::Config {
         modes::prism::Prism::defaults()
@@ -55,8 +60,11 @@ impl ParamSet for Prism {
 
 impl ParamSet for PrismScene {
     type Config = <modes::prism::Prism as ModeKind>::Config;
+    fn table() -> &'static [Param<Self::Config>] {
+        modes::prism::Prism::params()
+    }
     fn params() -> Vec<&'static Param<Self::Config>> {
-        modes::prism::Prism::params().iter().filter(|p| params::prism::is_scene(p)).collect()
+        Self::table().iter().filter(|p| params::prism::is_scene(p)).collect()
     }
     fn defaults() -> Self::Config {
         modes::prism::Prism::defaults()
@@ -65,8 +73,8 @@ impl ParamSet for PrismScene {
 
 impl ParamSet for Interior {
     type Config = <modes::interior::Interior as ModeKind>::Config;
-    fn params() -> Vec<&'static Param<Self::Config>> {
-        modes::interior::Interior::params().iter().collect()
+    fn table() -> &'static [Param<Self::Config>] {
+        modes::interior::Interior::params()
     }
     fn defaults() -> Self::Config {
         modes::interior::Interior::defaults()
@@ -87,11 +95,7 @@ pub struct Flags<S> {
 impl<S: ParamSet> Flags<S> {
     /// Sets every given value on `c`.
     pub fn apply(&self, c: &mut S::Config) {
-        for g in &self.given {
-            if let Some(p) = S::params().into_iter().find(|p| p.key == g.key) {
-                (p.set)(c, &g.value);
-            }
-        }
+        params::given::apply(S::table(), c, &self.given);
     }
 
     /// The defaults with the given values set.
@@ -104,12 +108,8 @@ impl<S: ParamSet> Flags<S> {
     /// Refuses a flag that `c` (the run these flags describe) would ignore,
     /// naming it and why.
     pub fn check_used(&self, c: &S::Config) -> Result<(), IgnoredFlag> {
-        let rows = self.given.iter().filter_map(|g| S::params().into_iter().find(|p| p.key == g.key));
-        match params::first_ignored_change(rows, c, &S::defaults()) {
-            Some((p, why)) => {
-                let at = self.given.iter().find(|g| g.key == p.key).map_or_else(|| format!("--{}", p.flag()), Given::at);
-                Err(IgnoredFlag { at, why })
-            }
+        match params::given::first_ignored(S::table(), &self.given, c, &S::defaults()) {
+            Some((g, why)) => Err(IgnoredFlag { at: g.at(), why }),
             None => Ok(()),
         }
     }
