@@ -109,3 +109,24 @@ fn a_scene_files_tone_is_pointed_out_when_its_output_is_a_pfm() {
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(!stderr(&o).contains("does not change"), "{}", stderr(&o));
 }
+
+/// The Fresnel weight of the light leaving a face needs light to leave:
+/// refused on an opaque object and at index 1, used on glass.
+#[test]
+fn the_fresnel_exit_on_an_opaque_object_or_at_index_1_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let cube = repo("off/cube.off");
+    let cube = cube.to_str().unwrap();
+    let base = ["interior", "--off", cube, "--size", "8,8", "--out", "x.png", "--fresnel-exit"];
+    let with = |extra: &[&'static str]| base.iter().copied().chain(extra.iter().copied()).collect::<Vec<_>>();
+    refused(
+        &with(&["--opacity", "100", "--trace", "1"]),
+        "",
+        d,
+        "refract: error: --fresnel-exit: an opaque object (opacity 100) lets no light out through its faces",
+    );
+    refused(&with(&["--ior", "1"]), "", d, "refract: error: --fresnel-exit: at index 1 all the light gets out (Fresnel transmittance 1)");
+    let o = run(&with(&["--ior", "1.4"]), "", d);
+    assert!(o.status.success(), "{}", stderr(&o));
+}

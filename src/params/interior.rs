@@ -45,6 +45,17 @@ fn no_critical_angle(c: &InteriorConfig) -> Option<String> {
     (c.ior <= 1.0).then(|| "below index 1 light from inside always gets out: there is no critical angle".to_string())
 }
 
+/// Why the Fresnel weight of the light leaving a face changes nothing: an
+/// opaque object lets no light out through its faces, and at index 1 all
+/// of it gets out (T = 1).
+fn no_fresnel_exit(c: &InteriorConfig) -> Option<String> {
+    if c.opacity >= 100.0 {
+        Some("an opaque object (opacity 100) lets no light out through its faces".to_string())
+    } else {
+        (c.ior == 1.0).then(|| "at index 1 all the light gets out (Fresnel transmittance 1)".to_string())
+    }
+}
+
 /// The report's prompts (asked in this order, after the trace count).
 pub const PROMPTS: &str = "The report's prompts";
 const PHONG: &str = "Extended Phong model";
@@ -362,7 +373,7 @@ pub static PARAMS: &[Param<InteriorConfig>] = &[
         auto: "",
         get: |c| Some(Value::Flag(c.fresnel_exit)),
         set: |c, v| c.fresnel_exit = v.flag(),
-        ignored: never,
+        ignored: no_fresnel_exit,
     },
     Param {
         key: "spp",
